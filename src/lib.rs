@@ -1,0 +1,8 @@
+//! kepler: exact hidden-surface removal for polyhedral scenes, after W.R. Franklin's KEPLER (1981).
+//!
+//! Data flows one way: load → prepare → view → visibility → emit.
+
+pub mod error;
+pub mod geom;
+
+pub use error::{Error, Location, Pos, Result, Warning, Warnings};
