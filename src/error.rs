@@ -26,15 +26,24 @@ pub struct Location {
 impl Location {
     /// The whole file.
     pub fn file(file: &Path) -> Self {
-        Location { file: file.to_path_buf(), pos: Pos::File }
+        Location {
+            file: file.to_path_buf(),
+            pos: Pos::File,
+        }
     }
     /// A 1-based line and column of a text file.
     pub fn line(file: &Path, line: usize, col: usize) -> Self {
-        Location { file: file.to_path_buf(), pos: Pos::Line { line, col } }
+        Location {
+            file: file.to_path_buf(),
+            pos: Pos::Line { line, col },
+        }
     }
     /// A byte offset of a binary file.
     pub fn byte(file: &Path, offset: u64) -> Self {
-        Location { file: file.to_path_buf(), pos: Pos::Byte(offset) }
+        Location {
+            file: file.to_path_buf(),
+            pos: Pos::Byte(offset),
+        }
     }
 }
 

@@ -6,3 +6,4 @@ pub mod error;
 pub mod geom;
 
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
+pub mod scene;

@@ -14,7 +14,10 @@ pub struct Box3 {
 impl Box3 {
     /// The empty box (the identity of [`Box3::union`]).
     pub fn empty() -> Self {
-        Box3 { lo: P3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY), hi: P3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY) }
+        Box3 {
+            lo: P3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
+            hi: P3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
+        }
     }
 
     /// The box with the given corners (not reordered).
@@ -79,7 +82,11 @@ impl Box3 {
         if self.is_empty() {
             return [0.0; 3];
         }
-        [self.hi.x - self.lo.x, self.hi.y - self.lo.y, self.hi.z - self.lo.z]
+        [
+            self.hi.x - self.lo.x,
+            self.hi.y - self.lo.y,
+            self.hi.z - self.lo.z,
+        ]
     }
 
     /// Volume (0 for an empty box).
@@ -133,7 +140,8 @@ mod tests {
     #[test]
     fn rotated_box_is_conservative() {
         let a = Box3::new(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
-        let m = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::z_axis(), 0.5).to_homogeneous();
+        let m = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::z_axis(), 0.5)
+            .to_homogeneous();
         let t = a.transformed(&m);
         for c in a.corners() {
             assert!(t.contains(&m.transform_point(&c)));

@@ -20,7 +20,9 @@ impl PolyMesh {
 
     /// Positions of the corners of face `f`.
     pub fn face_points(&self, f: usize) -> impl Iterator<Item = &P3> + '_ {
-        self.faces[f].iter().map(move |&i| &self.vertices[i as usize])
+        self.faces[f]
+            .iter()
+            .map(move |&i| &self.vertices[i as usize])
     }
 
     /// The face's vector area (half the sum of cross products; Newell's normal).

@@ -1,0 +1,365 @@
+//! Cleanup on load: turns a raw [`PolyMesh`] into a [`Mesh`] the paper allows, reporting each repair.
+//!
+//! Errors: non-finite or huge coordinates, indices out of range. Repairs (each a warning):
+//! duplicate vertices merged, faces with fewer than 3 distinct vertices or zero area dropped,
+//! non-planar faces split into triangles. Planarity tolerance: every vertex within
+//! [`PLANAR_TOL`] × (face diameter) of the face's Newell plane through its centroid.
+
+use std::path::Path;
+
+use crate::error::{Error, Location, Pos, Result, Warning, Warnings};
+use crate::geom::{PolyMesh, P3, V3};
+
+use super::object::{Face, Mesh};
+use super::topology::is_closed_oriented;
+
+/// Largest accepted |coordinate|; beyond it products in the predicates lose too much.
+pub const MAX_COORD: f64 = 1e12;
+/// Relative distance from the face plane above which a face counts as non-planar.
+pub const PLANAR_TOL: f64 = 1e-9;
+/// Relative area (|vector area| / diameter²) below which a face counts as zero-area.
+pub const AREA_TOL: f64 = 1e-14;
+
+/// Where each face came from, for messages.
+pub struct Origin<'a> {
+    /// The source file.
+    pub file: &'a Path,
+    /// The position of each face (may be empty: then the file is named alone).
+    pub face_pos: &'a [Pos],
+}
+
+impl Origin<'_> {
+    fn at(&self, face: usize) -> Location {
+        let pos = self.face_pos.get(face).copied().unwrap_or(Pos::File);
+        Location {
+            file: self.file.to_path_buf(),
+            pos,
+        }
+    }
+}
+
+/// Checks and repairs `raw`, returning the clean mesh; warnings are appended to `warnings`.
+pub fn cleanup(raw: &PolyMesh, origin: &Origin, warnings: &mut Warnings) -> Result<Mesh> {
+    check_coordinates(raw, origin)?;
+    check_indices(raw, origin)?;
+    let (vertices, remap) = merge_duplicate_vertices(&raw.vertices);
+    let merged = raw.vertices.len() - vertices.len();
+    if merged > 0 {
+        warnings.push(Warning {
+            location: Location::file(origin.file),
+            message: format!("merged {merged} duplicate vertices"),
+        });
+    }
+    let mut faces = Vec::with_capacity(raw.faces.len());
+    for (i, f) in raw.faces.iter().enumerate() {
+        let idx: Vec<u32> = f.iter().map(|&k| remap[k as usize]).collect();
+        clean_face(idx, &vertices, &origin.at(i), &mut faces, warnings);
+    }
+    let (vertices, faces) = drop_unused_vertices(vertices, faces);
+    let closed = is_closed_oriented(&faces);
+    Ok(Mesh {
+        vertices,
+        faces,
+        closed,
+    })
+}
+
+fn check_coordinates(raw: &PolyMesh, origin: &Origin) -> Result<()> {
+    for (i, v) in raw.vertices.iter().enumerate() {
+        if v.iter().any(|c| !c.is_finite() || c.abs() > MAX_COORD) {
+            return Err(Error::invalid(
+                Location::file(origin.file),
+                format!(
+                    "vertex {} has coordinate {:?}: not finite or above {MAX_COORD:e}",
+                    i + 1,
+                    v.coords.as_slice()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn check_indices(raw: &PolyMesh, origin: &Origin) -> Result<()> {
+    let n = raw.vertices.len();
+    for (i, f) in raw.faces.iter().enumerate() {
+        if let Some(&k) = f.iter().find(|&&k| k as usize >= n) {
+            return Err(Error::invalid(
+                origin.at(i),
+                format!("face uses vertex index {k}, but there are {n} vertices"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The paper's FLATTEN step 4: sort the vertex list to find duplicates, combine them, and
+/// return the unique vertices (in order of first occurrence) with the old-to-new index map.
+pub fn merge_duplicate_vertices(verts: &[P3]) -> (Vec<P3>, Vec<u32>) {
+    let key = |p: &P3| [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits); // +0.0 folds -0 into 0
+    let mut order: Vec<u32> = (0..verts.len() as u32).collect();
+    order.sort_unstable_by(|&a, &b| {
+        let (pa, pb) = (&verts[a as usize], &verts[b as usize]);
+        pa.x.total_cmp(&pb.x)
+            .then(pa.y.total_cmp(&pb.y))
+            .then(pa.z.total_cmp(&pb.z))
+            .then(a.cmp(&b))
+    });
+    // First occurrence of each coordinate value.
+    let mut rep = vec![0u32; verts.len()];
+    let mut i = 0;
+    while i < order.len() {
+        let k = key(&verts[order[i] as usize]);
+        let mut j = i;
+        while j < order.len() && key(&verts[order[j] as usize]) == k {
+            rep[order[j] as usize] = order[i];
+            j += 1;
+        }
+        i = j;
+    }
+    let mut new_index = vec![u32::MAX; verts.len()];
+    let mut out = Vec::new();
+    let mut remap = vec![0u32; verts.len()];
+    for v in 0..verts.len() {
+        let r = rep[v] as usize;
+        if new_index[r] == u32::MAX {
+            new_index[r] = out.len() as u32;
+            out.push(verts[r]);
+        }
+        remap[v] = new_index[r];
+    }
+    (out, remap)
+}
+
+fn drop_unused_vertices(vertices: Vec<P3>, mut faces: Vec<Face>) -> (Vec<P3>, Vec<Face>) {
+    let mut new_index = vec![u32::MAX; vertices.len()];
+    let mut out = Vec::with_capacity(vertices.len());
+    for f in &mut faces {
+        for k in &mut f.vertices {
+            let old = *k as usize;
+            if new_index[old] == u32::MAX {
+                new_index[old] = out.len() as u32;
+                out.push(vertices[old]);
+            }
+            *k = new_index[old];
+        }
+    }
+    (out, faces)
+}
+
+/// Removes repeated consecutive vertices (cyclically).
+fn dedup_cyclic(mut idx: Vec<u32>) -> Vec<u32> {
+    idx.dedup();
+    while idx.len() > 1 && idx.first() == idx.last() {
+        idx.pop();
+    }
+    idx
+}
+
+fn clean_face(
+    idx: Vec<u32>,
+    verts: &[P3],
+    loc: &Location,
+    out: &mut Vec<Face>,
+    warnings: &mut Warnings,
+) {
+    let idx = dedup_cyclic(idx);
+    let mut distinct = idx.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    if distinct.len() < 3 {
+        warnings.push(Warning {
+            location: loc.clone(),
+            message: format!("face has {} distinct vertices; dropped", distinct.len()),
+        });
+        return;
+    }
+    let pts: Vec<P3> = idx.iter().map(|&k| verts[k as usize]).collect();
+    let shape = FaceShape::of(&pts);
+    if shape.area2 <= AREA_TOL * shape.diameter * shape.diameter {
+        warnings.push(Warning {
+            location: loc.clone(),
+            message: "face has zero area; dropped".into(),
+        });
+        return;
+    }
+    if shape.deviation <= PLANAR_TOL * shape.diameter {
+        out.push(Face::new(idx));
+        return;
+    }
+    let tris = super::triangulate::ear_clip(&pts, &shape.normal);
+    let before = out.len();
+    for t in tris {
+        let tri = [idx[t[0]], idx[t[1]], idx[t[2]]];
+        let s = FaceShape::of(&tri.map(|k| verts[k as usize]));
+        if s.area2 > AREA_TOL * s.diameter * s.diameter {
+            out.push(Face::new(tri.to_vec()));
+        }
+    }
+    warnings.push(Warning {
+        location: loc.clone(),
+        message: format!(
+            "face is not planar (a vertex is {:.3e} off its plane, tolerance {:.1e} x diameter); split into {} triangles",
+            shape.deviation,
+            PLANAR_TOL,
+            out.len() - before
+        ),
+    });
+}
+
+/// Size, orientation and flatness of a polygon in space.
+#[derive(Debug, Clone, Copy)]
+pub struct FaceShape {
+    /// Newell normal (twice the vector area).
+    pub normal: V3,
+    /// |normal|: twice the area.
+    pub area2: f64,
+    /// Largest distance between two vertices' bounding-box corners (box diagonal).
+    pub diameter: f64,
+    /// Largest distance of a vertex from the Newell plane through the centroid.
+    pub deviation: f64,
+}
+
+impl FaceShape {
+    /// Measures the polygon `pts`.
+    pub fn of(pts: &[P3]) -> Self {
+        let n = pts.len();
+        let mut normal = V3::zeros();
+        for i in 0..n {
+            let (a, b) = (&pts[i], &pts[(i + 1) % n]);
+            normal += V3::new(
+                (a.y - b.y) * (a.z + b.z),
+                (a.z - b.z) * (a.x + b.x),
+                (a.x - b.x) * (a.y + b.y),
+            );
+        }
+        let bbox = crate::geom::Box3::from_points(pts.iter());
+        let diameter = (bbox.hi - bbox.lo).norm();
+        let area2 = normal.norm();
+        let centroid = pts.iter().fold(V3::zeros(), |s, p| s + p.coords) / n as f64;
+        let deviation = if area2 > 0.0 {
+            let u = normal / area2;
+            pts.iter()
+                .map(|p| (p.coords - centroid).dot(&u).abs())
+                .fold(0.0, f64::max)
+        } else {
+            0.0
+        };
+        FaceShape {
+            normal,
+            area2,
+            diameter,
+            deviation,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn origin() -> Origin<'static> {
+        Origin {
+            file: Path::new("t.obj"),
+            face_pos: &[],
+        }
+    }
+
+    fn quad_mesh(z: f64) -> PolyMesh {
+        PolyMesh::new(
+            vec![
+                P3::new(0., 0., 0.),
+                P3::new(1., 0., 0.),
+                P3::new(1., 1., z),
+                P3::new(0., 1., 0.),
+            ],
+            vec![vec![0, 1, 2, 3]],
+        )
+    }
+
+    #[test]
+    fn planar_quad_is_kept() {
+        let mut w = Vec::new();
+        let m = cleanup(&quad_mesh(0.0), &origin(), &mut w).unwrap();
+        assert_eq!(m.faces.len(), 1);
+        assert!(w.is_empty());
+        assert!(!m.closed);
+    }
+
+    #[test]
+    fn non_planar_quad_is_split_with_warning() {
+        let mut w = Vec::new();
+        let m = cleanup(&quad_mesh(0.25), &origin(), &mut w).unwrap();
+        assert_eq!(m.faces.len(), 2);
+        assert_eq!(w.len(), 1);
+        assert!(w[0].message.contains("not planar"), "{}", w[0].message);
+        // The pieces cover the same boundary vertices.
+        let mut used: Vec<u32> = m.faces.iter().flat_map(|f| f.vertices.clone()).collect();
+        used.sort();
+        used.dedup();
+        assert_eq!(used, vec![0, 1, 2, 3]);
+    }
+
+    #[test]
+    fn degenerate_faces_dropped_duplicates_merged() {
+        let raw = PolyMesh::new(
+            vec![
+                P3::new(0., 0., 0.),
+                P3::new(1., 0., 0.),
+                P3::new(0., 1., 0.),
+                P3::new(1., 0., 0.),
+                P3::new(2., 0., 0.),
+            ],
+            vec![vec![0, 1, 2], vec![0, 1, 3], vec![0, 1, 4]],
+        );
+        let mut w = Vec::new();
+        let m = cleanup(&raw, &origin(), &mut w).unwrap();
+        assert_eq!(m.faces.len(), 1);
+        assert_eq!(m.vertices.len(), 3);
+        let msgs: Vec<&str> = w.iter().map(|w| w.message.as_str()).collect();
+        assert!(
+            msgs.iter().any(|m| m.contains("merged 1 duplicate")),
+            "{msgs:?}"
+        );
+        assert!(msgs.iter().any(|m| m.contains("2 distinct")), "{msgs:?}");
+        assert!(msgs.iter().any(|m| m.contains("zero area")), "{msgs:?}");
+    }
+
+    #[test]
+    fn bad_coordinates_and_indices_are_errors() {
+        let mut w = Vec::new();
+        let nan = PolyMesh::new(vec![P3::new(f64::NAN, 0., 0.)], vec![]);
+        assert!(matches!(
+            cleanup(&nan, &origin(), &mut w),
+            Err(Error::Invalid(..))
+        ));
+        let huge = PolyMesh::new(vec![P3::new(1e300, 0., 0.)], vec![]);
+        assert!(matches!(
+            cleanup(&huge, &origin(), &mut w),
+            Err(Error::Invalid(..))
+        ));
+        let oob = PolyMesh::new(vec![P3::origin()], vec![vec![0, 1, 2]]);
+        let e = cleanup(
+            &oob,
+            &Origin {
+                file: Path::new("x.obj"),
+                face_pos: &[Pos::Line { line: 7, col: 1 }],
+            },
+            &mut w,
+        );
+        assert!(e.unwrap_err().to_string().starts_with("x.obj:7:1:"));
+    }
+
+    #[test]
+    fn merge_keeps_first_occurrence_order() {
+        let v = [
+            P3::new(1., 0., 0.),
+            P3::new(0., 0., 0.),
+            P3::new(1., 0., 0.),
+            P3::new(-0., 0., 0.),
+        ];
+        let (u, remap) = merge_duplicate_vertices(&v);
+        assert_eq!(u, vec![P3::new(1., 0., 0.), P3::new(0., 0., 0.)]);
+        assert_eq!(remap, vec![0, 1, 0, 1]);
+    }
+}

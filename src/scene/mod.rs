@@ -1,0 +1,180 @@
+//! The scene database: Franklin's object tree with CBOX/INBOX, instancing, cleanup and FLATTEN.
+
+pub mod cleanup;
+pub mod flatten;
+pub mod object;
+pub mod texture;
+pub mod topology;
+pub mod triangulate;
+
+use std::path::PathBuf;
+
+use crate::geom::{Box3, M4, P3, V3};
+
+pub use flatten::{flatten, FlatMesh};
+pub use object::{Content, Face, Instance, Mesh, Object};
+pub use texture::{Texture, TextureFrame};
+
+/// A camera as a scene file states it (the view stage turns it into a matrix).
+#[derive(Debug, Clone, PartialEq)]
+pub enum CameraSpec {
+    /// Orthographic, looking along `dir`.
+    Orthographic {
+        /// Viewing direction.
+        dir: V3,
+        /// Up vector.
+        up: V3,
+    },
+    /// Perspective from `eye` toward `target` with a vertical field of view in degrees.
+    Perspective {
+        /// Eye position.
+        eye: P3,
+        /// Point looked at.
+        target: P3,
+        /// Up vector.
+        up: V3,
+        /// Vertical field of view, degrees.
+        fov_deg: f64,
+    },
+}
+
+/// A loaded scene: the object tree (its root has no name in paths) and an optional camera.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// The root object; its subobjects are the scene's top-level objects.
+    pub root: Object,
+    /// The scene file's camera block, if any.
+    pub camera: Option<CameraSpec>,
+    /// The file the scene came from.
+    pub source: PathBuf,
+}
+
+/// One leaf object placed in the world: its path, its mesh and its world transform.
+#[derive(Debug, Clone)]
+pub struct Leaf<'a> {
+    /// Object path from the top level, names joined by '/'.
+    pub path: String,
+    /// The leaf's vertices and faces (in its own coordinates).
+    pub mesh: &'a Mesh,
+    /// Transform to world coordinates.
+    pub transform: M4,
+    /// Index of this leaf's first face in the global face order.
+    pub first_face: usize,
+}
+
+impl Leaf<'_> {
+    /// True when the transform mirrors (negative determinant): face windings must be reversed.
+    pub fn mirrors(&self) -> bool {
+        self.transform.fixed_view::<3, 3>(0, 0).determinant() < 0.0
+    }
+
+    /// World position of vertex `k`.
+    pub fn world_vertex(&self, k: u32) -> P3 {
+        self.transform
+            .transform_point(&self.mesh.vertices[k as usize])
+    }
+}
+
+impl Scene {
+    /// A scene of one root object.
+    pub fn new(root: Object, source: PathBuf) -> Self {
+        Scene {
+            root,
+            camera: None,
+            source,
+        }
+    }
+
+    /// The leaves in global face order (depth-first, instances expanded).
+    pub fn leaves(&self) -> Vec<Leaf<'_>> {
+        let mut out = Vec::new();
+        let mut first_face = 0;
+        self.root
+            .for_each_mesh(&M4::identity(), &mut |path, mesh, xf| {
+                out.push(Leaf {
+                    path: path.join("/"),
+                    mesh,
+                    transform: *xf,
+                    first_face,
+                });
+                first_face += mesh.faces.len();
+            });
+        out
+    }
+
+    /// Total number of faces (instances expanded).
+    pub fn face_count(&self) -> usize {
+        self.root.face_count()
+    }
+
+    /// The world CBOX of the whole scene.
+    pub fn cbox(&self) -> Box3 {
+        self.root.cbox
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+
+    fn tri(z: f64) -> Mesh {
+        Mesh {
+            vertices: vec![P3::new(0., 0., z), P3::new(1., 0., z), P3::new(0., 1., z)],
+            faces: vec![Face::new(vec![0, 1, 2])],
+            closed: false,
+        }
+    }
+
+    #[test]
+    fn instancing_stores_once_places_many() {
+        let proto = Arc::new(Object::from_mesh("t", tri(0.0)));
+        let a = Object::instance(
+            "a",
+            proto.clone(),
+            nalgebra::Translation3::new(10., 0., 0.).to_homogeneous(),
+        );
+        let b = Object::instance("b", proto.clone(), M4::new_scaling(2.0));
+        let root = Object::group(
+            "",
+            vec![
+                Object::group("g", vec![a, b]),
+                Object::from_mesh("c", tri(5.0)),
+            ],
+        );
+        let scene = Scene::new(root, "x".into());
+        let leaves = scene.leaves();
+        assert_eq!(
+            leaves.iter().map(|l| l.path.as_str()).collect::<Vec<_>>(),
+            vec!["g/a", "g/b", "c"]
+        );
+        assert_eq!(
+            leaves.iter().map(|l| l.first_face).collect::<Vec<_>>(),
+            vec![0, 1, 2]
+        );
+        assert_eq!(leaves[0].world_vertex(1), P3::new(11., 0., 0.));
+        assert_eq!(leaves[1].world_vertex(2), P3::new(0., 2., 0.));
+        assert!(std::ptr::eq(leaves[0].mesh, leaves[1].mesh));
+        assert_eq!(Arc::strong_count(&proto), 3);
+        assert_eq!(
+            scene.cbox(),
+            Box3::new(P3::new(0., 0., 0.), P3::new(11., 2., 5.))
+        );
+    }
+
+    #[test]
+    fn mirrored_instance_is_detected() {
+        let proto = Arc::new(Object::from_mesh("t", tri(0.0)));
+        let root = Object::group(
+            "",
+            vec![Object::instance(
+                "m",
+                proto,
+                M4::new_nonuniform_scaling(&V3::new(-1., 1., 1.)),
+            )],
+        );
+        let scene = Scene::new(root, "x".into());
+        assert!(scene.leaves()[0].mirrors());
+    }
+}

@@ -1,0 +1,202 @@
+//! The paper's object: a name, a CBOX, an INBOX, and either subobjects or vertices and faces.
+
+use std::sync::Arc;
+
+use crate::geom::{Box3, M4, P3};
+
+use super::texture::Texture;
+
+/// A planar polygon of an object, indexing the object's vertex list (the paper's FACE).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Face {
+    /// Indices into the object's vertices, counter-clockwise seen from outside for solids.
+    pub vertices: Vec<u32>,
+    /// Surface markings in the face's texture coordinates (the paper's first use of texture).
+    pub texture: Option<Arc<Texture>>,
+}
+
+impl Face {
+    /// A face with no texture.
+    pub fn new(vertices: Vec<u32>) -> Self {
+        Face {
+            vertices,
+            texture: None,
+        }
+    }
+}
+
+/// Vertices and faces of a leaf object, after cleanup.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Mesh {
+    /// The paper's (VERTi): no two share coordinates.
+    pub vertices: Vec<P3>,
+    /// The paper's [FACEi].
+    pub faces: Vec<Face>,
+    /// True when every edge is shared by exactly two faces traversing it in opposite
+    /// directions: a closed, consistently oriented solid.
+    pub closed: bool,
+}
+
+/// A prototype placed with a transform: stored once, placed many times.
+#[derive(Debug, Clone)]
+pub struct Instance {
+    /// The prototype object, shared by every placement.
+    pub prototype: Arc<Object>,
+    /// Affine transform from the prototype's coordinates into the parent's.
+    pub transform: M4,
+}
+
+/// What an object is made of.
+#[derive(Debug, Clone)]
+pub enum Content {
+    /// A leaf: vertices and faces.
+    Mesh(Mesh),
+    /// Subobjects (the paper's (SUBi)).
+    Subobjects(Vec<Object>),
+    /// A placed prototype: behaves as one subobject, transformed.
+    Instance(Instance),
+}
+
+/// An object of the scene tree (the paper's OBJECT).
+#[derive(Debug, Clone)]
+pub struct Object {
+    /// Name, unique among its siblings.
+    pub name: String,
+    /// Circumscribing box, in the object's own coordinates (the parent's frame).
+    pub cbox: Box3,
+    /// Inscribed box, in the same frame, where known.
+    pub inbox: Option<Box3>,
+    /// Subobjects, or vertices and faces, or an instance.
+    pub content: Content,
+}
+
+impl Object {
+    /// A leaf object; its CBOX is computed.
+    pub fn from_mesh(name: impl Into<String>, mesh: Mesh) -> Self {
+        let cbox = Box3::from_points(mesh.vertices.iter());
+        Object {
+            name: name.into(),
+            cbox,
+            inbox: None,
+            content: Content::Mesh(mesh),
+        }
+    }
+
+    /// An object with subobjects; its CBOX is the union of theirs.
+    pub fn group(name: impl Into<String>, subs: Vec<Object>) -> Self {
+        let cbox = subs.iter().fold(Box3::empty(), |b, s| b.union(&s.cbox));
+        Object {
+            name: name.into(),
+            cbox,
+            inbox: None,
+            content: Content::Subobjects(subs),
+        }
+    }
+
+    /// A placement of `prototype` with `transform`; its CBOX is that of the placed vertices.
+    pub fn instance(name: impl Into<String>, prototype: Arc<Object>, transform: M4) -> Self {
+        let mut cbox = Box3::empty();
+        prototype.for_each_mesh(&transform, &mut |_, mesh, m| {
+            for v in &mesh.vertices {
+                cbox.add_point(&m.transform_point(v));
+            }
+        });
+        Object {
+            name: name.into(),
+            cbox,
+            inbox: None,
+            content: Content::Instance(Instance {
+                prototype,
+                transform,
+            }),
+        }
+    }
+
+    /// The paper's NSUB / SUB: the subobjects (empty for a leaf; an instance has none of its own).
+    pub fn subobjects(&self) -> &[Object] {
+        match &self.content {
+            Content::Subobjects(s) => s,
+            _ => &[],
+        }
+    }
+
+    /// The leaf mesh, if this object has vertices and faces.
+    pub fn mesh(&self) -> Option<&Mesh> {
+        match &self.content {
+            Content::Mesh(m) => Some(m),
+            _ => None,
+        }
+    }
+
+    /// The paper's VERT: the vertices (empty unless a leaf).
+    pub fn vertices(&self) -> &[P3] {
+        self.mesh().map_or(&[], |m| &m.vertices)
+    }
+
+    /// The paper's FACE: the faces (empty unless a leaf).
+    pub fn faces(&self) -> &[Face] {
+        self.mesh().map_or(&[], |m| &m.faces)
+    }
+
+    /// The paper's VF(A, i, j) for all j: the corner positions of face `i`.
+    pub fn face_vertices(&self, i: usize) -> impl Iterator<Item = &P3> + '_ {
+        let verts = self.vertices();
+        self.faces()[i]
+            .vertices
+            .iter()
+            .map(move |&k| &verts[k as usize])
+    }
+
+    /// Number of faces in the whole subtree, instances expanded.
+    pub fn face_count(&self) -> usize {
+        match &self.content {
+            Content::Mesh(m) => m.faces.len(),
+            Content::Subobjects(s) => s.iter().map(Object::face_count).sum(),
+            Content::Instance(i) => i.prototype.face_count(),
+        }
+    }
+
+    /// Number of vertices in the whole subtree, instances expanded.
+    pub fn vertex_count(&self) -> usize {
+        match &self.content {
+            Content::Mesh(m) => m.vertices.len(),
+            Content::Subobjects(s) => s.iter().map(Object::vertex_count).sum(),
+            Content::Instance(i) => i.prototype.vertex_count(),
+        }
+    }
+
+    /// True when every leaf below is a closed, consistently oriented solid.
+    pub fn is_closed(&self) -> bool {
+        match &self.content {
+            Content::Mesh(m) => m.closed,
+            Content::Subobjects(s) => !s.is_empty() && s.iter().all(Object::is_closed),
+            Content::Instance(i) => i.prototype.is_closed(),
+        }
+    }
+
+    /// Visits every leaf mesh depth-first (the global face order), with the path of names
+    /// below this object and the transform from the leaf's coordinates to `xf`'s target.
+    pub fn for_each_mesh<'a>(&'a self, xf: &M4, f: &mut dyn FnMut(&[&'a str], &'a Mesh, &M4)) {
+        let mut path = Vec::new();
+        self.walk_meshes(xf, &mut path, f);
+    }
+
+    fn walk_meshes<'a>(
+        &'a self,
+        xf: &M4,
+        path: &mut Vec<&'a str>,
+        f: &mut dyn FnMut(&[&'a str], &'a Mesh, &M4),
+    ) {
+        match &self.content {
+            Content::Mesh(m) => f(path, m, xf),
+            Content::Subobjects(subs) => {
+                for s in subs {
+                    path.push(&s.name);
+                    s.walk_meshes(xf, path, f);
+                    path.pop();
+                }
+            }
+            Content::Instance(i) => i.prototype.walk_meshes(&(xf * i.transform), path, f),
+        }
+    }
+}
