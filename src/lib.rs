@@ -7,3 +7,4 @@ pub mod geom;
 
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
 pub mod scene;
+pub mod view;

@@ -1,0 +1,167 @@
+//! Planar polygons in screen space: rings, polygons with holes, multipolygons, and exact predicates.
+
+/// A point of the screen plane.
+pub type Pt2 = [f64; 2];
+/// A closed ring (the last point is not repeated).
+pub type Ring = Vec<Pt2>;
+/// A polygon: outer ring (counter-clockwise) first, then holes (clockwise).
+pub type Polygon = Vec<Ring>;
+/// A set of disjoint polygons.
+pub type MultiPolygon = Vec<Polygon>;
+
+/// Exact sign of the turn a → b → c: > 0 left (counter-clockwise), < 0 right, 0 collinear.
+#[inline]
+pub fn orient2d(a: Pt2, b: Pt2, c: Pt2) -> f64 {
+    robust::orient2d(robust::Coord { x: a[0], y: a[1] }, robust::Coord { x: b[0], y: b[1] }, robust::Coord { x: c[0], y: c[1] })
+}
+
+/// Signed area of a ring (shoelace; positive for counter-clockwise).
+pub fn ring_area(r: &[Pt2]) -> f64 {
+    let n = r.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let o = r[0];
+    let mut s = 0.0;
+    for i in 1..n - 1 {
+        s += (r[i][0] - o[0]) * (r[i + 1][1] - o[1]) - (r[i + 1][0] - o[0]) * (r[i][1] - o[1]);
+    }
+    0.5 * s
+}
+
+/// Area of a polygon with holes (outer minus holes, by signed ring areas).
+pub fn polygon_area(p: &Polygon) -> f64 {
+    p.iter().map(|r| ring_area(r)).sum()
+}
+
+/// Total area of a multipolygon.
+pub fn multipolygon_area(m: &MultiPolygon) -> f64 {
+    m.iter().map(polygon_area).sum()
+}
+
+/// Where a point lies relative to a region.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// Strictly inside.
+    Inside,
+    /// On the boundary.
+    Boundary,
+    /// Strictly outside.
+    Outside,
+}
+
+/// Winding number of `r` around `p`, or None when `p` lies on the ring (exact).
+pub fn winding(r: &[Pt2], p: Pt2) -> Option<i32> {
+    let n = r.len();
+    let mut w = 0;
+    for i in 0..n {
+        let (a, b) = (r[i], r[(i + 1) % n]);
+        let o = orient2d(a, b, p);
+        if o == 0.0 && on_segment_collinear(a, b, p) {
+            return None;
+        }
+        if a[1] <= p[1] {
+            if b[1] > p[1] && o > 0.0 {
+                w += 1;
+            }
+        } else if b[1] <= p[1] && o < 0.0 {
+            w -= 1;
+        }
+    }
+    Some(w)
+}
+
+fn on_segment_collinear(a: Pt2, b: Pt2, p: Pt2) -> bool {
+    p[0] >= a[0].min(b[0]) && p[0] <= a[0].max(b[0]) && p[1] >= a[1].min(b[1]) && p[1] <= a[1].max(b[1])
+}
+
+/// Exact location of `p` relative to a multipolygon (non-zero winding over all rings).
+pub fn locate(m: &MultiPolygon, p: Pt2) -> Side {
+    let mut total = 0;
+    for poly in m {
+        for r in poly {
+            match winding(r, p) {
+                None => return Side::Boundary,
+                Some(w) => total += w,
+            }
+        }
+    }
+    if total != 0 {
+        Side::Inside
+    } else {
+        Side::Outside
+    }
+}
+
+/// Bounding rectangle [xmin, ymin, xmax, ymax] of points.
+pub fn bounds<'a>(pts: impl IntoIterator<Item = &'a Pt2>) -> [f64; 4] {
+    let mut b = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+    for p in pts {
+        b[0] = b[0].min(p[0]);
+        b[1] = b[1].min(p[1]);
+        b[2] = b[2].max(p[0]);
+        b[3] = b[3].max(p[1]);
+    }
+    b
+}
+
+/// True when a counter-clockwise ring is convex (no right turn; collinear runs allowed).
+pub fn is_convex_ccw(r: &[Pt2]) -> bool {
+    let n = r.len();
+    (0..n).all(|i| orient2d(r[i], r[(i + 1) % n], r[(i + 2) % n]) >= 0.0)
+}
+
+/// Canonical form: every ring starts at its lexicographically smallest point (x, then y),
+/// holes sorted after the outer ring, polygons sorted by their outer ring's start.
+pub fn canonicalize(m: &mut MultiPolygon) {
+    let key = |p: &Pt2, q: &Pt2| p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]));
+    for poly in m.iter_mut() {
+        for r in poly.iter_mut() {
+            if let Some(k) = (0..r.len()).min_by(|&i, &j| key(&r[i], &r[j])) {
+                r.rotate_left(k);
+            }
+        }
+        if poly.len() > 2 {
+            poly[1..].sort_by(|a, b| key(&a[0], &b[0]));
+        }
+    }
+    m.retain(|p| !p.is_empty() && !p[0].is_empty());
+    m.sort_by(|a, b| key(&a[0][0], &b[0][0]));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x0: f64, y0: f64, s: f64) -> Ring {
+        vec![[x0, y0], [x0 + s, y0], [x0 + s, y0 + s], [x0, y0 + s]]
+    }
+
+    #[test]
+    fn areas_and_location() {
+        let mut hole = square(1., 1., 1.);
+        hole.reverse();
+        let m: MultiPolygon = vec![vec![square(0., 0., 3.), hole]];
+        assert_eq!(multipolygon_area(&m), 8.0);
+        assert_eq!(locate(&m, [0.5, 0.5]), Side::Inside);
+        assert_eq!(locate(&m, [1.5, 1.5]), Side::Outside);
+        assert_eq!(locate(&m, [1.0, 1.5]), Side::Boundary);
+        assert_eq!(locate(&m, [3.0, 3.0]), Side::Boundary);
+        assert_eq!(locate(&m, [4.0, 1.0]), Side::Outside);
+    }
+
+    #[test]
+    fn canonical_rotation_and_order() {
+        let mut m: MultiPolygon = vec![vec![vec![[5., 5.], [6., 5.], [5., 6.]]], vec![vec![[1., 0.], [1., 1.], [0., 0.]]]];
+        canonicalize(&mut m);
+        assert_eq!(m[0][0][0], [0., 0.]);
+        assert_eq!(m[0][0], vec![[0., 0.], [1., 0.], [1., 1.]]);
+        assert_eq!(m[1][0][0], [5., 5.]);
+    }
+
+    #[test]
+    fn convexity() {
+        assert!(is_convex_ccw(&square(0., 0., 1.)));
+        assert!(!is_convex_ccw(&[[0., 0.], [2., 0.], [1., 0.5], [2., 2.], [0., 2.]]));
+    }
+}

@@ -1,0 +1,255 @@
+//! Screen-space faces: every face of the scene projected into the standard view, in global face order.
+
+use crate::geom::poly2::{orient2d, ring_area, Pt2};
+use crate::scene::{Leaf, Scene};
+
+use super::camera::{Camera, Projection};
+
+/// How a projected face presents itself to the viewer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Facing {
+    /// Counter-clockwise in projection: its front (outer) side faces the viewer.
+    Front,
+    /// Clockwise in projection.
+    Back,
+    /// Seen exactly edge-on: invisible, hides nothing.
+    EdgeOn,
+    /// Entirely behind the near plane (perspective): not drawn, hides nothing.
+    Clipped,
+}
+
+/// One face in screen space.
+#[derive(Debug, Clone, Copy)]
+pub struct ScreenFace {
+    /// First point in [`ScreenFaces::points`].
+    pub start: u32,
+    /// Number of points.
+    pub len: u32,
+    /// Index of the leaf object in [`ScreenFaces::leaves`].
+    pub leaf: u32,
+    /// Screen bounding rectangle [xmin, ymin, xmax, ymax].
+    pub rect: [f64; 4],
+    /// Least depth (farthest from the viewer).
+    pub zmin: f64,
+    /// Greatest depth (nearest to the viewer).
+    pub zmax: f64,
+    /// Three well-spread points (offsets from `start`) spanning the face's plane.
+    pub refs: [u32; 3],
+    /// Sign of orient2d over `refs`: +1 or -1 (0 when edge-on).
+    pub ref_turn: f64,
+    /// Orientation toward the viewer.
+    pub facing: Facing,
+    /// True for a back face of a closed solid: hidden by the solid itself (a safe cull).
+    pub culled: bool,
+    /// True when the projected ring is convex (counter-clockwise after orienting).
+    pub convex: bool,
+}
+
+impl ScreenFace {
+    /// True when this face can hide anything (not edge-on, not clipped away, not culled).
+    pub fn is_occluder(&self) -> bool {
+        matches!(self.facing, Facing::Front | Facing::Back) && !self.culled
+    }
+}
+
+/// Leaf object info kept for output.
+#[derive(Debug, Clone)]
+pub struct LeafInfo {
+    /// Object path.
+    pub path: String,
+    /// First global face id.
+    pub first_face: u32,
+    /// Number of faces.
+    pub face_count: u32,
+}
+
+/// All faces in screen space, indexed by global face id.
+#[derive(Debug, Clone, Default)]
+pub struct ScreenFaces {
+    /// Faces by global id.
+    pub faces: Vec<ScreenFace>,
+    /// Projected points (x, y, depth) of all faces, face after face.
+    pub points: Vec<[f64; 3]>,
+    /// Leaf objects in global order.
+    pub leaves: Vec<LeafInfo>,
+}
+
+impl ScreenFaces {
+    /// Projects every face of `scene` with `camera`.
+    pub fn build(scene: &Scene, camera: &Camera) -> ScreenFaces {
+        let mut out = ScreenFaces::default();
+        for (li, leaf) in scene.leaves().iter().enumerate() {
+            out.add_leaf(li as u32, leaf, camera);
+        }
+        out
+    }
+
+    /// The projected points of face `f`.
+    pub fn pts(&self, f: usize) -> &[[f64; 3]] {
+        let sf = &self.faces[f];
+        &self.points[sf.start as usize..(sf.start + sf.len) as usize]
+    }
+
+    /// The projected ring of face `f` in (x, y), counter-clockwise.
+    pub fn ring_ccw(&self, f: usize) -> Vec<Pt2> {
+        let mut r: Vec<Pt2> = self.pts(f).iter().map(|p| [p[0], p[1]]).collect();
+        if self.faces[f].facing == Facing::Back {
+            r.reverse();
+        }
+        r
+    }
+
+    /// The three reference points of face `f`'s plane.
+    pub fn plane_refs(&self, f: usize) -> [[f64; 3]; 3] {
+        let sf = &self.faces[f];
+        let p = self.pts(f);
+        sf.refs.map(|k| p[k as usize])
+    }
+
+    fn add_leaf(&mut self, li: u32, leaf: &Leaf, camera: &Camera) {
+        let world: Vec<_> = leaf.mesh.vertices.iter().map(|v| leaf.transform.transform_point(v)).collect();
+        let clip: Vec<[f64; 4]> = world.iter().map(|p| camera.clip_coords(p)).collect();
+        let all_in_front = camera.projection == Projection::Orthographic || clip.iter().all(|h| h[3] >= camera.near);
+        let may_cull = leaf.mesh.closed && all_in_front;
+        let mirrors = leaf.mirrors();
+        self.leaves.push(LeafInfo {
+            path: leaf.path.clone(),
+            first_face: leaf.first_face as u32,
+            face_count: leaf.mesh.faces.len() as u32,
+        });
+        let mut poly: Vec<[f64; 4]> = Vec::new();
+        for f in &leaf.mesh.faces {
+            poly.clear();
+            poly.extend(f.vertices.iter().map(|&k| clip[k as usize]));
+            if mirrors {
+                poly.reverse();
+            }
+            if !all_in_front {
+                poly = clip_near(&poly, camera.near);
+            }
+            let start = self.points.len() as u32;
+            let persp = camera.projection == Projection::Perspective;
+            self.points.extend(poly.iter().map(|h| if persp { [h[0] / h[3], h[1] / h[3], h[2] / h[3]] } else { [h[0], h[1], h[2]] }));
+            let face = describe(&self.points[start as usize..], start, li, may_cull);
+            self.faces.push(face);
+        }
+    }
+}
+
+/// Sutherland–Hodgman clip of a homogeneous polygon to w >= near.
+fn clip_near(poly: &[[f64; 4]], near: f64) -> Vec<[f64; 4]> {
+    let n = poly.len();
+    let mut out = Vec::with_capacity(n + 2);
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        let (da, db) = (a[3] - near, b[3] - near);
+        if da >= 0.0 {
+            out.push(a);
+        }
+        if (da >= 0.0) != (db >= 0.0) {
+            let t = da / (da - db);
+            let mut p: [f64; 4] = std::array::from_fn(|k| a[k] + t * (b[k] - a[k]));
+            p[3] = near;
+            out.push(p);
+        }
+    }
+    if out.len() < 3 {
+        out.clear();
+    }
+    out
+}
+
+/// Bounds, reference triple, facing and convexity of a projected face.
+fn describe(p: &[[f64; 3]], start: u32, leaf: u32, may_cull: bool) -> ScreenFace {
+    let mut f = ScreenFace {
+        start,
+        len: p.len() as u32,
+        leaf,
+        rect: [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY],
+        zmin: f64::INFINITY,
+        zmax: f64::NEG_INFINITY,
+        refs: [0, 0, 0],
+        ref_turn: 0.0,
+        facing: Facing::Clipped,
+        culled: false,
+        convex: false,
+    };
+    if p.len() < 3 {
+        return f;
+    }
+    for q in p {
+        f.rect = [f.rect[0].min(q[0]), f.rect[1].min(q[1]), f.rect[2].max(q[0]), f.rect[3].max(q[1])];
+        f.zmin = f.zmin.min(q[2]);
+        f.zmax = f.zmax.max(q[2]);
+    }
+    f.refs = reference_triple(p);
+    let [a, b, c] = f.refs.map(|k| [p[k as usize][0], p[k as usize][1]]);
+    let turn = orient2d(a, b, c);
+    f.ref_turn = turn.signum() * (turn != 0.0) as u8 as f64;
+    let ring: Vec<Pt2> = p.iter().map(|q| [q[0], q[1]]).collect();
+    let area = if p.len() == 3 { turn } else { ring_area(&ring) };
+    f.facing = if turn == 0.0 || area == 0.0 {
+        Facing::EdgeOn
+    } else if area > 0.0 {
+        Facing::Front
+    } else {
+        Facing::Back
+    };
+    f.culled = may_cull && f.facing == Facing::Back;
+    if f.facing != Facing::EdgeOn {
+        let mut r = ring;
+        if f.facing == Facing::Back {
+            r.reverse();
+        }
+        f.convex = crate::geom::poly2::is_convex_ccw(&r);
+    }
+    f
+}
+
+/// Three vertices spanning the face plane well: the first, the farthest from it, and the
+/// farthest from the line through those two.
+fn reference_triple(p: &[[f64; 3]]) -> [u32; 3] {
+    if p.len() == 3 {
+        return [0, 1, 2];
+    }
+    let d2 = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>();
+    let i1 = (1..p.len()).max_by(|&i, &j| d2(&p[0], &p[i]).total_cmp(&d2(&p[0], &p[j]))).unwrap_or(1);
+    let e = [p[i1][0] - p[0][0], p[i1][1] - p[0][1], p[i1][2] - p[0][2]];
+    let cross2 = |q: &[f64; 3]| {
+        let v = [q[0] - p[0][0], q[1] - p[0][1], q[2] - p[0][2]];
+        let c = [e[1] * v[2] - e[2] * v[1], e[2] * v[0] - e[0] * v[2], e[0] * v[1] - e[1] * v[0]];
+        c[0] * c[0] + c[1] * c[1] + c[2] * c[2]
+    };
+    let i2 = (1..p.len()).filter(|&i| i != i1).max_by(|&i, &j| cross2(&p[i]).total_cmp(&cross2(&p[j]))).unwrap_or(2);
+    if i1 < i2 {
+        [0, i1 as u32, i2 as u32]
+    } else {
+        [0, i2 as u32, i1 as u32]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn near_clip_cuts_polygon() {
+        let poly = [[0., 0., 1., -1.], [1., 0., 1., 1.], [0., 1., 1., 1.]];
+        let c = clip_near(&poly, 0.5);
+        assert_eq!(c.len(), 4);
+        assert!(c.iter().all(|h| h[3] >= 0.5));
+        assert!(clip_near(&[[0., 0., 0., 0.1], [1., 0., 0., 0.1], [0., 1., 0., 0.2]], 0.5).is_empty());
+    }
+
+    #[test]
+    fn facing_of_ccw_cw_and_edge_on() {
+        let ccw = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]];
+        assert_eq!(describe(&ccw, 0, 0, false).facing, Facing::Front);
+        let cw = [[0., 0., 0.], [0., 1., 0.], [1., 0., 0.]];
+        let f = describe(&cw, 0, 0, true);
+        assert_eq!(f.facing, Facing::Back);
+        assert!(f.culled && !f.is_occluder());
+        let edge = [[0., 0., 0.], [1., 0., 0.], [2., 0., 1.]];
+        assert_eq!(describe(&edge, 0, 0, false).facing, Facing::EdgeOn);
+    }
+}

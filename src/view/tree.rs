@@ -1,0 +1,271 @@
+//! The view tree: the object tree in screen space, with tight screen bounds per node and a
+//! bounding-volume split of large leaf meshes, so VISFAC2 can prune whole subtrees.
+//!
+//! Node bounds are computed per view from the projected faces (tighter than a projected
+//! world CBOX), and hold only faces that can hide something (not edge-on, not culled).
+
+use std::ops::Range;
+
+use crate::geom::poly2::{orient2d, Pt2};
+use crate::geom::{Box3, M4};
+use crate::scene::{Content, Object, Scene};
+
+use super::camera::{Camera, Projection};
+use super::screen::ScreenFaces;
+
+/// Faces per BVH leaf inside a large mesh.
+const LEAF_FACES: usize = 4;
+
+/// What a node holds.
+#[derive(Debug, Clone)]
+pub enum NodeKind {
+    /// Child nodes: a range of [`ViewTree::children`].
+    Inner(Range<u32>),
+    /// Faces: a range of [`ViewTree::faces`] (global face ids).
+    Leaf(Range<u32>),
+}
+
+/// A node: a subtree with its screen bounds (the CBOX in the standard view).
+#[derive(Debug, Clone)]
+pub struct Node {
+    /// Screen rectangle [xmin, ymin, xmax, ymax] of the occluding faces below.
+    pub rect: [f64; 4],
+    /// Least depth below.
+    pub zmin: f64,
+    /// Greatest depth below (nearest to the viewer).
+    pub zmax: f64,
+    /// Children or faces.
+    pub kind: NodeKind,
+    /// The object's INBOX in screen space, if it has one.
+    pub inbox: Option<u32>,
+}
+
+/// An INBOX seen from the camera: the convex hull of its projected corners and its depths.
+#[derive(Debug, Clone)]
+pub struct ScreenInbox {
+    /// Convex hull, counter-clockwise.
+    pub hull: Vec<Pt2>,
+    /// Bounding rectangle of the hull.
+    pub rect: [f64; 4],
+    /// Depth of the farthest corner.
+    pub zmin: f64,
+    /// Node of the object owning the box.
+    pub node: u32,
+}
+
+/// A named object of the scene, as seen in this view.
+#[derive(Debug, Clone)]
+pub struct ObjectNode {
+    /// Path from the top level.
+    pub path: String,
+    /// Its node.
+    pub node: u32,
+    /// Its faces: a contiguous range of global face ids.
+    pub faces: Range<u32>,
+}
+
+/// The whole view tree.
+#[derive(Debug, Clone, Default)]
+pub struct ViewTree {
+    /// All nodes; the root is the last.
+    pub nodes: Vec<Node>,
+    /// Child lists, each sorted front to back (greatest `zmax` first).
+    pub children: Vec<u32>,
+    /// Face lists of the leaves.
+    pub faces: Vec<u32>,
+    /// Screen inboxes.
+    pub inboxes: Vec<ScreenInbox>,
+    /// Named objects in depth-first order.
+    pub objects: Vec<ObjectNode>,
+}
+
+impl ViewTree {
+    /// The root node.
+    pub fn root(&self) -> u32 {
+        self.nodes.len() as u32 - 1
+    }
+
+    /// Builds the tree of `scene` over its screen faces.
+    pub fn build(scene: &Scene, camera: &Camera, sf: &ScreenFaces) -> ViewTree {
+        let mut b = Builder { tree: ViewTree::default(), sf, camera, next_face: 0 };
+        b.object(&scene.root, &M4::identity(), "", None);
+        b.tree
+    }
+
+    /// The object with this path.
+    pub fn object(&self, path: &str) -> Option<&ObjectNode> {
+        self.objects.iter().find(|o| o.path == path)
+    }
+}
+
+struct Builder<'a> {
+    tree: ViewTree,
+    sf: &'a ScreenFaces,
+    camera: &'a Camera,
+    next_face: u32,
+}
+
+impl Builder<'_> {
+    /// Builds the node of `obj` placed by `xf`; `inbox` is an inbox in `xf`'s source frame.
+    fn object(&mut self, obj: &Object, xf: &M4, path: &str, slot: Option<usize>) -> u32 {
+        let first = self.next_face;
+        let inbox = obj.inbox;
+        let node = match &obj.content {
+            Content::Mesh(m) => {
+                let ids: Vec<u32> = (first..first + m.faces.len() as u32).filter(|&f| self.sf.faces[f as usize].is_occluder()).collect();
+                self.next_face += m.faces.len() as u32;
+                self.bvh(ids)
+            }
+            Content::Subobjects(subs) => {
+                let kids: Vec<u32> = subs
+                    .iter()
+                    .map(|s| {
+                        let p = if path.is_empty() { s.name.clone() } else { format!("{path}/{}", s.name) };
+                        let slot = self.tree.objects.len();
+                        self.tree.objects.push(ObjectNode { path: p.clone(), node: 0, faces: 0..0 });
+                        self.object(s, xf, &p, Some(slot))
+                    })
+                    .collect();
+                self.inner(kids)
+            }
+            Content::Instance(i) => {
+                let m = xf * i.transform;
+                let n = self.object(&i.prototype, &m, path, None);
+                if let Some(pb) = i.prototype.inbox {
+                    self.attach_inbox(n, &pb, &m);
+                }
+                n
+            }
+        };
+        if let Some(b) = inbox {
+            self.attach_inbox(node, &b, xf);
+        }
+        if let Some(s) = slot {
+            self.tree.objects[s].node = node;
+            self.tree.objects[s].faces = first..self.next_face;
+        }
+        node
+    }
+
+    fn attach_inbox(&mut self, node: u32, b: &Box3, xf: &M4) {
+        if self.tree.nodes[node as usize].inbox.is_some() || !b.has_interior() {
+            return;
+        }
+        let corners = b.corners().map(|c| xf.transform_point(&c));
+        if self.camera.projection == Projection::Perspective && !corners.iter().all(|c| self.camera.in_front(c)) {
+            return;
+        }
+        let s = corners.map(|c| self.camera.project(&c));
+        let pts: Vec<Pt2> = s.iter().map(|p| [p[0], p[1]]).collect();
+        let hull = convex_hull(pts);
+        if hull.len() < 3 {
+            return;
+        }
+        let rect = crate::geom::poly2::bounds(hull.iter());
+        let zmin = s.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
+        self.tree.inboxes.push(ScreenInbox { hull, rect, zmin, node });
+        self.tree.nodes[node as usize].inbox = Some(self.tree.inboxes.len() as u32 - 1);
+    }
+
+    fn push(&mut self, node: Node) -> u32 {
+        self.tree.nodes.push(node);
+        self.tree.nodes.len() as u32 - 1
+    }
+
+    fn inner(&mut self, mut kids: Vec<u32>) -> u32 {
+        let nodes = &self.tree.nodes;
+        kids.sort_by(|&a, &b| nodes[b as usize].zmax.total_cmp(&nodes[a as usize].zmax));
+        let mut n = empty_node();
+        for &k in &kids {
+            let c = &self.tree.nodes[k as usize];
+            n.rect = union_rect(&n.rect, &c.rect);
+            n.zmin = n.zmin.min(c.zmin);
+            n.zmax = n.zmax.max(c.zmax);
+        }
+        let start = self.tree.children.len() as u32;
+        self.tree.children.extend(kids);
+        n.kind = NodeKind::Inner(start..self.tree.children.len() as u32);
+        self.push(n)
+    }
+
+    /// A median-split hierarchy over faces by their screen rectangles.
+    fn bvh(&mut self, mut ids: Vec<u32>) -> u32 {
+        if ids.len() <= LEAF_FACES {
+            let mut n = empty_node();
+            for &f in &ids {
+                let sf = &self.sf.faces[f as usize];
+                n.rect = union_rect(&n.rect, &sf.rect);
+                n.zmin = n.zmin.min(sf.zmin);
+                n.zmax = n.zmax.max(sf.zmax);
+            }
+            let start = self.tree.faces.len() as u32;
+            self.tree.faces.extend(ids);
+            n.kind = NodeKind::Leaf(start..self.tree.faces.len() as u32);
+            return self.push(n);
+        }
+        let faces = &self.sf.faces;
+        let centre = |f: u32, axis: usize| {
+            let r = &faces[f as usize].rect;
+            r[axis] + r[axis + 2]
+        };
+        let span = |axis: usize| {
+            let (lo, hi) = ids.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| (lo.min(centre(f, axis)), hi.max(centre(f, axis))));
+            hi - lo
+        };
+        let axis = if span(0) >= span(1) { 0 } else { 1 };
+        let mid = ids.len() / 2;
+        ids.select_nth_unstable_by(mid, |&a, &b| centre(a, axis).total_cmp(&centre(b, axis)).then(a.cmp(&b)));
+        let right = ids.split_off(mid);
+        let l = self.bvh(ids);
+        let r = self.bvh(right);
+        self.inner(vec![l, r])
+    }
+}
+
+fn empty_node() -> Node {
+    Node {
+        rect: [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY],
+        zmin: f64::INFINITY,
+        zmax: f64::NEG_INFINITY,
+        kind: NodeKind::Leaf(0..0),
+        inbox: None,
+    }
+}
+
+/// Union of two rectangles.
+pub fn union_rect(a: &[f64; 4], b: &[f64; 4]) -> [f64; 4] {
+    [a[0].min(b[0]), a[1].min(b[1]), a[2].max(b[2]), a[3].max(b[3])]
+}
+
+/// Convex hull (Andrew's monotone chain, exact turns), counter-clockwise, no collinear points.
+pub fn convex_hull(mut pts: Vec<Pt2>) -> Vec<Pt2> {
+    pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    pts.dedup();
+    if pts.len() < 3 {
+        return pts;
+    }
+    let mut hull: Vec<Pt2> = Vec::with_capacity(pts.len() * 2);
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &Pt2>> = if pass == 0 { Box::new(pts.iter()) } else { Box::new(pts.iter().rev()) };
+        for &p in iter {
+            while hull.len() >= start + 2 && orient2d(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hull_of_square_with_inner_and_collinear_points() {
+        let h = convex_hull(vec![[0., 0.], [1., 0.], [2., 0.], [2., 2.], [0., 2.], [1., 1.], [0., 1.]]);
+        assert_eq!(h, vec![[0., 0.], [2., 0.], [2., 2.], [0., 2.]]);
+    }
+}
