@@ -9,3 +9,4 @@ pub mod primitives;
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
 pub mod scene;
 pub mod view;
+pub mod visibility;

@@ -1,6 +1,7 @@
 //! Screen-space faces: every face of the scene projected into the standard view, in global face order.
 
 use crate::geom::poly2::{orient2d, ring_area, Pt2};
+use crate::geom::P3;
 use crate::scene::{Leaf, Scene};
 
 use super::camera::{Camera, Projection};
@@ -70,6 +71,11 @@ pub struct ScreenFaces {
     pub faces: Vec<ScreenFace>,
     /// Projected points (x, y, depth) of all faces, face after face.
     pub points: Vec<[f64; 3]>,
+    /// World position of each point in `points` (exact input coordinates where not clipped);
+    /// side-of-plane decisions are made on these.
+    pub world: Vec<P3>,
+    /// Sign of det(M): +1 when the camera keeps the orientation of tetrahedra, -1 when it flips it.
+    pub det_sign: f64,
     /// Leaf objects in global order.
     pub leaves: Vec<LeafInfo>,
 }
@@ -77,7 +83,7 @@ pub struct ScreenFaces {
 impl ScreenFaces {
     /// Projects every face of `scene` with `camera`.
     pub fn build(scene: &Scene, camera: &Camera) -> ScreenFaces {
-        let mut out = ScreenFaces::default();
+        let mut out = ScreenFaces { det_sign: camera.matrix.determinant().signum(), ..Default::default() };
         for (li, leaf) in scene.leaves().iter().enumerate() {
             out.add_leaf(li as u32, leaf, camera);
         }
@@ -99,10 +105,16 @@ impl ScreenFaces {
         r
     }
 
-    /// The three reference points of face `f`'s plane.
-    pub fn plane_refs(&self, f: usize) -> [[f64; 3]; 3] {
+    /// The world points of face `f`.
+    pub fn world_pts(&self, f: usize) -> &[P3] {
         let sf = &self.faces[f];
-        let p = self.pts(f);
+        &self.world[sf.start as usize..(sf.start + sf.len) as usize]
+    }
+
+    /// The three world reference points of face `f`'s plane.
+    pub fn plane_refs(&self, f: usize) -> [P3; 3] {
+        let sf = &self.faces[f];
+        let p = self.world_pts(f);
         sf.refs.map(|k| p[k as usize])
     }
 
@@ -117,10 +129,10 @@ impl ScreenFaces {
             first_face: leaf.first_face as u32,
             face_count: leaf.mesh.faces.len() as u32,
         });
-        let mut poly: Vec<[f64; 4]> = Vec::new();
+        let mut poly: Vec<([f64; 4], P3)> = Vec::new();
         for f in &leaf.mesh.faces {
             poly.clear();
-            poly.extend(f.vertices.iter().map(|&k| clip[k as usize]));
+            poly.extend(f.vertices.iter().map(|&k| (clip[k as usize], world[k as usize])));
             if mirrors {
                 poly.reverse();
             }
@@ -128,6 +140,8 @@ impl ScreenFaces {
                 poly = clip_near(&poly, camera.near);
             }
             let start = self.points.len() as u32;
+            self.world.extend(poly.iter().map(|(_, w)| *w));
+            let poly: Vec<[f64; 4]> = poly.iter().map(|(h, _)| *h).collect();
             let persp = camera.projection == Projection::Perspective;
             self.points.extend(poly.iter().map(|h| if persp { [h[0] / h[3], h[1] / h[3], h[2] / h[3]] } else { [h[0], h[1], h[2]] }));
             let face = describe(&self.points[start as usize..], start, li, may_cull);
@@ -136,21 +150,21 @@ impl ScreenFaces {
     }
 }
 
-/// Sutherland–Hodgman clip of a homogeneous polygon to w >= near.
-fn clip_near(poly: &[[f64; 4]], near: f64) -> Vec<[f64; 4]> {
+/// Sutherland–Hodgman clip of a homogeneous polygon (with its world points) to w >= near.
+fn clip_near(poly: &[([f64; 4], P3)], near: f64) -> Vec<([f64; 4], P3)> {
     let n = poly.len();
     let mut out = Vec::with_capacity(n + 2);
     for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        let ((a, wa), (b, wb)) = (poly[i], poly[(i + 1) % n]);
         let (da, db) = (a[3] - near, b[3] - near);
         if da >= 0.0 {
-            out.push(a);
+            out.push((a, wa));
         }
         if (da >= 0.0) != (db >= 0.0) {
             let t = da / (da - db);
             let mut p: [f64; 4] = std::array::from_fn(|k| a[k] + t * (b[k] - a[k]));
             p[3] = near;
-            out.push(p);
+            out.push((p, wa + (wb - wa) * t));
         }
     }
     if out.len() < 3 {
@@ -234,11 +248,12 @@ mod tests {
 
     #[test]
     fn near_clip_cuts_polygon() {
-        let poly = [[0., 0., 1., -1.], [1., 0., 1., 1.], [0., 1., 1., 1.]];
+        let o = P3::origin();
+        let poly = [([0., 0., 1., -1.], o), ([1., 0., 1., 1.], o), ([0., 1., 1., 1.], o)];
         let c = clip_near(&poly, 0.5);
         assert_eq!(c.len(), 4);
-        assert!(c.iter().all(|h| h[3] >= 0.5));
-        assert!(clip_near(&[[0., 0., 0., 0.1], [1., 0., 0., 0.1], [0., 1., 0., 0.2]], 0.5).is_empty());
+        assert!(c.iter().all(|(h, _)| h[3] >= 0.5));
+        assert!(clip_near(&[([0., 0., 0., 0.1], o), ([1., 0., 0., 0.1], o), ([0., 1., 0., 0.2], o)], 0.5).is_empty());
     }
 
     #[test]

@@ -1,0 +1,167 @@
+//! The occlusion rule: face G hides of face F the part of G's projection where G is in front
+//! of F's plane. Sides are decided exactly (robust orient3d) on world coordinates, so
+//! coplanar faces, shared edges and shared vertices are recognised without tolerances.
+
+use crate::geom::poly2::{orient2d, Pt2};
+use crate::geom::P3;
+use crate::view::{Facing, ScreenFaces};
+
+/// The face being solved, prepared once for all its occluders.
+#[derive(Debug, Clone)]
+pub struct Target {
+    /// Global face id (its order decides coplanar ties: the earlier face is in front).
+    pub id: u32,
+    /// World reference triple of F's plane.
+    pub refs: [P3; 3],
+    /// Sign making orient3d positive on the viewer's side: -(turn of refs on screen) * sign(det M).
+    pub front_sign: f64,
+    /// F's projected ring, counter-clockwise.
+    pub ring: Vec<Pt2>,
+    /// F's screen rectangle.
+    pub rect: [f64; 4],
+    /// F's least depth.
+    pub zmin: f64,
+    /// F's greatest depth.
+    pub zmax: f64,
+    /// True when `ring` is convex.
+    pub convex: bool,
+}
+
+impl Target {
+    /// Prepares face `f` (which must not be edge-on or clipped).
+    pub fn new(sf: &ScreenFaces, f: usize) -> Target {
+        let face = &sf.faces[f];
+        Target {
+            id: f as u32,
+            refs: sf.plane_refs(f),
+            front_sign: -face.ref_turn * sf.det_sign,
+            ring: sf.ring_ccw(f),
+            rect: face.rect,
+            zmin: face.zmin,
+            zmax: face.zmax,
+            convex: face.convex,
+        }
+    }
+
+    /// Exact side of world point `p`: > 0 in front of F's plane (toward the viewer), < 0 behind, 0 on it.
+    #[inline]
+    pub fn side(&self, p: &P3) -> f64 {
+        let c = |q: &P3| robust::Coord3D { x: q.x, y: q.y, z: q.z };
+        robust::orient3d(c(&self.refs[0]), c(&self.refs[1]), c(&self.refs[2]), c(p)) * self.front_sign
+    }
+}
+
+/// What G does to F.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Occlusion {
+    /// G hides nothing of F (behind it, coplanar and later, or no area in front).
+    Nothing,
+    /// G hides F within this projected region (counter-clockwise; may extend beyond F).
+    Region(Vec<Pt2>),
+}
+
+/// The region of the screen where face `g` is in front of target F's plane.
+pub fn occluder_region(sf: &ScreenFaces, g: usize, t: &Target, sides: &mut Vec<f64>) -> Occlusion {
+    let world = sf.world_pts(g);
+    let pts = sf.pts(g);
+    sides.clear();
+    sides.extend(world.iter().map(|p| t.side(p)));
+    let any_front = sides.iter().any(|&s| s > 0.0);
+    let any_behind = sides.iter().any(|&s| s < 0.0);
+    let mut ring: Vec<Pt2> = if !any_front {
+        let coplanar = !any_behind;
+        if coplanar && (g as u32) < t.id {
+            pts.iter().map(|p| [p[0], p[1]]).collect()
+        } else {
+            return Occlusion::Nothing;
+        }
+    } else if !any_behind {
+        pts.iter().map(|p| [p[0], p[1]]).collect()
+    } else {
+        front_part(pts, sides)
+    };
+    if ring.len() < 3 {
+        return Occlusion::Nothing;
+    }
+    if sf.faces[g].facing == Facing::Back {
+        ring.reverse();
+    }
+    Occlusion::Region(ring)
+}
+
+/// The part of a projected polygon on the non-negative side, cut where the side changes sign
+/// (cut points interpolated on the screen points with the exact side values).
+fn front_part(pts: &[[f64; 3]], sides: &[f64]) -> Vec<Pt2> {
+    let n = pts.len();
+    let mut out = Vec::with_capacity(n + 2);
+    for i in 0..n {
+        let j = (i + 1) % n;
+        let (sa, sb) = (sides[i], sides[j]);
+        if sa >= 0.0 {
+            out.push([pts[i][0], pts[i][1]]);
+        }
+        if (sa > 0.0 && sb < 0.0) || (sa < 0.0 && sb > 0.0) {
+            let t = sa / (sa - sb);
+            let (a, b) = (pts[i], pts[j]);
+            out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+        }
+    }
+    out
+}
+
+/// True when two counter-clockwise convex rings have disjoint interiors: some edge of one
+/// has the whole other ring on its outer closed side (exact).
+pub fn separated_convex(a: &[Pt2], b: &[Pt2]) -> bool {
+    edge_separates(a, b) || edge_separates(b, a)
+}
+
+fn edge_separates(a: &[Pt2], b: &[Pt2]) -> bool {
+    let n = a.len();
+    (0..n).any(|i| {
+        let (p, q) = (a[i], a[(i + 1) % n]);
+        p != q && b.iter().all(|&r| orient2d(p, q, r) <= 0.0)
+    })
+}
+
+/// True when convex counter-clockwise `outer` contains every point of `inner` (closed).
+pub fn covers_convex(outer: &[Pt2], inner: &[Pt2]) -> bool {
+    let n = outer.len();
+    (0..n).all(|i| {
+        let (p, q) = (outer[i], outer[(i + 1) % n]);
+        p == q || inner.iter().all(|&r| orient2d(p, q, r) >= 0.0)
+    })
+}
+
+/// True when the rectangles share interior area.
+#[inline]
+pub fn rects_overlap(a: &[f64; 4], b: &[f64; 4]) -> bool {
+    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn separation_of_triangles_sharing_an_edge() {
+        let f = [[0., 0.], [1., 0.], [0., 1.]];
+        let g = [[1., 0.], [1., 1.], [0., 1.]];
+        assert!(separated_convex(&f, &g));
+        let h = [[0.2, 0.2], [2., 0.2], [0.2, 2.]];
+        assert!(!separated_convex(&f, &h));
+    }
+
+    #[test]
+    fn cover_test_is_closed() {
+        let big = [[0., 0.], [2., 0.], [2., 2.], [0., 2.]];
+        assert!(covers_convex(&big, &[[0., 0.], [2., 2.], [1., 0.5]]));
+        assert!(!covers_convex(&big, &[[0., 0.], [2.1, 2.]]));
+    }
+
+    #[test]
+    fn front_part_cuts_at_sign_change() {
+        let pts = [[0., 0., 0.], [2., 0., 0.], [2., 2., 0.], [0., 2., 0.]];
+        let r = front_part(&pts, &[1.0, -1.0, -1.0, 1.0]);
+        assert_eq!(r, vec![[0., 0.], [1., 0.], [1., 2.], [0., 2.]]);
+    }
+}

@@ -1,0 +1,143 @@
+//! The whole-scene pass: every face's VTP, in parallel over faces, with whole subtrees found
+//! HIDDEN by inboxes skipped before any of their faces is touched.
+
+use rayon::prelude::*;
+
+use crate::geom::poly2::{canonicalize, multipolygon_area, ring_area, MultiPolygon};
+use crate::view::{Facing, View};
+
+use super::occlusion::{covers_convex, rects_overlap};
+use super::stats::Counters;
+use super::visfac::{visfac, Scratch, Vtp};
+
+/// Options of the pass.
+#[derive(Debug, Clone, Copy)]
+pub struct PassOptions {
+    /// Use INBOXes (VISFAC2's complete-hide test and hidden-subtree pruning).
+    pub use_inbox: bool,
+}
+
+impl Default for PassOptions {
+    fn default() -> Self {
+        PassOptions { use_inbox: true }
+    }
+}
+
+/// The visible part of one face.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FaceVisibility {
+    /// Visible region in screen space (canonical: rings start at their least point).
+    pub visible: MultiPolygon,
+    /// Its area.
+    pub area: f64,
+    /// The face's projected area (0 when edge-on or clipped).
+    pub projected_area: f64,
+}
+
+/// The visible-polygon set of a view.
+#[derive(Debug, Clone)]
+pub struct Visibility {
+    /// One entry per face, by global face id.
+    pub faces: Vec<FaceVisibility>,
+    /// What the pass did.
+    pub counters: Counters,
+}
+
+/// Computes every face's VTP against the whole scene.
+pub fn solve(view: &View, opts: PassOptions) -> Visibility {
+    let mut counters = Counters::default();
+    let hidden = if opts.use_inbox { hidden_subtrees(view, &mut counters) } else { vec![false; view.screen.faces.len()] };
+    let view_used: std::borrow::Cow<View> = if opts.use_inbox { std::borrow::Cow::Borrowed(view) } else { std::borrow::Cow::Owned(without_inboxes(view)) };
+    let root = view_used.tree.root();
+    let results: Vec<(FaceVisibility, Counters)> = (0..view.screen.faces.len())
+        .into_par_iter()
+        .map_init(Scratch::default, |scratch, f| solve_face(&view_used, root, f, hidden[f], scratch))
+        .collect();
+    let mut faces = Vec::with_capacity(results.len());
+    for (fv, c) in results {
+        counters += c;
+        faces.push(fv);
+    }
+    Visibility { faces, counters }
+}
+
+fn without_inboxes(view: &View) -> View {
+    let mut v = view.clone();
+    for n in &mut v.tree.nodes {
+        n.inbox = None;
+    }
+    v.tree.inboxes.clear();
+    v
+}
+
+fn solve_face(view: &View, root: u32, f: usize, hidden: bool, scratch: &mut Scratch) -> (FaceVisibility, Counters) {
+    let mut c = Counters::default();
+    let sf = &view.screen.faces[f];
+    let ring = view.screen.ring_ccw(f);
+    let projected_area = if matches!(sf.facing, Facing::Front | Facing::Back) { ring_area(&ring) } else { 0.0 };
+    let empty = |area| FaceVisibility { visible: Vec::new(), area: 0.0, projected_area: area };
+    match sf.facing {
+        Facing::EdgeOn | Facing::Clipped => {
+            c.faces_edge_on += 1;
+            return (empty(projected_area), c);
+        }
+        _ if sf.culled => {
+            c.faces_culled += 1;
+            return (empty(projected_area), c);
+        }
+        _ if hidden => {
+            c.faces_in_hidden_subtrees += 1;
+            return (empty(projected_area), c);
+        }
+        _ => {}
+    }
+    let mut visible = match visfac(view, root, f, scratch, &mut c) {
+        Vtp::Whole => vec![vec![ring]],
+        Vtp::Empty => Vec::new(),
+        Vtp::Part(m) => m,
+    };
+    canonicalize(&mut visible);
+    let area = multipolygon_area(&visible);
+    (FaceVisibility { visible, area, projected_area }, c)
+}
+
+/// Marks the faces of every named object whose screen bounds lie behind and inside the
+/// projected INBOX of another object: HIDDEN as a whole, without touching its faces.
+fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
+    let tree = &view.tree;
+    let mut hidden = vec![false; view.screen.faces.len()];
+    for obj in &tree.objects {
+        if obj.faces.is_empty() || hidden[obj.faces.start as usize] {
+            continue;
+        }
+        let bounds = match subtree_bounds(view, obj.faces.clone()) {
+            Some(b) => b,
+            None => continue,
+        };
+        let corners = [[bounds.0[0], bounds.0[1]], [bounds.0[2], bounds.0[1]], [bounds.0[2], bounds.0[3]], [bounds.0[0], bounds.0[3]]];
+        let by = tree.inboxes.iter().find(|ib| {
+            ib.node != obj.node && bounds.1 < ib.zmin && rects_overlap(&ib.rect, &bounds.0) && covers_convex(&ib.hull, &corners)
+        });
+        if by.is_some() {
+            counters.subtrees_hidden += 1;
+            for f in obj.faces.clone() {
+                hidden[f as usize] = true;
+            }
+        }
+    }
+    hidden
+}
+
+/// Screen rectangle and greatest depth of all drawable faces in a range (None if none).
+fn subtree_bounds(view: &View, faces: std::ops::Range<u32>) -> Option<([f64; 4], f64)> {
+    let mut rect = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+    let mut zmax = f64::NEG_INFINITY;
+    for f in faces {
+        let sf = &view.screen.faces[f as usize];
+        if matches!(sf.facing, Facing::Front | Facing::Back) {
+            rect = crate::view::tree::union_rect(&rect, &sf.rect);
+            zmax = zmax.max(sf.zmax);
+        }
+    }
+    (zmax > f64::NEG_INFINITY).then_some((rect, zmax))
+}

@@ -1,0 +1,141 @@
+//! VISFAC and VISFAC2: the visibility texture polygon (VTP) of one face against an object.
+//!
+//! VTP(F) starts as F. The object's tree is walked front to back: a subtree whose CBOX
+//! cannot hide F is skipped; a subtree whose INBOX hides all of F empties the VTP at once;
+//! at the leaves each face's occluding region is collected, a single face covering all of F
+//! empties the VTP at once, and the rest are subtracted from F in one batched boolean call.
+
+use crate::geom::poly2::{MultiPolygon, Pt2, Ring};
+use crate::view::tree::{NodeKind, ScreenInbox};
+use crate::view::View;
+
+use super::clip::{clip_to_rect, subtract};
+use super::occlusion::{covers_convex, occluder_region, rects_overlap, separated_convex, Occlusion, Target};
+use super::stats::Counters;
+
+/// The paper's VISFAC answer: what an object does to a face.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Verdict {
+    /// The object hides none of the face.
+    Visible,
+    /// The object hides all of the face.
+    Hidden,
+    /// The object hides part of the face.
+    Mixed,
+}
+
+/// A face's visibility texture polygon, in screen space.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Vtp {
+    /// Nothing hides the face: the VTP is the face itself.
+    Whole,
+    /// Nothing of the face is visible.
+    Empty,
+    /// The visible part: a multipolygon strictly smaller than the face.
+    Part(MultiPolygon),
+}
+
+/// Reusable buffers of one worker.
+#[derive(Debug, Default)]
+pub struct Scratch {
+    stack: Vec<u32>,
+    occluders: Vec<Ring>,
+    sides: Vec<f64>,
+}
+
+/// Outcome of the walk.
+enum Walk {
+    /// Keep going.
+    Open,
+    /// The VTP became empty.
+    Emptied,
+}
+
+/// True when the INBOX (a solid box inside its object) hides all of F: F lies entirely
+/// behind the box's farthest corner, and inside its projected outline.
+pub fn inbox_hides(ib: &ScreenInbox, rect: &[f64; 4], zmax: f64, ring: &[Pt2]) -> bool {
+    zmax < ib.zmin && ib.rect[0] <= rect[0] && ib.rect[1] <= rect[1] && rect[2] <= ib.rect[2] && rect[3] <= ib.rect[3] && covers_convex(&ib.hull, ring)
+}
+
+/// VISFAC(A, F): the VTP of face `f` against the subtree at node `a` (the whole scene when
+/// `a` is the root). `f` must be able to show something (not edge-on, clipped or culled).
+pub fn visfac(view: &View, a: u32, f: usize, scratch: &mut Scratch, stats: &mut Counters) -> Vtp {
+    let target = Target::new(&view.screen, f);
+    scratch.occluders.clear();
+    stats.faces_walked += 1;
+    if let Walk::Emptied = visfac2(view, a, &target, scratch, stats) {
+        return Vtp::Empty;
+    }
+    if scratch.occluders.is_empty() {
+        stats.faces_whole += 1;
+        return Vtp::Whole;
+    }
+    stats.faces_clipped += 1;
+    stats.occluders += scratch.occluders.len() as u64;
+    let rest = subtract(&target.ring, &target.rect, &scratch.occluders);
+    if rest.is_empty() {
+        Vtp::Empty
+    } else {
+        Vtp::Part(rest)
+    }
+}
+
+/// VISFAC2(A, F): walks A's tree, collecting occluder regions into `scratch.occluders`.
+fn visfac2(view: &View, a: u32, t: &Target, scratch: &mut Scratch, stats: &mut Counters) -> Walk {
+    let tree = &view.tree;
+    scratch.stack.clear();
+    scratch.stack.push(a);
+    while let Some(n) = scratch.stack.pop() {
+        let node = &tree.nodes[n as usize];
+        if !rects_overlap(&node.rect, &t.rect) || node.zmax < t.zmin {
+            stats.skipped_by_cbox += 1;
+            continue;
+        }
+        if let Some(ib) = node.inbox {
+            if inbox_hides(&tree.inboxes[ib as usize], &t.rect, t.zmax, &t.ring) {
+                stats.emptied_by_inbox += 1;
+                return Walk::Emptied;
+            }
+        }
+        match &node.kind {
+            NodeKind::Inner(r) => {
+                // Children are stored front to back; push in reverse so the front one pops first.
+                scratch.stack.extend(tree.children[r.start as usize..r.end as usize].iter().rev());
+            }
+            NodeKind::Leaf(r) => {
+                for &g in &tree.faces[r.start as usize..r.end as usize] {
+                    if let Walk::Emptied = examine(view, g as usize, t, scratch, stats) {
+                        return Walk::Emptied;
+                    }
+                }
+            }
+        }
+    }
+    Walk::Open
+}
+
+/// One candidate occluder at a leaf.
+fn examine(view: &View, g: usize, t: &Target, scratch: &mut Scratch, stats: &mut Counters) -> Walk {
+    let sg = &view.screen.faces[g];
+    if g as u32 == t.id || !rects_overlap(&sg.rect, &t.rect) || sg.zmax < t.zmin {
+        return Walk::Open;
+    }
+    stats.faces_examined += 1;
+    let Occlusion::Region(region) = occluder_region(&view.screen, g, t, &mut scratch.sides) else {
+        return Walk::Open;
+    };
+    // Convex regions (every triangle, every convex face cut by a plane) get exact quick tests.
+    let convex = sg.convex;
+    if convex && t.convex && separated_convex(&region, &t.ring) {
+        return Walk::Open;
+    }
+    if convex && covers_convex(&region, &t.ring) {
+        stats.emptied_by_face += 1;
+        return Walk::Emptied;
+    }
+    let clipped = clip_to_rect(&region, &t.rect);
+    if clipped.len() >= 3 {
+        scratch.occluders.push(clipped);
+    }
+    Walk::Open
+}

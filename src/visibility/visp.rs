@@ -1,0 +1,73 @@
+//! VISP: is a point visible from the standard viewpoint, or hidden by an object?
+
+use crate::geom::poly2::{winding, Pt2};
+use crate::geom::P3;
+use crate::view::tree::NodeKind;
+use crate::view::View;
+
+use super::occlusion::covers_convex;
+
+/// The paper's VISP answer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PointVisibility {
+    /// Nothing in the object hides the point.
+    Visible,
+    /// Some face (or inbox) of the object is in front of the point.
+    Hidden,
+}
+
+/// VISP(A, P): whether world point `p` is hidden by the subtree at node `a`. A face hides P
+/// when P is strictly behind its plane and P's projection is strictly inside the face's.
+/// `on_face` names the face P lies on, so that coplanar faces earlier in global order hide it
+/// (DESIGN's coplanar rule). A point behind the near plane of a perspective camera is HIDDEN.
+pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<u32>) -> PointVisibility {
+    if !view.camera.in_front(p) {
+        return PointVisibility::Hidden;
+    }
+    let s = view.camera.project(p);
+    let q: Pt2 = [s[0], s[1]];
+    let tree = &view.tree;
+    let mut stack = vec![a];
+    while let Some(n) = stack.pop() {
+        let node = &tree.nodes[n as usize];
+        // 1. Not hidden by CBOX: the point is outside its outline, or in front of all of it.
+        if !(node.rect[0] <= q[0] && q[0] <= node.rect[2] && node.rect[1] <= q[1] && q[1] <= node.rect[3]) || node.zmax < s[2] {
+            continue;
+        }
+        // 2. Hidden by INBOX.
+        if let Some(ib) = node.inbox {
+            let ib = &tree.inboxes[ib as usize];
+            if s[2] < ib.zmin && covers_convex(&ib.hull, &[q]) {
+                return PointVisibility::Hidden;
+            }
+        }
+        match &node.kind {
+            NodeKind::Inner(r) => stack.extend(&tree.children[r.start as usize..r.end as usize]),
+            NodeKind::Leaf(r) => {
+                // 3. Hidden by a face.
+                if tree.faces[r.start as usize..r.end as usize].iter().any(|&g| face_hides(view, g as usize, p, q, on_face)) {
+                    return PointVisibility::Hidden;
+                }
+            }
+        }
+    }
+    PointVisibility::Visible
+}
+
+/// True when face `g` hides world point `p` (screen point `q`).
+pub fn face_hides(view: &View, g: usize, p: &P3, q: Pt2, on_face: Option<u32>) -> bool {
+    let sf = &view.screen;
+    let face = &sf.faces[g];
+    if on_face == Some(g as u32) || !(face.rect[0] < q[0] && q[0] < face.rect[2] && face.rect[1] < q[1] && q[1] < face.rect[3]) {
+        return false;
+    }
+    let [a, b, c] = sf.plane_refs(g);
+    let co = |v: &P3| robust::Coord3D { x: v.x, y: v.y, z: v.z };
+    let side = robust::orient3d(co(&a), co(&b), co(&c), co(p)) * (-face.ref_turn * sf.det_sign);
+    let in_front_of_p = side < 0.0 || (side == 0.0 && on_face.is_some_and(|f| (g as u32) < f));
+    if !in_front_of_p {
+        return false;
+    }
+    let ring: Vec<Pt2> = sf.pts(g).iter().map(|v| [v[0], v[1]]).collect();
+    matches!(winding(&ring, q), Some(w) if w != 0)
+}

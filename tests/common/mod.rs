@@ -1,0 +1,122 @@
+//! Scene builders and checks shared by the integration tests.
+#![allow(dead_code)]
+
+use std::sync::Arc;
+
+use kepler::geom::poly2::{multipolygon_area, MultiPolygon};
+use kepler::geom::{PolyMesh, M4, P3, V3};
+use kepler::scene::cleanup::{cleanup, Origin};
+use kepler::scene::{Mesh, Object, Scene};
+use kepler::view::{Camera, View};
+use kepler::visibility::{solve, PassOptions, Visibility};
+
+/// A cleaned mesh from points and faces.
+pub fn mesh(pts: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
+    let raw = PolyMesh::new(pts.iter().map(|p| P3::new(p[0], p[1], p[2])).collect(), faces.iter().map(|f| f.to_vec()).collect());
+    cleanup(&raw, &Origin { file: std::path::Path::new("test"), face_pos: &[] }, &mut Vec::new()).unwrap()
+}
+
+/// A cleaned primitive.
+pub fn prim(raw: PolyMesh) -> Mesh {
+    cleanup(&raw, &Origin { file: std::path::Path::new("prim"), face_pos: &[] }, &mut Vec::new()).unwrap()
+}
+
+/// An axis-aligned square at height z (counter-clockwise seen from +z).
+pub fn square(x0: f64, y0: f64, s: f64, z: f64) -> Mesh {
+    mesh(&[[x0, y0, z], [x0 + s, y0, z], [x0 + s, y0 + s, z], [x0, y0 + s, z]], &[&[0, 1, 2, 3]])
+}
+
+/// A box mesh.
+pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Mesh {
+    prim(kepler::primitives::cuboid(P3::new(lo[0], lo[1], lo[2]), P3::new(hi[0], hi[1], hi[2])))
+}
+
+/// A scene of named leaf objects.
+pub fn scene(objs: Vec<(&str, Mesh)>) -> Scene {
+    let subs = objs.into_iter().map(|(n, m)| Object::from_mesh(n, m)).collect();
+    Scene::new(Object::group("", subs), "test".into())
+}
+
+/// Camera looking down -z, +y up: screen (x, y) = world (x, y).
+pub fn top() -> Camera {
+    Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap()
+}
+
+/// Solves a scene.
+pub fn run(scene: &Scene, camera: Camera) -> (View, Visibility) {
+    let view = View::new(scene, camera);
+    let vis = solve(&view, PassOptions::default());
+    (view, vis)
+}
+
+/// Areas of every face's VTP.
+pub fn areas(vis: &Visibility) -> Vec<f64> {
+    vis.faces.iter().map(|f| f.area).collect()
+}
+
+/// Asserts |a - b| <= tol * max(1, |b|).
+pub fn close(a: f64, b: f64, tol: f64) {
+    assert!((a - b).abs() <= tol * b.abs().max(1.0), "{a} != {b}");
+}
+
+/// Union area of many multipolygons, through geo's boolean ops (an independent engine).
+pub fn union_area(parts: &[&MultiPolygon]) -> f64 {
+    use geo::{BooleanOps, Coord, LineString, MultiPolygon as GMP, Polygon as GP};
+    let to_geo = |m: &MultiPolygon| -> GMP<f64> {
+        GMP(m
+            .iter()
+            .map(|p| {
+                let ring = |r: &Vec<[f64; 2]>| LineString(r.iter().map(|q| Coord { x: q[0], y: q[1] }).collect());
+                GP::new(ring(&p[0]), p[1..].iter().map(ring).collect())
+            })
+            .collect())
+    };
+    let mut acc = GMP::<f64>(vec![]);
+    for m in parts {
+        acc = acc.union(&to_geo(m));
+    }
+    use geo::Area;
+    acc.unsigned_area()
+}
+
+/// Sum of areas.
+pub fn total_area(parts: &[&MultiPolygon]) -> f64 {
+    parts.iter().map(|m| multipolygon_area(m)).sum()
+}
+
+/// A transform from translation.
+pub fn translate(x: f64, y: f64, z: f64) -> M4 {
+    nalgebra::Translation3::new(x, y, z).to_homogeneous()
+}
+
+/// Shares a prototype.
+pub fn instance(name: &str, proto: &Arc<Object>, m: M4) -> Object {
+    Object::instance(name, proto.clone(), m)
+}
+
+/// Union area of many multipolygons on a fixed i64 grid (i_overlay 9, NonZero): precise to
+/// f64 precision; used where geo's coarser grid (~1e-10 relative) is not enough.
+pub fn union_area_exact(parts: &[&MultiPolygon]) -> f64 {
+    use i_overlay::core::fill_rule::FillRule;
+    use i_overlay::core::overlay::ShapeType;
+    use i_overlay::core::overlay_rule::OverlayRule;
+    use i_overlay::float::overlay::{FloatOverlay, OverlayOptions};
+    use i_overlay::i_float::adapter::FloatPointAdapter;
+    use i_overlay::i_float::float::rect::FloatRect;
+    let pts = parts.iter().flat_map(|m| m.iter().flatten().flatten());
+    let b = kepler::geom::poly2::bounds(pts);
+    if !(b[0] <= b[2]) {
+        return 0.0;
+    }
+    let adapter = FloatPointAdapter::<[f64; 2], i64>::new_conservative(FloatRect::new(b[0], b[2], b[1], b[3]).unwrap());
+    let mut ov = FloatOverlay::new_custom(adapter, OverlayOptions::<f64, i64>::default(), Default::default(), 64);
+    for m in parts {
+        for p in m.iter() {
+            for r in p {
+                ov = ov.unsafe_add_contour(r, ShapeType::Subject);
+            }
+        }
+    }
+    let u = ov.overlay(OverlayRule::Subject, FillRule::NonZero);
+    multipolygon_area(&u)
+}

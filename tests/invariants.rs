@@ -1,0 +1,190 @@
+//! Properties on random scenes: VTPs of different faces are disjoint, their union is the
+//! union of the projected faces, VISP on random points agrees with membership in the VTPs,
+//! and offset/scaled coordinates give the same answers, scaled.
+
+mod common;
+
+use common::*;
+use kepler::geom::poly2::{locate, Pt2, Side};
+use kepler::geom::{P3, V3};
+use kepler::scene::{Mesh, Scene};
+use kepler::view::{Camera, Facing, View};
+use kepler::visibility::{visp, PointVisibility, Visibility};
+
+/// xorshift64*: a tiny deterministic generator.
+struct Rng(u64);
+impl Rng {
+    fn f(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545F4914F6CDD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+fn random_triangles(rng: &mut Rng, n: usize, offset: f64, scale: f64) -> Scene {
+    let objs: Vec<(String, Mesh)> = (0..n)
+        .map(|i| {
+            let c = [rng.f(), rng.f(), rng.f()];
+            let mut p = [[0.0; 3]; 3];
+            for v in &mut p {
+                for k in 0..3 {
+                    v[k] = (c[k] + (rng.f() - 0.5) * 0.8) * scale + offset;
+                }
+            }
+            (format!("t{i}"), mesh(&p, &[&[0, 1, 2]]))
+        })
+        .collect();
+    scene(objs.iter().map(|(n, m)| (n.as_str(), m.clone())).collect())
+}
+
+fn random_solids(rng: &mut Rng, n: usize) -> Scene {
+    let names = kepler::primitives::names();
+    let objs: Vec<(String, Mesh)> = (0..n)
+        .map(|i| {
+            let raw = kepler::primitives::by_name(names[i % names.len()]).unwrap();
+            let s = 0.2 + 0.3 * rng.f();
+            let t = V3::new(rng.f() * 2.0, rng.f() * 2.0, rng.f() * 2.0);
+            let raw = kepler::geom::PolyMesh::new(raw.vertices.iter().map(|v| P3::from(v.coords * s + t)).collect(), raw.faces);
+            (format!("s{i}"), prim(raw))
+        })
+        .collect();
+    scene(objs.iter().map(|(n, m)| (n.as_str(), m.clone())).collect())
+}
+
+fn cameras(rng: &mut Rng, centre: P3) -> Vec<Camera> {
+    let mut cams = vec![Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap(), Camera::three_quarter()];
+    for _ in 0..2 {
+        let d = V3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5);
+        cams.push(Camera::orthographic(d, V3::new(0.1, 1.0, 0.2)).unwrap());
+    }
+    let eye = centre + V3::new(2.5, 1.5, 3.0);
+    cams.push(Camera::perspective(eye, centre, V3::y(), 50.0, 0.01).unwrap());
+    cams
+}
+
+/// Checks disjointness and coverage to `tol` of the projected scene area.
+fn check_partition(view: &View, vis: &Visibility, tol: f64) {
+    let vtps: Vec<_> = vis.faces.iter().map(|f| &f.visible).collect();
+    let projected: Vec<Vec<Vec<Vec<Pt2>>>> = (0..view.screen.faces.len())
+        .filter(|&f| matches!(view.screen.faces[f].facing, Facing::Front | Facing::Back))
+        .map(|f| vec![vec![view.screen.ring_ccw(f)]])
+        .collect();
+    let proj_refs: Vec<_> = projected.iter().collect();
+    let scene_area = union_area_exact(&proj_refs);
+    let sum = total_area(&vtps);
+    let union = union_area_exact(&vtps);
+    assert!((sum - union).abs() <= tol * scene_area, "VTPs overlap: sum {sum} vs union {union}");
+    assert!((union - scene_area).abs() <= tol * scene_area, "VTPs cover {union}, projected faces {scene_area}");
+}
+
+/// VISP on random points of every face against membership in that face's VTP.
+fn check_visp(view: &View, vis: &Visibility, rng: &mut Rng, per_face: usize) -> usize {
+    let root = view.tree.root();
+    let mut checked = 0;
+    for f in 0..view.screen.faces.len() {
+        if !matches!(view.screen.faces[f].facing, Facing::Front | Facing::Back) {
+            continue;
+        }
+        let w = view.screen.world_pts(f).to_vec();
+        for _ in 0..per_face {
+            // A random point of the (triangle fan of the) face.
+            let k = 1 + (rng.f() * (w.len() - 2) as f64) as usize;
+            let (mut a, mut b) = (rng.f(), rng.f());
+            if a + b > 1.0 {
+                (a, b) = (1.0 - a, 1.0 - b);
+            }
+            let p = w[0] + (w[k] - w[0]) * a + (w[k + 1] - w[0]) * b;
+            let s = view.camera.project(&p);
+            let q = [s[0], s[1]];
+            if near_boundary(&vis.faces[f].visible, q) {
+                continue;
+            }
+            let in_vtp = match locate(&vis.faces[f].visible, q) {
+                Side::Inside => true,
+                Side::Outside => false,
+                Side::Boundary => continue,
+            };
+            let v = visp(view, root, &p, Some(f as u32));
+            assert_eq!(v == PointVisibility::Visible, in_vtp, "face {f}, point {p:?}");
+            checked += 1;
+        }
+    }
+    checked
+}
+
+/// True within 1e-9 (relative to the ring's size) of an edge of the multipolygon.
+fn near_boundary(m: &kepler::geom::poly2::MultiPolygon, q: Pt2) -> bool {
+    m.iter().flatten().any(|r| {
+        let size = {
+            let b = kepler::geom::poly2::bounds(r.iter());
+            (b[2] - b[0]).max(b[3] - b[1])
+        };
+        (0..r.len()).any(|i| {
+            let (a, b) = (r[i], r[(i + 1) % r.len()]);
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            let l2 = dx * dx + dy * dy;
+            let t = if l2 > 0.0 { (((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / l2).clamp(0.0, 1.0) } else { 0.0 };
+            let (ex, ey) = (a[0] + t * dx - q[0], a[1] + t * dy - q[1]);
+            (ex * ex + ey * ey).sqrt() <= 1e-9 * size
+        })
+    })
+}
+
+#[test]
+fn random_interpenetrating_triangles() {
+    let mut rng = Rng(0x9E3779B97F4A7C15);
+    let mut checked = 0;
+    for round in 0..6 {
+        let s = random_triangles(&mut rng, 40 + 10 * round, 0.0, 1.0);
+        for cam in cameras(&mut rng, P3::new(0.5, 0.5, 0.5)) {
+            let (view, vis) = run(&s, cam);
+            check_partition(&view, &vis, 1e-9);
+            checked += check_visp(&view, &vis, &mut rng, 4);
+        }
+    }
+    assert!(checked > 1000, "only {checked} points checked");
+}
+
+#[test]
+fn random_closed_solids() {
+    let mut rng = Rng(12345);
+    for _ in 0..3 {
+        let s = random_solids(&mut rng, 14);
+        for cam in cameras(&mut rng, P3::new(1.0, 1.0, 1.0)) {
+            let (view, vis) = run(&s, cam);
+            assert!(vis.counters.faces_culled > 0);
+            check_partition(&view, &vis, 1e-9);
+            check_visp(&view, &vis, &mut rng, 2);
+        }
+    }
+}
+
+#[test]
+fn offset_and_scaled_coordinates_give_scaled_answers() {
+    let base = random_triangles(&mut Rng(7), 60, 0.0, 1.0);
+    let shifted = random_triangles(&mut Rng(7), 60, 1e6, 1.0);
+    let shrunk = random_triangles(&mut Rng(7), 60, 0.0, 1e-6);
+    for dir in [V3::new(0., 0., -1.), V3::new(-0.4, -0.7, -1.0)] {
+        let cam = Camera::orthographic(dir, V3::y()).unwrap();
+        let (_, a) = run(&base, cam);
+        let (_, b) = run(&shifted, cam);
+        let (_, c) = run(&shrunk, cam);
+        let total: f64 = a.faces.iter().map(|f| f.area).sum();
+        for i in 0..a.faces.len() {
+            // Offsetting by 1e6 leaves ~1e-10 of absolute precision in the coordinates.
+            assert!((a.faces[i].area - b.faces[i].area).abs() <= 1e-9 * total, "face {i}: {} vs {}", a.faces[i].area, b.faces[i].area);
+            assert!((a.faces[i].area * 1e-12 - c.faces[i].area).abs() <= 1e-9 * total * 1e-12, "face {i}");
+        }
+    }
+}
+
+#[test]
+fn output_is_identical_whatever_the_thread_count() {
+    let s = random_triangles(&mut Rng(99), 80, 0.0, 1.0);
+    let cam = Camera::three_quarter();
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap().install(|| run(&s, cam).1);
+    let many = rayon::ThreadPoolBuilder::new().num_threads(4).build().unwrap().install(|| run(&s, cam).1);
+    assert_eq!(one.faces, many.faces);
+    assert_eq!(one.counters, many.counters);
+}
