@@ -4,5 +4,6 @@
 
 pub mod error;
 pub mod geom;
+pub mod load;
 
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
