@@ -11,6 +11,11 @@ use crate::geom::P3;
 /// (properties `x`, `y`, `z` of any numeric type), faces from the list property
 /// `vertex_indices` (or `vertex_index`) of element `face`. Other elements and properties are
 /// read and skipped. All vertices are kept, used or not.
+///
+/// # Errors
+/// [`Error::Parse`] for a malformed header or body (at `file:line:col`, or at the byte offset
+/// in a binary body), truncated data and missing elements or properties; [`Error::Invalid`] for
+/// indices out of range, faces with fewer than 3 vertices and NaN or huge coordinates.
 pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
     let header = parse_header(path, bytes)?;
     let roles = Roles::find(path, &header)?;
