@@ -193,7 +193,7 @@ fn garbage_truncation_and_mutation_never_panic() {
         for cut in 0..bytes.len() {
             no_panic(&name, &bytes[..cut], "a truncated prefix");
         }
-        for _ in 0..300 {
+        for _ in 0..2000 {
             let mut b = bytes.clone();
             for _ in 0..1 + noise.next() % 4 {
                 let i = (noise.next() % b.len() as u64) as usize;
