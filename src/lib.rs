@@ -4,9 +4,10 @@
 
 pub mod error;
 pub mod geom;
+pub mod load;
 pub mod primitives;
-
-pub use error::{Error, Location, Pos, Result, Warning, Warnings};
 pub mod scene;
 pub mod view;
 pub mod visibility;
+
+pub use error::{Error, Location, Pos, Result, Warning, Warnings};
