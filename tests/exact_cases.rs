@@ -10,7 +10,10 @@ use kepler::view::Camera;
 #[test]
 fn two_overlapping_squares() {
     // A (z=1) over B (z=0), offset by (1,1): B loses exactly the 1x1 overlap.
-    let s = scene(vec![("a", square(1., 1., 2., 1.)), ("b", square(0., 0., 2., 0.))]);
+    let s = scene(vec![
+        ("a", square(1., 1., 2., 1.)),
+        ("b", square(0., 0., 2., 0.)),
+    ]);
     let (_, vis) = run(&s, top());
     assert_eq!(areas(&vis), vec![4.0, 3.0]);
     // B's VTP is the L-shaped hexagon: corners exact.
@@ -18,9 +21,15 @@ fn two_overlapping_squares() {
     assert_eq!(b.len(), 1);
     let mut pts = b[0][0].clone();
     pts.sort_by(|p, q| p.partial_cmp(q).unwrap());
-    assert_eq!(pts, vec![[0., 0.], [0., 2.], [1., 1.], [1., 2.], [2., 0.], [2., 1.]]);
+    assert_eq!(
+        pts,
+        vec![[0., 0.], [0., 2.], [1., 1.], [1., 2.], [2., 0.], [2., 1.]]
+    );
     // Reversing the heights swaps the roles.
-    let s = scene(vec![("a", square(1., 1., 2., 0.)), ("b", square(0., 0., 2., 1.))]);
+    let s = scene(vec![
+        ("a", square(1., 1., 2., 0.)),
+        ("b", square(0., 0., 2., 1.)),
+    ]);
     let (_, vis) = run(&s, top());
     assert_eq!(areas(&vis), vec![3.0, 4.0]);
 }
@@ -28,8 +37,14 @@ fn two_overlapping_squares() {
 #[test]
 fn crossing_planes_hide_each_other_on_their_own_side() {
     // Two unit-wide strips crossing along x = 0: A rises with x (z = x), B falls (z = -x).
-    let a = mesh(&[[-1., 0., -1.], [1., 0., 1.], [1., 1., 1.], [-1., 1., -1.]], &[&[0, 1, 2, 3]]);
-    let b = mesh(&[[-1., 0., 1.], [1., 0., -1.], [1., 1., -1.], [-1., 1., 1.]], &[&[0, 1, 2, 3]]);
+    let a = mesh(
+        &[[-1., 0., -1.], [1., 0., 1.], [1., 1., 1.], [-1., 1., -1.]],
+        &[&[0, 1, 2, 3]],
+    );
+    let b = mesh(
+        &[[-1., 0., 1.], [1., 0., -1.], [1., 1., -1.], [-1., 1., 1.]],
+        &[&[0, 1, 2, 3]],
+    );
     let (_, vis) = run(&scene(vec![("a", a), ("b", b)]), top());
     // Each keeps exactly the half where it is on top: A for x > 0, B for x < 0.
     assert_eq!(areas(&vis), vec![1.0, 1.0]);
@@ -47,7 +62,12 @@ fn bar(p: [f64; 2], q: [f64; 2], w: f64) -> kepler::scene::Mesh {
     let len = (dx * dx + dy * dy).sqrt();
     let (nx, ny) = (-dy / len * w / 2.0, dx / len * w / 2.0);
     mesh(
-        &[[p[0] - nx, p[1] - ny, 0.], [q[0] - nx, q[1] - ny, 1.], [q[0] + nx, q[1] + ny, 1.], [p[0] + nx, p[1] + ny, 0.]],
+        &[
+            [p[0] - nx, p[1] - ny, 0.],
+            [q[0] - nx, q[1] - ny, 1.],
+            [q[0] + nx, q[1] + ny, 1.],
+            [p[0] + nx, p[1] + ny, 0.],
+        ],
         &[&[0, 1, 2, 3]],
     )
 }
@@ -62,7 +82,10 @@ fn three_cyclically_overlapping_bars() {
     let corners = [[0.0, 0.0], [4.0, 0.0], [2.0, 2.0 * s3]];
     let ext = |a: [f64; 2], b: [f64; 2]| {
         let (dx, dy) = ((b[0] - a[0]) / 4.0, (b[1] - a[1]) / 4.0);
-        ([a[0] - e * dx, a[1] - e * dy], [b[0] + e * dx, b[1] + e * dy])
+        (
+            [a[0] - e * dx, a[1] - e * dy],
+            [b[0] + e * dx, b[1] + e * dy],
+        )
     };
     let bars: Vec<_> = (0..3)
         .map(|i| {
@@ -110,7 +133,14 @@ fn l_shaped_solid_seen_into_its_corner() {
     let s = scene(vec![("l", m)]);
     let cam = Camera::orthographic(V3::new(-1., 0.5, -0.3), V3::z()).unwrap();
     let (view, vis) = run(&s, cam);
-    let inner = (0..view.screen.faces.len()).find(|&f| view.screen.world_pts(f).iter().all(|p| p.x == 1.0 && p.y >= 1.0)).unwrap();
+    let inner = (0..view.screen.faces.len())
+        .find(|&f| {
+            view.screen
+                .world_pts(f)
+                .iter()
+                .all(|p| p.x == 1.0 && p.y >= 1.0)
+        })
+        .unwrap();
     close(vis.faces[inner].area, 0.575 / 1.34f64.sqrt(), 1e-12);
     // Front faces together cover the silhouette exactly once.
     let parts: Vec<_> = vis.faces.iter().map(|f| &f.visible).collect();
@@ -121,7 +151,10 @@ fn l_shaped_solid_seen_into_its_corner() {
 #[test]
 fn cube_from_a_vertex_on_view() {
     let s = scene(vec![("cube", cuboid([0., 0., 0.], [1., 1., 1.]))]);
-    let (_, vis) = run(&s, Camera::orthographic(V3::new(-1., -1., -1.), V3::y()).unwrap());
+    let (_, vis) = run(
+        &s,
+        Camera::orthographic(V3::new(-1., -1., -1.), V3::y()).unwrap(),
+    );
     let mut a = areas(&vis);
     a.sort_by(|x, y| x.partial_cmp(y).unwrap());
     let third = 1.0 / 3f64.sqrt();
@@ -134,10 +167,16 @@ fn cube_from_a_vertex_on_view() {
 
 #[test]
 fn coplanar_faces_earlier_is_in_front() {
-    let s = scene(vec![("first", square(1., 1., 2., 0.)), ("second", square(0., 0., 2., 0.))]);
+    let s = scene(vec![
+        ("first", square(1., 1., 2., 0.)),
+        ("second", square(0., 0., 2., 0.)),
+    ]);
     let (_, vis) = run(&s, top());
     assert_eq!(areas(&vis), vec![4.0, 3.0]);
-    let s = scene(vec![("first", square(0., 0., 2., 0.)), ("second", square(1., 1., 2., 0.))]);
+    let s = scene(vec![
+        ("first", square(0., 0., 2., 0.)),
+        ("second", square(1., 1., 2., 0.)),
+    ]);
     let (_, vis) = run(&s, top());
     assert_eq!(areas(&vis), vec![4.0, 3.0]);
     // Also from below, and from a skew direction: the rule does not depend on the view.
@@ -151,11 +190,17 @@ fn coplanar_faces_earlier_is_in_front() {
 fn shared_edge_fold_hides_exactly() {
     // F and G share the edge (2,0,0)-(0,2,0); G folds back over F. Seen from above, G covers
     // F's projection exactly: F must be empty, with no sliver along the shared edge.
-    let over = mesh(&[[0., 0., 0.], [2., 0., 0.], [0., 2., 0.], [0., 0., 1.]], &[&[0, 1, 2], &[1, 2, 3]]);
+    let over = mesh(
+        &[[0., 0., 0.], [2., 0., 0.], [0., 2., 0.], [0., 0., 1.]],
+        &[&[0, 1, 2], &[1, 2, 3]],
+    );
     let (_, vis) = run(&scene(vec![("fold", over)]), top());
     assert_eq!(areas(&vis), vec![0.0, 2.0]);
     assert!(vis.faces[0].visible.is_empty());
-    let under = mesh(&[[0., 0., 0.], [2., 0., 0.], [0., 2., 0.], [0., 0., -1.]], &[&[0, 1, 2], &[1, 2, 3]]);
+    let under = mesh(
+        &[[0., 0., 0.], [2., 0., 0.], [0., 2., 0.], [0., 0., -1.]],
+        &[&[0, 1, 2], &[1, 2, 3]],
+    );
     let (_, vis) = run(&scene(vec![("fold", under)]), top());
     assert_eq!(areas(&vis), vec![2.0, 0.0]);
 }
@@ -163,7 +208,17 @@ fn shared_edge_fold_hides_exactly() {
 #[test]
 fn shared_edge_between_front_faces_leaves_both_whole() {
     // A tent seen from above: two slopes sharing the ridge; neither hides the other.
-    let tent = mesh(&[[0., 0., 0.], [2., 0., 0.], [2., 1., 1.], [0., 1., 1.], [2., 2., 0.], [0., 2., 0.]], &[&[0, 1, 2, 3], &[3, 2, 4, 5]]);
+    let tent = mesh(
+        &[
+            [0., 0., 0.],
+            [2., 0., 0.],
+            [2., 1., 1.],
+            [0., 1., 1.],
+            [2., 2., 0.],
+            [0., 2., 0.],
+        ],
+        &[&[0, 1, 2, 3], &[3, 2, 4, 5]],
+    );
     let (_, vis) = run(&scene(vec![("tent", tent)]), top());
     assert_eq!(areas(&vis), vec![2.0, 2.0]);
     assert_eq!(vis.counters.faces_clipped, 0);
@@ -171,7 +226,10 @@ fn shared_edge_between_front_faces_leaves_both_whole() {
 
 #[test]
 fn edge_on_face_is_invisible_and_hides_nothing() {
-    let wall = mesh(&[[0., 1., 0.], [2., 1., 0.], [2., 1., 5.], [0., 1., 5.]], &[&[0, 1, 2, 3]]);
+    let wall = mesh(
+        &[[0., 1., 0.], [2., 1., 0.], [2., 1., 5.], [0., 1., 5.]],
+        &[&[0, 1, 2, 3]],
+    );
     let s = scene(vec![("wall", wall), ("floor", square(0., 0., 2., -1.))]);
     let (_, vis) = run(&s, top());
     assert_eq!(areas(&vis), vec![0.0, 4.0]);
@@ -179,10 +237,16 @@ fn edge_on_face_is_invisible_and_hides_nothing() {
 
 #[test]
 fn parallel_planes_nearer_hides_farther_from_both_sides() {
-    let s = scene(vec![("low", square(0., 0., 2., 0.)), ("high", square(0., 0., 2., 1.))]);
+    let s = scene(vec![
+        ("low", square(0., 0., 2., 0.)),
+        ("high", square(0., 0., 2., 1.)),
+    ]);
     let (_, vis) = run(&s, top());
     assert_eq!(areas(&vis), vec![0.0, 4.0]);
-    let (_, vis) = run(&s, Camera::orthographic(V3::new(0., 0., 1.), V3::y()).unwrap());
+    let (_, vis) = run(
+        &s,
+        Camera::orthographic(V3::new(0., 0., 1.), V3::y()).unwrap(),
+    );
     assert_eq!(areas(&vis), vec![4.0, 0.0]);
 }
 
@@ -190,7 +254,10 @@ fn parallel_planes_nearer_hides_farther_from_both_sides() {
 fn perspective_sees_near_box_in_front() {
     use kepler::geom::P3;
     // A unit square at z = 1 in front of a 4x4 square at z = 0, eye on the axis at z = 3.
-    let s = scene(vec![("back", square(-2., -2., 4., 0.)), ("front", square(-0.5, -0.5, 1., 1.))]);
+    let s = scene(vec![
+        ("back", square(-2., -2., 4., 0.)),
+        ("front", square(-0.5, -0.5, 1., 1.)),
+    ]);
     let cam = Camera::perspective(P3::new(0., 0., 3.), P3::origin(), V3::y(), 90.0, 0.01).unwrap();
     let (_, vis) = run(&s, cam);
     // Screen x = x / d (f = 1): back at d = 3 spans [-2/3, 2/3]; front at d = 2 spans [-1/4, 1/4].

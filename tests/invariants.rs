@@ -45,7 +45,13 @@ fn random_solids(rng: &mut Rng, n: usize) -> Scene {
             let raw = kepler::primitives::by_name(names[i % names.len()]).unwrap();
             let s = 0.2 + 0.3 * rng.f();
             let t = V3::new(rng.f() * 2.0, rng.f() * 2.0, rng.f() * 2.0);
-            let raw = kepler::geom::PolyMesh::new(raw.vertices.iter().map(|v| P3::from(v.coords * s + t)).collect(), raw.faces);
+            let raw = kepler::geom::PolyMesh::new(
+                raw.vertices
+                    .iter()
+                    .map(|v| P3::from(v.coords * s + t))
+                    .collect(),
+                raw.faces,
+            );
             (format!("s{i}"), prim(raw))
         })
         .collect();
@@ -53,7 +59,10 @@ fn random_solids(rng: &mut Rng, n: usize) -> Scene {
 }
 
 fn cameras(rng: &mut Rng, centre: P3) -> Vec<Camera> {
-    let mut cams = vec![Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap(), Camera::three_quarter()];
+    let mut cams = vec![
+        Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap(),
+        Camera::three_quarter(),
+    ];
     for _ in 0..2 {
         let d = V3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5);
         cams.push(Camera::orthographic(d, V3::new(0.1, 1.0, 0.2)).unwrap());
@@ -74,8 +83,14 @@ fn check_partition(view: &View, vis: &Visibility, tol: f64) {
     let scene_area = union_area_exact(&proj_refs);
     let sum = total_area(&vtps);
     let union = union_area_exact(&vtps);
-    assert!((sum - union).abs() <= tol * scene_area, "VTPs overlap: sum {sum} vs union {union}");
-    assert!((union - scene_area).abs() <= tol * scene_area, "VTPs cover {union}, projected faces {scene_area}");
+    assert!(
+        (sum - union).abs() <= tol * scene_area,
+        "VTPs overlap: sum {sum} vs union {union}"
+    );
+    assert!(
+        (union - scene_area).abs() <= tol * scene_area,
+        "VTPs cover {union}, projected faces {scene_area}"
+    );
 }
 
 /// VISP on random points of every face against membership in that face's VTP.
@@ -106,7 +121,11 @@ fn check_visp(view: &View, vis: &Visibility, rng: &mut Rng, per_face: usize) -> 
                 Side::Boundary => continue,
             };
             let v = visp(view, root, &p, Some(f as u32));
-            assert_eq!(v == PointVisibility::Visible, in_vtp, "face {f}, point {p:?}");
+            assert_eq!(
+                v == PointVisibility::Visible,
+                in_vtp,
+                "face {f}, point {p:?}"
+            );
             checked += 1;
         }
     }
@@ -124,7 +143,11 @@ fn near_boundary(m: &kepler::geom::poly2::MultiPolygon, q: Pt2) -> bool {
             let (a, b) = (r[i], r[(i + 1) % r.len()]);
             let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
             let l2 = dx * dx + dy * dy;
-            let t = if l2 > 0.0 { (((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / l2).clamp(0.0, 1.0) } else { 0.0 };
+            let t = if l2 > 0.0 {
+                (((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
             let (ex, ey) = (a[0] + t * dx - q[0], a[1] + t * dy - q[1]);
             (ex * ex + ey * ey).sqrt() <= 1e-9 * size
         })
@@ -173,8 +196,16 @@ fn offset_and_scaled_coordinates_give_scaled_answers() {
         let total: f64 = a.faces.iter().map(|f| f.area).sum();
         for i in 0..a.faces.len() {
             // Offsetting by 1e6 leaves ~1e-10 of absolute precision in the coordinates.
-            assert!((a.faces[i].area - b.faces[i].area).abs() <= 1e-9 * total, "face {i}: {} vs {}", a.faces[i].area, b.faces[i].area);
-            assert!((a.faces[i].area * 1e-12 - c.faces[i].area).abs() <= 1e-9 * total * 1e-12, "face {i}");
+            assert!(
+                (a.faces[i].area - b.faces[i].area).abs() <= 1e-9 * total,
+                "face {i}: {} vs {}",
+                a.faces[i].area,
+                b.faces[i].area
+            );
+            assert!(
+                (a.faces[i].area * 1e-12 - c.faces[i].area).abs() <= 1e-9 * total * 1e-12,
+                "face {i}"
+            );
         }
     }
 }
@@ -183,8 +214,16 @@ fn offset_and_scaled_coordinates_give_scaled_answers() {
 fn output_is_identical_whatever_the_thread_count() {
     let s = random_triangles(&mut Rng(99), 80, 0.0, 1.0);
     let cam = Camera::three_quarter();
-    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap().install(|| run(&s, cam).1);
-    let many = rayon::ThreadPoolBuilder::new().num_threads(4).build().unwrap().install(|| run(&s, cam).1);
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(|| run(&s, cam).1);
+    let many = rayon::ThreadPoolBuilder::new()
+        .num_threads(4)
+        .build()
+        .unwrap()
+        .install(|| run(&s, cam).1);
     assert_eq!(one.faces, many.faces);
     assert_eq!(one.counters, many.counters);
 }

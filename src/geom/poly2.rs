@@ -12,7 +12,11 @@ pub type MultiPolygon = Vec<Polygon>;
 /// Exact sign of the turn a → b → c: > 0 left (counter-clockwise), < 0 right, 0 collinear.
 #[inline]
 pub fn orient2d(a: Pt2, b: Pt2, c: Pt2) -> f64 {
-    robust::orient2d(robust::Coord { x: a[0], y: a[1] }, robust::Coord { x: b[0], y: b[1] }, robust::Coord { x: c[0], y: c[1] })
+    robust::orient2d(
+        robust::Coord { x: a[0], y: a[1] },
+        robust::Coord { x: b[0], y: b[1] },
+        robust::Coord { x: c[0], y: c[1] },
+    )
 }
 
 /// Signed area of a ring (shoelace; positive for counter-clockwise).
@@ -72,7 +76,10 @@ pub fn winding(r: &[Pt2], p: Pt2) -> Option<i32> {
 }
 
 fn on_segment_collinear(a: Pt2, b: Pt2, p: Pt2) -> bool {
-    p[0] >= a[0].min(b[0]) && p[0] <= a[0].max(b[0]) && p[1] >= a[1].min(b[1]) && p[1] <= a[1].max(b[1])
+    p[0] >= a[0].min(b[0])
+        && p[0] <= a[0].max(b[0])
+        && p[1] >= a[1].min(b[1])
+        && p[1] <= a[1].max(b[1])
 }
 
 /// Exact location of `p` relative to a multipolygon (non-zero winding over all rings).
@@ -95,7 +102,12 @@ pub fn locate(m: &MultiPolygon, p: Pt2) -> Side {
 
 /// Bounding rectangle [xmin, ymin, xmax, ymax] of points.
 pub fn bounds<'a>(pts: impl IntoIterator<Item = &'a Pt2>) -> [f64; 4] {
-    let mut b = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
     for p in pts {
         b[0] = b[0].min(p[0]);
         b[1] = b[1].min(p[1]);
@@ -152,7 +164,10 @@ mod tests {
 
     #[test]
     fn canonical_rotation_and_order() {
-        let mut m: MultiPolygon = vec![vec![vec![[5., 5.], [6., 5.], [5., 6.]]], vec![vec![[1., 0.], [1., 1.], [0., 0.]]]];
+        let mut m: MultiPolygon = vec![
+            vec![vec![[5., 5.], [6., 5.], [5., 6.]]],
+            vec![vec![[1., 0.], [1., 1.], [0., 0.]]],
+        ];
         canonicalize(&mut m);
         assert_eq!(m[0][0][0], [0., 0.]);
         assert_eq!(m[0][0], vec![[0., 0.], [1., 0.], [1., 1.]]);
@@ -162,6 +177,12 @@ mod tests {
     #[test]
     fn convexity() {
         assert!(is_convex_ccw(&square(0., 0., 1.)));
-        assert!(!is_convex_ccw(&[[0., 0.], [2., 0.], [1., 0.5], [2., 2.], [0., 2.]]));
+        assert!(!is_convex_ccw(&[
+            [0., 0.],
+            [2., 0.],
+            [1., 0.5],
+            [2., 2.],
+            [0., 2.]
+        ]));
     }
 }

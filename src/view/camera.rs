@@ -29,13 +29,19 @@ pub struct Camera {
 fn frame(dir: &V3, up: &V3) -> Result<(V3, V3, V3)> {
     let d = dir.norm();
     if !(d > 0.0 && d.is_finite()) {
-        return Err(Error::Usage(format!("view direction {:?} has no length", dir.as_slice())));
+        return Err(Error::Usage(format!(
+            "view direction {:?} has no length",
+            dir.as_slice()
+        )));
     }
     let w = -dir / d;
     let u = up.cross(&w);
     let ul = u.norm();
     if !(ul > 1e-12 * up.norm()) {
-        return Err(Error::Usage(format!("up vector {:?} is parallel to the view direction", up.as_slice())));
+        return Err(Error::Usage(format!(
+            "up vector {:?} is parallel to the view direction",
+            up.as_slice()
+        )));
     }
     let u = u / ul;
     Ok((u, w.cross(&u), w))
@@ -53,7 +59,11 @@ impl Camera {
             w.x, w.y, w.z, 0.0,
             0.0, 0.0, 0.0, 1.0,
         );
-        Ok(Camera { matrix, projection: Projection::Orthographic, near: 0.0 })
+        Ok(Camera {
+            matrix,
+            projection: Projection::Orthographic,
+            near: 0.0,
+        })
     }
 
     /// Perspective camera at `eye` looking at `target` with vertical field of view `fov_deg`.
@@ -61,7 +71,9 @@ impl Camera {
     /// along the view axis and f = 1/tan(fov/2). The near plane is at d = `near`.
     pub fn perspective(eye: P3, target: P3, up: V3, fov_deg: f64, near: f64) -> Result<Camera> {
         if !(fov_deg > 0.0 && fov_deg < 180.0) {
-            return Err(Error::Usage(format!("field of view {fov_deg} is not between 0 and 180 degrees")));
+            return Err(Error::Usage(format!(
+                "field of view {fov_deg} is not between 0 and 180 degrees"
+            )));
         }
         let (u, v, w) = frame(&(target - eye), &up)?;
         let f = 1.0 / (fov_deg.to_radians() / 2.0).tan();
@@ -73,16 +85,29 @@ impl Camera {
             0.0, 0.0, 0.0, 1.0,
             -w.x, -w.y, -w.z, w.dot(&e),
         );
-        Ok(Camera { matrix, projection: Projection::Perspective, near })
+        Ok(Camera {
+            matrix,
+            projection: Projection::Perspective,
+            near,
+        })
     }
 
     /// The camera a scene file states, with the near plane set from the scene's size.
     pub fn from_spec(spec: &CameraSpec, scene_box: &Box3) -> Result<Camera> {
         match *spec {
             CameraSpec::Orthographic { dir, up } => Camera::orthographic(dir, up),
-            CameraSpec::Perspective { eye, target, up, fov_deg } => {
-                Camera::perspective(eye, target, up, fov_deg, default_near(&eye, &target, scene_box))
-            }
+            CameraSpec::Perspective {
+                eye,
+                target,
+                up,
+                fov_deg,
+            } => Camera::perspective(
+                eye,
+                target,
+                up,
+                fov_deg,
+                default_near(&eye, &target, scene_box),
+            ),
         }
     }
 
@@ -145,12 +170,15 @@ mod tests {
 
     #[test]
     fn perspective_depth_grows_toward_viewer() {
-        let c = Camera::perspective(P3::new(0., 0., 10.), P3::origin(), V3::y(), 90.0, 0.01).unwrap();
+        let c =
+            Camera::perspective(P3::new(0., 0., 10.), P3::origin(), V3::y(), 90.0, 0.01).unwrap();
         let near = c.project(&P3::new(0., 0., 5.));
         let far = c.project(&P3::new(0., 0., -5.));
         assert!(near[2] > far[2]);
         let p = c.project(&P3::new(1., 1., 0.));
-        assert!((p[0] - 0.1).abs() < 1e-15 && (p[1] - 0.1).abs() < 1e-15 && (p[2] - 0.1).abs() < 1e-15);
+        assert!(
+            (p[0] - 0.1).abs() < 1e-15 && (p[1] - 0.1).abs() < 1e-15 && (p[2] - 0.1).abs() < 1e-15
+        );
         let q = c.unproject(p);
         assert!((q - P3::new(1., 1., 0.)).norm() < 1e-12);
         assert!(!c.in_front(&P3::new(0., 0., 11.)));
@@ -161,6 +189,8 @@ mod tests {
         assert!(Camera::orthographic(V3::zeros(), V3::y()).is_err());
         assert!(Camera::orthographic(V3::y(), V3::y()).is_err());
         assert!(Camera::perspective(P3::origin(), P3::origin(), V3::y(), 40.0, 0.1).is_err());
-        assert!(Camera::perspective(P3::origin(), P3::new(0., 0., -1.), V3::y(), 180.0, 0.1).is_err());
+        assert!(
+            Camera::perspective(P3::origin(), P3::new(0., 0., -1.), V3::y(), 180.0, 0.1).is_err()
+        );
     }
 }

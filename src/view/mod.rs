@@ -26,6 +26,10 @@ impl View {
     pub fn new(scene: &Scene, camera: Camera) -> View {
         let screen = ScreenFaces::build(scene, &camera);
         let tree = ViewTree::build(scene, &camera, &screen);
-        View { camera, screen, tree }
+        View {
+            camera,
+            screen,
+            tree,
+        }
     }
 }

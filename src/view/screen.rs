@@ -76,6 +76,8 @@ pub struct ScreenFaces {
     pub world: Vec<P3>,
     /// Sign of det(M): +1 when the camera keeps the orientation of tetrahedra, -1 when it flips it.
     pub det_sign: f64,
+    /// The camera that made them.
+    pub camera: Option<Camera>,
     /// Leaf objects in global order.
     pub leaves: Vec<LeafInfo>,
 }
@@ -83,7 +85,11 @@ pub struct ScreenFaces {
 impl ScreenFaces {
     /// Projects every face of `scene` with `camera`.
     pub fn build(scene: &Scene, camera: &Camera) -> ScreenFaces {
-        let mut out = ScreenFaces { det_sign: camera.matrix.determinant().signum(), ..Default::default() };
+        let mut out = ScreenFaces {
+            det_sign: camera.matrix.determinant().signum(),
+            camera: Some(*camera),
+            ..Default::default()
+        };
         for (li, leaf) in scene.leaves().iter().enumerate() {
             out.add_leaf(li as u32, leaf, camera);
         }
@@ -119,9 +125,15 @@ impl ScreenFaces {
     }
 
     fn add_leaf(&mut self, li: u32, leaf: &Leaf, camera: &Camera) {
-        let world: Vec<_> = leaf.mesh.vertices.iter().map(|v| leaf.transform.transform_point(v)).collect();
+        let world: Vec<_> = leaf
+            .mesh
+            .vertices
+            .iter()
+            .map(|v| leaf.transform.transform_point(v))
+            .collect();
         let clip: Vec<[f64; 4]> = world.iter().map(|p| camera.clip_coords(p)).collect();
-        let all_in_front = camera.projection == Projection::Orthographic || clip.iter().all(|h| h[3] >= camera.near);
+        let all_in_front = camera.projection == Projection::Orthographic
+            || clip.iter().all(|h| h[3] >= camera.near);
         let may_cull = leaf.mesh.closed && all_in_front;
         let mirrors = leaf.mirrors();
         self.leaves.push(LeafInfo {
@@ -132,7 +144,11 @@ impl ScreenFaces {
         let mut poly: Vec<([f64; 4], P3)> = Vec::new();
         for f in &leaf.mesh.faces {
             poly.clear();
-            poly.extend(f.vertices.iter().map(|&k| (clip[k as usize], world[k as usize])));
+            poly.extend(
+                f.vertices
+                    .iter()
+                    .map(|&k| (clip[k as usize], world[k as usize])),
+            );
             if mirrors {
                 poly.reverse();
             }
@@ -143,7 +159,13 @@ impl ScreenFaces {
             self.world.extend(poly.iter().map(|(_, w)| *w));
             let poly: Vec<[f64; 4]> = poly.iter().map(|(h, _)| *h).collect();
             let persp = camera.projection == Projection::Perspective;
-            self.points.extend(poly.iter().map(|h| if persp { [h[0] / h[3], h[1] / h[3], h[2] / h[3]] } else { [h[0], h[1], h[2]] }));
+            self.points.extend(poly.iter().map(|h| {
+                if persp {
+                    [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+                } else {
+                    [h[0], h[1], h[2]]
+                }
+            }));
             let face = describe(&self.points[start as usize..], start, li, may_cull);
             self.faces.push(face);
         }
@@ -179,7 +201,12 @@ fn describe(p: &[[f64; 3]], start: u32, leaf: u32, may_cull: bool) -> ScreenFace
         start,
         len: p.len() as u32,
         leaf,
-        rect: [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY],
+        rect: [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ],
         zmin: f64::INFINITY,
         zmax: f64::NEG_INFINITY,
         refs: [0, 0, 0],
@@ -192,7 +219,12 @@ fn describe(p: &[[f64; 3]], start: u32, leaf: u32, may_cull: bool) -> ScreenFace
         return f;
     }
     for q in p {
-        f.rect = [f.rect[0].min(q[0]), f.rect[1].min(q[1]), f.rect[2].max(q[0]), f.rect[3].max(q[1])];
+        f.rect = [
+            f.rect[0].min(q[0]),
+            f.rect[1].min(q[1]),
+            f.rect[2].max(q[0]),
+            f.rect[3].max(q[1]),
+        ];
         f.zmin = f.zmin.min(q[2]);
         f.zmax = f.zmax.max(q[2]);
     }
@@ -227,14 +259,23 @@ fn reference_triple(p: &[[f64; 3]]) -> [u32; 3] {
         return [0, 1, 2];
     }
     let d2 = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>();
-    let i1 = (1..p.len()).max_by(|&i, &j| d2(&p[0], &p[i]).total_cmp(&d2(&p[0], &p[j]))).unwrap_or(1);
+    let i1 = (1..p.len())
+        .max_by(|&i, &j| d2(&p[0], &p[i]).total_cmp(&d2(&p[0], &p[j])))
+        .unwrap_or(1);
     let e = [p[i1][0] - p[0][0], p[i1][1] - p[0][1], p[i1][2] - p[0][2]];
     let cross2 = |q: &[f64; 3]| {
         let v = [q[0] - p[0][0], q[1] - p[0][1], q[2] - p[0][2]];
-        let c = [e[1] * v[2] - e[2] * v[1], e[2] * v[0] - e[0] * v[2], e[0] * v[1] - e[1] * v[0]];
+        let c = [
+            e[1] * v[2] - e[2] * v[1],
+            e[2] * v[0] - e[0] * v[2],
+            e[0] * v[1] - e[1] * v[0],
+        ];
         c[0] * c[0] + c[1] * c[1] + c[2] * c[2]
     };
-    let i2 = (1..p.len()).filter(|&i| i != i1).max_by(|&i, &j| cross2(&p[i]).total_cmp(&cross2(&p[j]))).unwrap_or(2);
+    let i2 = (1..p.len())
+        .filter(|&i| i != i1)
+        .max_by(|&i, &j| cross2(&p[i]).total_cmp(&cross2(&p[j])))
+        .unwrap_or(2);
     if i1 < i2 {
         [0, i1 as u32, i2 as u32]
     } else {
@@ -249,11 +290,23 @@ mod tests {
     #[test]
     fn near_clip_cuts_polygon() {
         let o = P3::origin();
-        let poly = [([0., 0., 1., -1.], o), ([1., 0., 1., 1.], o), ([0., 1., 1., 1.], o)];
+        let poly = [
+            ([0., 0., 1., -1.], o),
+            ([1., 0., 1., 1.], o),
+            ([0., 1., 1., 1.], o),
+        ];
         let c = clip_near(&poly, 0.5);
         assert_eq!(c.len(), 4);
         assert!(c.iter().all(|(h, _)| h[3] >= 0.5));
-        assert!(clip_near(&[([0., 0., 0., 0.1], o), ([1., 0., 0., 0.1], o), ([0., 1., 0., 0.2], o)], 0.5).is_empty());
+        assert!(clip_near(
+            &[
+                ([0., 0., 0., 0.1], o),
+                ([1., 0., 0., 0.1], o),
+                ([0., 1., 0., 0.2], o)
+            ],
+            0.5
+        )
+        .is_empty());
     }
 
     #[test]

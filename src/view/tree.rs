@@ -87,7 +87,12 @@ impl ViewTree {
 
     /// Builds the tree of `scene` over its screen faces.
     pub fn build(scene: &Scene, camera: &Camera, sf: &ScreenFaces) -> ViewTree {
-        let mut b = Builder { tree: ViewTree::default(), sf, camera, next_face: 0 };
+        let mut b = Builder {
+            tree: ViewTree::default(),
+            sf,
+            camera,
+            next_face: 0,
+        };
         b.object(&scene.root, &M4::identity(), "", None);
         b.tree
     }
@@ -112,7 +117,9 @@ impl Builder<'_> {
         let inbox = obj.inbox;
         let node = match &obj.content {
             Content::Mesh(m) => {
-                let ids: Vec<u32> = (first..first + m.faces.len() as u32).filter(|&f| self.sf.faces[f as usize].is_occluder()).collect();
+                let ids: Vec<u32> = (first..first + m.faces.len() as u32)
+                    .filter(|&f| self.sf.faces[f as usize].is_occluder())
+                    .collect();
                 self.next_face += m.faces.len() as u32;
                 self.bvh(ids)
             }
@@ -120,9 +127,17 @@ impl Builder<'_> {
                 let kids: Vec<u32> = subs
                     .iter()
                     .map(|s| {
-                        let p = if path.is_empty() { s.name.clone() } else { format!("{path}/{}", s.name) };
+                        let p = if path.is_empty() {
+                            s.name.clone()
+                        } else {
+                            format!("{path}/{}", s.name)
+                        };
                         let slot = self.tree.objects.len();
-                        self.tree.objects.push(ObjectNode { path: p.clone(), node: 0, faces: 0..0 });
+                        self.tree.objects.push(ObjectNode {
+                            path: p.clone(),
+                            node: 0,
+                            faces: 0..0,
+                        });
                         self.object(s, xf, &p, Some(slot))
                     })
                     .collect();
@@ -152,7 +167,9 @@ impl Builder<'_> {
             return;
         }
         let corners = b.corners().map(|c| xf.transform_point(&c));
-        if self.camera.projection == Projection::Perspective && !corners.iter().all(|c| self.camera.in_front(c)) {
+        if self.camera.projection == Projection::Perspective
+            && !corners.iter().all(|c| self.camera.in_front(c))
+        {
             return;
         }
         let s = corners.map(|c| self.camera.project(&c));
@@ -163,7 +180,12 @@ impl Builder<'_> {
         }
         let rect = crate::geom::poly2::bounds(hull.iter());
         let zmin = s.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
-        self.tree.inboxes.push(ScreenInbox { hull, rect, zmin, node });
+        self.tree.inboxes.push(ScreenInbox {
+            hull,
+            rect,
+            zmin,
+            node,
+        });
         self.tree.nodes[node as usize].inbox = Some(self.tree.inboxes.len() as u32 - 1);
     }
 
@@ -209,12 +231,18 @@ impl Builder<'_> {
             r[axis] + r[axis + 2]
         };
         let span = |axis: usize| {
-            let (lo, hi) = ids.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| (lo.min(centre(f, axis)), hi.max(centre(f, axis))));
+            let (lo, hi) = ids
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| {
+                    (lo.min(centre(f, axis)), hi.max(centre(f, axis)))
+                });
             hi - lo
         };
         let axis = if span(0) >= span(1) { 0 } else { 1 };
         let mid = ids.len() / 2;
-        ids.select_nth_unstable_by(mid, |&a, &b| centre(a, axis).total_cmp(&centre(b, axis)).then(a.cmp(&b)));
+        ids.select_nth_unstable_by(mid, |&a, &b| {
+            centre(a, axis).total_cmp(&centre(b, axis)).then(a.cmp(&b))
+        });
         let right = ids.split_off(mid);
         let l = self.bvh(ids);
         let r = self.bvh(right);
@@ -224,7 +252,12 @@ impl Builder<'_> {
 
 fn empty_node() -> Node {
     Node {
-        rect: [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY],
+        rect: [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ],
         zmin: f64::INFINITY,
         zmax: f64::NEG_INFINITY,
         kind: NodeKind::Leaf(0..0),
@@ -234,7 +267,12 @@ fn empty_node() -> Node {
 
 /// Union of two rectangles.
 pub fn union_rect(a: &[f64; 4], b: &[f64; 4]) -> [f64; 4] {
-    [a[0].min(b[0]), a[1].min(b[1]), a[2].max(b[2]), a[3].max(b[3])]
+    [
+        a[0].min(b[0]),
+        a[1].min(b[1]),
+        a[2].max(b[2]),
+        a[3].max(b[3]),
+    ]
 }
 
 /// Convex hull (Andrew's monotone chain, exact turns), counter-clockwise, no collinear points.
@@ -247,9 +285,15 @@ pub fn convex_hull(mut pts: Vec<Pt2>) -> Vec<Pt2> {
     let mut hull: Vec<Pt2> = Vec::with_capacity(pts.len() * 2);
     for pass in 0..2 {
         let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &Pt2>> = if pass == 0 { Box::new(pts.iter()) } else { Box::new(pts.iter().rev()) };
+        let iter: Box<dyn Iterator<Item = &Pt2>> = if pass == 0 {
+            Box::new(pts.iter())
+        } else {
+            Box::new(pts.iter().rev())
+        };
         for &p in iter {
-            while hull.len() >= start + 2 && orient2d(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+            while hull.len() >= start + 2
+                && orient2d(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+            {
                 hull.pop();
             }
             hull.push(p);
@@ -265,7 +309,15 @@ mod tests {
 
     #[test]
     fn hull_of_square_with_inner_and_collinear_points() {
-        let h = convex_hull(vec![[0., 0.], [1., 0.], [2., 0.], [2., 2.], [0., 2.], [1., 1.], [0., 1.]]);
+        let h = convex_hull(vec![
+            [0., 0.],
+            [1., 0.],
+            [2., 0.],
+            [2., 2.],
+            [0., 2.],
+            [1., 1.],
+            [0., 1.],
+        ]);
         assert_eq!(h, vec![[0., 0.], [2., 0.], [2., 2.], [0., 2.]]);
     }
 }

@@ -15,7 +15,11 @@ use i_overlay::i_float::float::rect::FloatRect;
 use crate::geom::poly2::{MultiPolygon, Pt2, Ring};
 
 /// Single-threaded solver: kepler parallelises over faces instead.
-const SOLVER: Solver = Solver { strategy: Strategy::Auto, precision: Precision::HIGH, multithreading: None };
+const SOLVER: Solver = Solver {
+    strategy: Strategy::Auto,
+    precision: Precision::HIGH,
+    multithreading: None,
+};
 
 /// `subject` (counter-clockwise) minus the union of `clips` (each counter-clockwise, each
 /// inside `rect`, which must contain `subject`). NonZero fill: equal windings never cancel.
@@ -26,7 +30,8 @@ pub fn subtract(subject: &[Pt2], rect: &[f64; 4], clips: &[Ring]) -> MultiPolygo
     let adapter = FloatPointAdapter::<Pt2, i64>::new_conservative(frect);
     let capacity = subject.len() + clips.iter().map(Vec::len).sum::<usize>();
     let options = OverlayOptions::<f64, i64>::default();
-    let mut overlay = FloatOverlay::new_custom(adapter, options, SOLVER, capacity).unsafe_add_contour(subject, ShapeType::Subject);
+    let mut overlay = FloatOverlay::new_custom(adapter, options, SOLVER, capacity)
+        .unsafe_add_contour(subject, ShapeType::Subject);
     for c in clips {
         overlay = overlay.unsafe_add_contour(c, ShapeType::Clip);
     }
@@ -37,11 +42,28 @@ pub fn subtract(subject: &[Pt2], rect: &[f64; 4], clips: &[Ring]) -> MultiPolygo
 /// zero-width bridges along the border, which carry no area under NonZero fill).
 pub fn clip_to_rect(ring: &[Pt2], rect: &[f64; 4]) -> Ring {
     let mut cur: Ring = ring.to_vec();
-    for (axis, bound, keep_below) in [(0, rect[0], false), (0, rect[2], true), (1, rect[1], false), (1, rect[3], true)] {
-        if cur.iter().all(|p| if keep_below { p[axis] <= bound } else { p[axis] >= bound }) {
+    for (axis, bound, keep_below) in [
+        (0, rect[0], false),
+        (0, rect[2], true),
+        (1, rect[1], false),
+        (1, rect[3], true),
+    ] {
+        if cur.iter().all(|p| {
+            if keep_below {
+                p[axis] <= bound
+            } else {
+                p[axis] >= bound
+            }
+        }) {
             continue;
         }
-        let inside = |p: &Pt2| if keep_below { p[axis] <= bound } else { p[axis] >= bound };
+        let inside = |p: &Pt2| {
+            if keep_below {
+                p[axis] <= bound
+            } else {
+                p[axis] >= bound
+            }
+        };
         let n = cur.len();
         let mut next = Vec::with_capacity(n + 2);
         for i in 0..n {
@@ -75,7 +97,11 @@ mod tests {
 
     #[test]
     fn square_minus_two_overlapping_squares() {
-        let r = subtract(&sq(0., 0., 4.), &[0., 0., 4., 4.], &[sq(0., 0., 2.), sq(1., 1., 2.)]);
+        let r = subtract(
+            &sq(0., 0., 4.),
+            &[0., 0., 4., 4.],
+            &[sq(0., 0., 2.), sq(1., 1., 2.)],
+        );
         // Union of the two occluders: 4 + 4 - 1 = 7.
         assert_eq!(multipolygon_area(&r), 16.0 - 7.0);
     }
@@ -98,9 +124,20 @@ mod tests {
     #[test]
     fn no_drift_with_many_tiny_occluders() {
         // 1000 slivers along the bottom edge: the remaining top must stay exactly at y = 1.
-        let clips: Vec<Ring> = (0..1000).map(|i| sq(i as f64 / 1000.0, 0.0, 0.001)).collect();
-        let r = subtract(&[[0., 0.], [1., 0.], [1., 1.], [0., 1.]], &[0., 0., 1., 1.], &clips);
-        let max_y = r.iter().flatten().flatten().map(|p| p[1]).fold(0.0, f64::max);
+        let clips: Vec<Ring> = (0..1000)
+            .map(|i| sq(i as f64 / 1000.0, 0.0, 0.001))
+            .collect();
+        let r = subtract(
+            &[[0., 0.], [1., 0.], [1., 1.], [0., 1.]],
+            &[0., 0., 1., 1.],
+            &clips,
+        );
+        let max_y = r
+            .iter()
+            .flatten()
+            .flatten()
+            .map(|p| p[1])
+            .fold(0.0, f64::max);
         assert_eq!(max_y, 1.0);
         assert!((multipolygon_area(&r) - 0.999).abs() < 1e-12);
     }

@@ -55,7 +55,11 @@ fn include_local(a: &Object, p: &P3) -> Inclusion {
 pub fn winding_number(m: &Mesh, p: &P3) -> f64 {
     let mut total = 0.0;
     for f in &m.faces {
-        let v: Vec<V3> = f.vertices.iter().map(|&k| m.vertices[k as usize] - p).collect();
+        let v: Vec<V3> = f
+            .vertices
+            .iter()
+            .map(|&k| m.vertices[k as usize] - p)
+            .collect();
         for i in 1..v.len() - 1 {
             total += solid_angle(&v[0], &v[i], &v[i + 1]);
         }
@@ -78,7 +82,15 @@ mod tests {
 
     fn cube() -> Object {
         let raw = primitives::cuboid(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
-        let m = cleanup(&raw, &Origin { file: std::path::Path::new("c"), face_pos: &[] }, &mut Vec::new()).unwrap();
+        let m = cleanup(
+            &raw,
+            &Origin {
+                file: std::path::Path::new("c"),
+                face_pos: &[],
+            },
+            &mut Vec::new(),
+        )
+        .unwrap();
         Object::from_mesh("cube", m)
     }
 
@@ -98,7 +110,13 @@ mod tests {
         let proto = std::sync::Arc::new(cube());
         let t = nalgebra::Translation3::new(5., 0., 0.).to_homogeneous();
         let inst = Object::instance("i", proto, t);
-        assert_eq!(include(&inst, &M4::identity(), &P3::new(5.5, 0.5, 0.5)), Inclusion::In);
-        assert_eq!(include(&inst, &M4::identity(), &P3::new(0.5, 0.5, 0.5)), Inclusion::Out);
+        assert_eq!(
+            include(&inst, &M4::identity(), &P3::new(5.5, 0.5, 0.5)),
+            Inclusion::In
+        );
+        assert_eq!(
+            include(&inst, &M4::identity(), &P3::new(0.5, 0.5, 0.5)),
+            Inclusion::Out
+        );
     }
 }

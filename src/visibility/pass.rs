@@ -46,12 +46,22 @@ pub struct Visibility {
 /// Computes every face's VTP against the whole scene.
 pub fn solve(view: &View, opts: PassOptions) -> Visibility {
     let mut counters = Counters::default();
-    let hidden = if opts.use_inbox { hidden_subtrees(view, &mut counters) } else { vec![false; view.screen.faces.len()] };
-    let view_used: std::borrow::Cow<View> = if opts.use_inbox { std::borrow::Cow::Borrowed(view) } else { std::borrow::Cow::Owned(without_inboxes(view)) };
+    let hidden = if opts.use_inbox {
+        hidden_subtrees(view, &mut counters)
+    } else {
+        vec![false; view.screen.faces.len()]
+    };
+    let view_used: std::borrow::Cow<View> = if opts.use_inbox {
+        std::borrow::Cow::Borrowed(view)
+    } else {
+        std::borrow::Cow::Owned(without_inboxes(view))
+    };
     let root = view_used.tree.root();
     let results: Vec<(FaceVisibility, Counters)> = (0..view.screen.faces.len())
         .into_par_iter()
-        .map_init(Scratch::default, |scratch, f| solve_face(&view_used, root, f, hidden[f], scratch))
+        .map_init(Scratch::default, |scratch, f| {
+            solve_face(&view_used, root, f, hidden[f], scratch)
+        })
         .collect();
     let mut faces = Vec::with_capacity(results.len());
     for (fv, c) in results {
@@ -70,12 +80,26 @@ fn without_inboxes(view: &View) -> View {
     v
 }
 
-fn solve_face(view: &View, root: u32, f: usize, hidden: bool, scratch: &mut Scratch) -> (FaceVisibility, Counters) {
+fn solve_face(
+    view: &View,
+    root: u32,
+    f: usize,
+    hidden: bool,
+    scratch: &mut Scratch,
+) -> (FaceVisibility, Counters) {
     let mut c = Counters::default();
     let sf = &view.screen.faces[f];
     let ring = view.screen.ring_ccw(f);
-    let projected_area = if matches!(sf.facing, Facing::Front | Facing::Back) { ring_area(&ring) } else { 0.0 };
-    let empty = |area| FaceVisibility { visible: Vec::new(), area: 0.0, projected_area: area };
+    let projected_area = if matches!(sf.facing, Facing::Front | Facing::Back) {
+        ring_area(&ring)
+    } else {
+        0.0
+    };
+    let empty = |area| FaceVisibility {
+        visible: Vec::new(),
+        area: 0.0,
+        projected_area: area,
+    };
     match sf.facing {
         Facing::EdgeOn | Facing::Clipped => {
             c.faces_edge_on += 1;
@@ -98,7 +122,14 @@ fn solve_face(view: &View, root: u32, f: usize, hidden: bool, scratch: &mut Scra
     };
     canonicalize(&mut visible);
     let area = multipolygon_area(&visible);
-    (FaceVisibility { visible, area, projected_area }, c)
+    (
+        FaceVisibility {
+            visible,
+            area,
+            projected_area,
+        },
+        c,
+    )
 }
 
 /// Marks the faces of every named object whose screen bounds lie behind and inside the
@@ -114,9 +145,17 @@ fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
             Some(b) => b,
             None => continue,
         };
-        let corners = [[bounds.0[0], bounds.0[1]], [bounds.0[2], bounds.0[1]], [bounds.0[2], bounds.0[3]], [bounds.0[0], bounds.0[3]]];
+        let corners = [
+            [bounds.0[0], bounds.0[1]],
+            [bounds.0[2], bounds.0[1]],
+            [bounds.0[2], bounds.0[3]],
+            [bounds.0[0], bounds.0[3]],
+        ];
         let by = tree.inboxes.iter().find(|ib| {
-            ib.node != obj.node && bounds.1 < ib.zmin && rects_overlap(&ib.rect, &bounds.0) && covers_convex(&ib.hull, &corners)
+            ib.node != obj.node
+                && bounds.1 < ib.zmin
+                && rects_overlap(&ib.rect, &bounds.0)
+                && covers_convex(&ib.hull, &corners)
         });
         if by.is_some() {
             counters.subtrees_hidden += 1;
@@ -130,7 +169,12 @@ fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
 
 /// Screen rectangle and greatest depth of all drawable faces in a range (None if none).
 fn subtree_bounds(view: &View, faces: std::ops::Range<u32>) -> Option<([f64; 4], f64)> {
-    let mut rect = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+    let mut rect = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
     let mut zmax = f64::NEG_INFINITY;
     for f in faces {
         let sf = &view.screen.faces[f as usize];

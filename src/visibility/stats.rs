@@ -54,7 +54,10 @@ impl Counters {
         vec![
             ("faces walked", self.faces_walked),
             ("faces edge-on or clipped", self.faces_edge_on),
-            ("faces culled (back faces of closed solids)", self.faces_culled),
+            (
+                "faces culled (back faces of closed solids)",
+                self.faces_culled,
+            ),
             ("subtrees hidden by inboxes", self.subtrees_hidden),
             ("faces in hidden subtrees", self.faces_in_hidden_subtrees),
             ("subtrees skipped by CBOX", self.skipped_by_cbox),

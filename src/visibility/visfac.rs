@@ -10,7 +10,9 @@ use crate::view::tree::{NodeKind, ScreenInbox};
 use crate::view::View;
 
 use super::clip::{clip_to_rect, subtract};
-use super::occlusion::{covers_convex, occluder_region, rects_overlap, separated_convex, Occlusion, Target};
+use super::occlusion::{
+    covers_convex, occluder_region, rects_overlap, separated_convex, Occlusion, Target,
+};
 use super::stats::Counters;
 
 /// The paper's VISFAC answer: what an object does to a face.
@@ -54,7 +56,12 @@ enum Walk {
 /// True when the INBOX (a solid box inside its object) hides all of F: F lies entirely
 /// behind the box's farthest corner, and inside its projected outline.
 pub fn inbox_hides(ib: &ScreenInbox, rect: &[f64; 4], zmax: f64, ring: &[Pt2]) -> bool {
-    zmax < ib.zmin && ib.rect[0] <= rect[0] && ib.rect[1] <= rect[1] && rect[2] <= ib.rect[2] && rect[3] <= ib.rect[3] && covers_convex(&ib.hull, ring)
+    zmax < ib.zmin
+        && ib.rect[0] <= rect[0]
+        && ib.rect[1] <= rect[1]
+        && rect[2] <= ib.rect[2]
+        && rect[3] <= ib.rect[3]
+        && covers_convex(&ib.hull, ring)
 }
 
 /// VISFAC(A, F): the VTP of face `f` against the subtree at node `a` (the whole scene when
@@ -100,7 +107,9 @@ fn visfac2(view: &View, a: u32, t: &Target, scratch: &mut Scratch, stats: &mut C
         match &node.kind {
             NodeKind::Inner(r) => {
                 // Children are stored front to back; push in reverse so the front one pops first.
-                scratch.stack.extend(tree.children[r.start as usize..r.end as usize].iter().rev());
+                scratch
+                    .stack
+                    .extend(tree.children[r.start as usize..r.end as usize].iter().rev());
             }
             NodeKind::Leaf(r) => {
                 for &g in &tree.faces[r.start as usize..r.end as usize] {

@@ -31,7 +31,12 @@ pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<u32>) -> PointVisibilit
     while let Some(n) = stack.pop() {
         let node = &tree.nodes[n as usize];
         // 1. Not hidden by CBOX: the point is outside its outline, or in front of all of it.
-        if !(node.rect[0] <= q[0] && q[0] <= node.rect[2] && node.rect[1] <= q[1] && q[1] <= node.rect[3]) || node.zmax < s[2] {
+        if !(node.rect[0] <= q[0]
+            && q[0] <= node.rect[2]
+            && node.rect[1] <= q[1]
+            && q[1] <= node.rect[3])
+            || node.zmax < s[2]
+        {
             continue;
         }
         // 2. Hidden by INBOX.
@@ -45,7 +50,10 @@ pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<u32>) -> PointVisibilit
             NodeKind::Inner(r) => stack.extend(&tree.children[r.start as usize..r.end as usize]),
             NodeKind::Leaf(r) => {
                 // 3. Hidden by a face.
-                if tree.faces[r.start as usize..r.end as usize].iter().any(|&g| face_hides(view, g as usize, p, q, on_face)) {
+                if tree.faces[r.start as usize..r.end as usize]
+                    .iter()
+                    .any(|&g| face_hides(view, g as usize, p, q, on_face))
+                {
                     return PointVisibility::Hidden;
                 }
             }
@@ -58,11 +66,20 @@ pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<u32>) -> PointVisibilit
 pub fn face_hides(view: &View, g: usize, p: &P3, q: Pt2, on_face: Option<u32>) -> bool {
     let sf = &view.screen;
     let face = &sf.faces[g];
-    if on_face == Some(g as u32) || !(face.rect[0] < q[0] && q[0] < face.rect[2] && face.rect[1] < q[1] && q[1] < face.rect[3]) {
+    if on_face == Some(g as u32)
+        || !(face.rect[0] < q[0]
+            && q[0] < face.rect[2]
+            && face.rect[1] < q[1]
+            && q[1] < face.rect[3])
+    {
         return false;
     }
     let [a, b, c] = sf.plane_refs(g);
-    let co = |v: &P3| robust::Coord3D { x: v.x, y: v.y, z: v.z };
+    let co = |v: &P3| robust::Coord3D {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    };
     let side = robust::orient3d(co(&a), co(&b), co(&c), co(p)) * (-face.ref_turn * sf.det_sign);
     let in_front_of_p = side < 0.0 || (side == 0.0 && on_face.is_some_and(|f| (g as u32) < f));
     if !in_front_of_p {

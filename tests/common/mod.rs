@@ -12,28 +12,61 @@ use kepler::visibility::{solve, PassOptions, Visibility};
 
 /// A cleaned mesh from points and faces.
 pub fn mesh(pts: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
-    let raw = PolyMesh::new(pts.iter().map(|p| P3::new(p[0], p[1], p[2])).collect(), faces.iter().map(|f| f.to_vec()).collect());
-    cleanup(&raw, &Origin { file: std::path::Path::new("test"), face_pos: &[] }, &mut Vec::new()).unwrap()
+    let raw = PolyMesh::new(
+        pts.iter().map(|p| P3::new(p[0], p[1], p[2])).collect(),
+        faces.iter().map(|f| f.to_vec()).collect(),
+    );
+    cleanup(
+        &raw,
+        &Origin {
+            file: std::path::Path::new("test"),
+            face_pos: &[],
+        },
+        &mut Vec::new(),
+    )
+    .unwrap()
 }
 
 /// A cleaned primitive.
 pub fn prim(raw: PolyMesh) -> Mesh {
-    cleanup(&raw, &Origin { file: std::path::Path::new("prim"), face_pos: &[] }, &mut Vec::new()).unwrap()
+    cleanup(
+        &raw,
+        &Origin {
+            file: std::path::Path::new("prim"),
+            face_pos: &[],
+        },
+        &mut Vec::new(),
+    )
+    .unwrap()
 }
 
 /// An axis-aligned square at height z (counter-clockwise seen from +z).
 pub fn square(x0: f64, y0: f64, s: f64, z: f64) -> Mesh {
-    mesh(&[[x0, y0, z], [x0 + s, y0, z], [x0 + s, y0 + s, z], [x0, y0 + s, z]], &[&[0, 1, 2, 3]])
+    mesh(
+        &[
+            [x0, y0, z],
+            [x0 + s, y0, z],
+            [x0 + s, y0 + s, z],
+            [x0, y0 + s, z],
+        ],
+        &[&[0, 1, 2, 3]],
+    )
 }
 
 /// A box mesh.
 pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Mesh {
-    prim(kepler::primitives::cuboid(P3::new(lo[0], lo[1], lo[2]), P3::new(hi[0], hi[1], hi[2])))
+    prim(kepler::primitives::cuboid(
+        P3::new(lo[0], lo[1], lo[2]),
+        P3::new(hi[0], hi[1], hi[2]),
+    ))
 }
 
 /// A scene of named leaf objects.
 pub fn scene(objs: Vec<(&str, Mesh)>) -> Scene {
-    let subs = objs.into_iter().map(|(n, m)| Object::from_mesh(n, m)).collect();
+    let subs = objs
+        .into_iter()
+        .map(|(n, m)| Object::from_mesh(n, m))
+        .collect();
     Scene::new(Object::group("", subs), "test".into())
 }
 
@@ -66,7 +99,9 @@ pub fn union_area(parts: &[&MultiPolygon]) -> f64 {
         GMP(m
             .iter()
             .map(|p| {
-                let ring = |r: &Vec<[f64; 2]>| LineString(r.iter().map(|q| Coord { x: q[0], y: q[1] }).collect());
+                let ring = |r: &Vec<[f64; 2]>| {
+                    LineString(r.iter().map(|q| Coord { x: q[0], y: q[1] }).collect())
+                };
                 GP::new(ring(&p[0]), p[1..].iter().map(ring).collect())
             })
             .collect())
@@ -108,8 +143,15 @@ pub fn union_area_exact(parts: &[&MultiPolygon]) -> f64 {
     if !(b[0] <= b[2]) {
         return 0.0;
     }
-    let adapter = FloatPointAdapter::<[f64; 2], i64>::new_conservative(FloatRect::new(b[0], b[2], b[1], b[3]).unwrap());
-    let mut ov = FloatOverlay::new_custom(adapter, OverlayOptions::<f64, i64>::default(), Default::default(), 64);
+    let adapter = FloatPointAdapter::<[f64; 2], i64>::new_conservative(
+        FloatRect::new(b[0], b[2], b[1], b[3]).unwrap(),
+    );
+    let mut ov = FloatOverlay::new_custom(
+        adapter,
+        OverlayOptions::<f64, i64>::default(),
+        Default::default(),
+        64,
+    );
     for m in parts {
         for p in m.iter() {
             for r in p {
