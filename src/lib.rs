@@ -2,6 +2,7 @@
 //!
 //! Data flows one way: load → prepare → view → visibility → emit.
 
+pub mod emit;
 pub mod error;
 pub mod geom;
 pub mod load;

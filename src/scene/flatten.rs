@@ -84,12 +84,15 @@ impl FlatMesh {
     }
 }
 
-/// Shortest round-trip decimal form of `x`, with -0 written as 0.
+/// Shortest round-trip decimal form of `x` (exponent form for very small or large
+/// magnitudes, no trailing `.0` on integers), with -0 written as 0.
 pub fn num(x: f64) -> String {
     if x == 0.0 {
         "0".into()
-    } else {
+    } else if x == x.trunc() && x.abs() < 1e15 {
         format!("{x}")
+    } else {
+        format!("{x:?}")
     }
 }
 
