@@ -1,0 +1,87 @@
+//! Built-in polyhedral primitives: Platonic and Archimedean solids, prisms, antiprisms, boxes.
+//!
+//! Every solid here except [`cuboid`] is uniform: exact closed-form coordinates scaled to unit
+//! edges, centred at the origin, all vertices on one sphere. Each planar face is one convex
+//! polygon listed counter-clockwise seen from outside, and no vertex is repeated.
+
+mod archimedean;
+#[cfg(test)]
+mod checks;
+mod hull;
+mod orbit;
+mod platonic;
+mod prism;
+
+pub use prism::{antiprism, cuboid, prism, MAX_SIDES};
+
+use crate::geom::{PolyMesh, P3};
+
+/// Builds one named solid.
+type Build = fn() -> PolyMesh;
+
+/// Every named solid with its builder: the Platonic ones, then the Archimedean ones.
+fn catalogue() -> impl Iterator<Item = &'static (&'static str, Build)> {
+    platonic::SOLIDS.iter().chain(archimedean::SOLIDS.iter())
+}
+
+/// The snake_case names `by_name` knows: the 5 Platonic then the 13 Archimedean solids.
+pub fn names() -> Vec<&'static str> {
+    catalogue().map(|&(name, _)| name).collect()
+}
+
+/// The named Platonic or Archimedean solid (unit edges, centred at the origin), or `None` for an
+/// unknown name. Names are the snake_case ones listed by [`names`], e.g. `"snub_cube"`.
+pub fn by_name(name: &str) -> Option<PolyMesh> {
+    catalogue()
+        .find(|&&(known, _)| known == name)
+        .map(|(_, build)| build())
+}
+
+/// The golden ratio φ = (1 + √5) / 2.
+fn golden_ratio() -> f64 {
+    (1.0 + 5f64.sqrt()) / 2.0
+}
+
+/// The solid whose vertices are `vertices` (in convex position, centred at the origin): the
+/// facets of their hull, with everything scaled so that edges have unit length.
+fn unit_solid(mut vertices: Vec<P3>) -> PolyMesh {
+    let faces = hull::hull_facets(&vertices);
+    let (a, b) = (faces[0][0] as usize, faces[0][1] as usize);
+    let edge = (vertices[a] - vertices[b]).norm();
+    for v in &mut vertices {
+        *v = P3::from(v.coords / edge);
+    }
+    PolyMesh::new(vertices, faces)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_listed_name_builds() {
+        let names = names();
+        assert_eq!(names.len(), 18);
+        for name in names {
+            let mesh = by_name(name).unwrap_or_else(|| panic!("{name} unknown"));
+            checks::assert_uniform(name, &mesh);
+        }
+    }
+
+    #[test]
+    fn unknown_names_and_small_n_give_none() {
+        for name in [
+            "",
+            "cube ",
+            "Cube",
+            "snub-cube",
+            "great_dodecahedron",
+            "prism",
+        ] {
+            assert!(by_name(name).is_none(), "{name:?}");
+        }
+        for n in [0, 1, 2, MAX_SIDES + 1, u32::MAX] {
+            assert!(prism(n).is_none() && antiprism(n).is_none(), "n = {n}");
+        }
+    }
+}
