@@ -4,6 +4,7 @@
 
 pub mod error;
 pub mod geom;
+pub mod load;
 pub mod primitives;
 
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};

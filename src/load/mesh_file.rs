@@ -1,0 +1,184 @@
+//! The loaders' shared output (named groups of polygon meshes) and dispatch on the file extension.
+
+use std::path::{Path, PathBuf};
+
+use crate::error::{Error, Location, Pos, Result};
+use crate::geom::PolyMesh;
+
+/// The largest coordinate magnitude accepted; anything bigger is reported as a huge coordinate.
+pub const MAX_COORD: f64 = 1e12;
+
+/// One named group of faces from a mesh file (an OBJ `o`/`g` group, or the whole file).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshGroup {
+    /// The group's name: the OBJ `o`/`g` name, or the file stem.
+    pub name: String,
+    /// The group's vertices and faces (polygons are kept, never triangulated).
+    pub mesh: PolyMesh,
+    /// Source position of each face (parallel to `mesh.faces`), for later warnings.
+    pub face_pos: Vec<Pos>,
+}
+
+impl MeshGroup {
+    /// An empty group with the given name.
+    pub fn new(name: impl Into<String>) -> Self {
+        MeshGroup {
+            name: name.into(),
+            mesh: PolyMesh::default(),
+            face_pos: Vec::new(),
+        }
+    }
+}
+
+/// The contents of one mesh file: its groups, in file order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshFile {
+    /// The file the meshes came from.
+    pub path: PathBuf,
+    /// The groups of faces, in file order; never empty, and every group has faces.
+    pub groups: Vec<MeshGroup>,
+}
+
+/// The mesh formats, told apart by file extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Obj,
+    Stl,
+    Ply,
+}
+
+/// The format named by `path`'s extension (case-insensitive), or a usage error naming the file.
+fn format_of(path: &Path) -> Result<Format> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    match ext.as_str() {
+        "obj" => Ok(Format::Obj),
+        "stl" => Ok(Format::Stl),
+        "ply" => Ok(Format::Ply),
+        _ => Err(Error::Usage(format!(
+            "{}: unknown mesh file extension (expected .obj, .stl or .ply)",
+            path.display()
+        ))),
+    }
+}
+
+/// Reads and parses the mesh file at `path`, choosing the format by its extension
+/// (`.obj`, `.stl`, `.ply`, case-insensitive).
+pub fn load_mesh(path: &Path) -> Result<MeshFile> {
+    format_of(path)?;
+    let bytes = std::fs::read(path).map_err(|e| Error::Io(Location::file(path), e))?;
+    parse_mesh(path, &bytes)
+}
+
+/// Parses mesh file contents already in memory; `path` picks the format by its extension
+/// and names the file in messages.
+pub fn parse_mesh(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
+    let format = format_of(path)?;
+    if bytes.is_empty() {
+        return Err(Error::invalid(Location::file(path), "empty file"));
+    }
+    match format {
+        Format::Obj => super::obj::parse_obj(path, bytes),
+        Format::Stl => super::stl::parse_stl(path, bytes),
+        Format::Ply => super::ply::parse_ply(path, bytes),
+    }
+}
+
+/// The file's groups as a [`MeshFile`], dropping groups without faces; an error if no face is left.
+pub(crate) fn finish(path: &Path, mut groups: Vec<MeshGroup>) -> Result<MeshFile> {
+    groups.retain(|g| !g.mesh.faces.is_empty());
+    if groups.is_empty() {
+        return Err(Error::invalid(
+            Location::file(path),
+            "the file contains no faces",
+        ));
+    }
+    Ok(MeshFile {
+        path: path.to_path_buf(),
+        groups,
+    })
+}
+
+/// The default group name for a file: its stem.
+pub(crate) fn stem_name(path: &Path) -> String {
+    match path.file_stem() {
+        Some(s) => s.to_string_lossy().into_owned(),
+        None => "mesh".to_string(),
+    }
+}
+
+/// What is wrong with coordinate `v`, if anything: NaN, infinite, or beyond [`MAX_COORD`].
+pub(crate) fn coord_problem(v: f64) -> Option<String> {
+    if v.is_nan() {
+        Some("coordinate is NaN".to_string())
+    } else if v.is_infinite() {
+        Some(format!("coordinate is infinite ({v})"))
+    } else if v.abs() > MAX_COORD {
+        Some(format!(
+            "huge coordinate {v:e} (the limit is {MAX_COORD:e})"
+        ))
+    } else {
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn load_unknown_extension_is_usage_error_naming_file() {
+        let e = parse_mesh(Path::new("dir/x.dxf"), b"abc").unwrap_err();
+        assert!(matches!(e, Error::Usage(_)));
+        assert!(
+            e.to_string()
+                .starts_with("dir/x.dxf: unknown mesh file extension"),
+            "{e}"
+        );
+        let e = load_mesh(Path::new("no/such/file.3ds")).unwrap_err();
+        assert!(matches!(e, Error::Usage(_)));
+    }
+
+    #[test]
+    fn load_extension_is_case_insensitive() {
+        assert_eq!(format_of(Path::new("A.OBJ")).unwrap(), Format::Obj);
+        assert_eq!(format_of(Path::new("a.Stl")).unwrap(), Format::Stl);
+        assert_eq!(format_of(Path::new("a.pLy")).unwrap(), Format::Ply);
+        assert!(format_of(Path::new("obj")).is_err());
+    }
+
+    #[test]
+    fn load_missing_file_is_io_error() {
+        let e = load_mesh(Path::new("/no/such/dir/m.obj")).unwrap_err();
+        assert!(matches!(e, Error::Io(..)));
+        assert!(e.to_string().starts_with("/no/such/dir/m.obj: "), "{e}");
+    }
+
+    #[test]
+    fn load_empty_file_is_error() {
+        for name in ["e.obj", "e.stl", "e.ply"] {
+            let e = parse_mesh(Path::new(name), b"").unwrap_err();
+            assert_eq!(e.to_string(), format!("{name}: empty file"));
+        }
+    }
+
+    #[test]
+    fn load_coord_problems() {
+        assert!(coord_problem(1.5).is_none());
+        assert!(coord_problem(-MAX_COORD).is_none());
+        assert!(coord_problem(f64::NAN).unwrap().contains("NaN"));
+        assert!(coord_problem(f64::NEG_INFINITY)
+            .unwrap()
+            .contains("infinite"));
+        assert!(coord_problem(2e12).unwrap().contains("huge coordinate"));
+    }
+
+    #[test]
+    fn load_stem_name() {
+        assert_eq!(stem_name(Path::new("a/b/cube.obj")), "cube");
+        assert_eq!(stem_name(Path::new("")), "mesh");
+    }
+}

@@ -1,0 +1,246 @@
+//! Text helpers for the text mesh formats: UTF-8 checking with a location, and words with their line and column.
+
+use std::path::Path;
+
+use crate::error::{Error, Location, Pos, Result};
+
+/// `bytes` as text, or a parse error at the line and column of the first byte that is not UTF-8.
+/// `first_line` is the 1-based line number of the first byte of `bytes`.
+pub(crate) fn decode<'a>(path: &Path, bytes: &'a [u8], first_line: usize) -> Result<&'a str> {
+    match std::str::from_utf8(bytes) {
+        Ok(s) => Ok(s),
+        Err(e) => {
+            let good = e.valid_up_to();
+            let before = bytes.get(..good).unwrap_or_default();
+            let line_start = before
+                .iter()
+                .rposition(|&b| b == b'\n')
+                .map_or(0, |i| i + 1);
+            let line = first_line + before.iter().filter(|&&b| b == b'\n').count();
+            let start = before.get(line_start..).unwrap_or_default();
+            let col = std::str::from_utf8(start).map_or(1, |s| s.chars().count() + 1);
+            let byte = bytes.get(good).copied().unwrap_or(0);
+            let msg = format!("invalid UTF-8 (byte 0x{byte:02X}): not a text file?");
+            Err(Error::parse(Location::line(path, line, col), msg))
+        }
+    }
+}
+
+/// The 1-based column (in characters) of byte `offset` of `line`.
+fn column(line: &str, offset: usize) -> usize {
+    line.get(..offset).map_or(offset, |s| s.chars().count()) + 1
+}
+
+/// A whitespace-separated word of a text, with the line it is on.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Word<'a> {
+    /// The word itself.
+    pub text: &'a str,
+    /// The whole line holding it (for the column).
+    line_text: &'a str,
+    /// 1-based line number.
+    line: usize,
+    /// Byte offset of the word in its line.
+    offset: usize,
+}
+
+impl Word<'_> {
+    /// The word's line and column.
+    pub fn pos(&self) -> Pos {
+        Pos::Line {
+            line: self.line,
+            col: column(self.line_text, self.offset),
+        }
+    }
+
+    /// Where the word is, in `path`.
+    pub fn loc(&self, path: &Path) -> Location {
+        Location {
+            file: path.to_path_buf(),
+            pos: self.pos(),
+        }
+    }
+}
+
+/// The words of a text, line by line, with optional `\` line continuation and end-of-line comments.
+pub(crate) struct Words<'a> {
+    lines: std::str::Split<'a, char>,
+    line_text: &'a str,
+    line: usize,
+    pos: usize,
+    /// The current physical line ended in `\` and continues on the next.
+    cont: bool,
+    /// Whether a trailing `\` joins a line to the next.
+    continuation: bool,
+    /// A word starting with this byte starts a comment running to the end of the line.
+    comment: Option<u8>,
+}
+
+impl<'a> Words<'a> {
+    /// The words of `text`, whose first line is line `first_line`.
+    pub fn new(text: &'a str, first_line: usize) -> Self {
+        Words {
+            lines: text.split('\n'),
+            line_text: "",
+            line: first_line.saturating_sub(1),
+            pos: 0,
+            cont: false,
+            continuation: false,
+            comment: None,
+        }
+    }
+
+    /// Lets a line ending in `\` continue on the next line.
+    pub fn with_continuation(mut self) -> Self {
+        self.continuation = true;
+        self
+    }
+
+    /// Makes a word starting with `c` start a comment to the end of the line.
+    pub fn with_comment(mut self, c: u8) -> Self {
+        self.comment = Some(c);
+        self
+    }
+
+    /// Moves to the next physical line; false at the end of the text.
+    fn advance(&mut self) -> bool {
+        let Some(l) = self.lines.next() else {
+            self.pos = self.line_text.len();
+            self.cont = false;
+            return false;
+        };
+        self.line += 1;
+        self.line_text = l;
+        self.pos = 0;
+        self.cont = false;
+        if self.continuation {
+            let t = l.trim_end();
+            if let Some(s) = t.strip_suffix('\\') {
+                self.line_text = s;
+                self.cont = true;
+            }
+        }
+        true
+    }
+
+    /// Moves to the start of the next logical line, skipping what is left of the current one;
+    /// false at the end of the text.
+    pub fn next_line(&mut self) -> bool {
+        while self.cont {
+            self.advance();
+        }
+        self.advance()
+    }
+
+    /// The next word of the current logical line, or `None` at its end.
+    pub fn next_in_line(&mut self) -> Option<Word<'a>> {
+        loop {
+            let bytes = self.line_text.as_bytes();
+            let mut p = self.pos;
+            while p < bytes.len() && bytes[p].is_ascii_whitespace() {
+                p += 1;
+            }
+            if p >= bytes.len() {
+                self.pos = p;
+                if self.cont && self.advance() {
+                    continue;
+                }
+                return None;
+            }
+            if self.comment == Some(bytes[p]) {
+                self.pos = bytes.len();
+                self.cont = false;
+                return None;
+            }
+            let start = p;
+            while p < bytes.len() && !bytes[p].is_ascii_whitespace() {
+                p += 1;
+            }
+            self.pos = p;
+            let text = self.line_text.get(start..p).unwrap_or_default();
+            return Some(Word {
+                text,
+                line_text: self.line_text,
+                line: self.line,
+                offset: start,
+            });
+        }
+    }
+
+    /// The next word, crossing line ends; `None` at the end of the text.
+    pub fn next_word(&mut self) -> Option<Word<'a>> {
+        loop {
+            if let Some(w) = self.next_in_line() {
+                return Some(w);
+            }
+            if !self.next_line() {
+                return None;
+            }
+        }
+    }
+
+    /// The current line and the column just after the last word read (or the end of the text).
+    pub fn here(&self, path: &Path) -> Location {
+        Location::line(path, self.line.max(1), column(self.line_text, self.pos))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn words_of(w: &mut Words) -> Vec<(String, Pos)> {
+        let mut v = Vec::new();
+        while let Some(x) = w.next_word() {
+            v.push((x.text.to_string(), x.pos()));
+        }
+        v
+    }
+
+    #[test]
+    fn load_text_words_have_line_and_char_column() {
+        let mut w = Words::new("a  bc\r\n\n\téé x\n", 1);
+        let v = words_of(&mut w);
+        let expect = [("a", 1, 1), ("bc", 1, 4), ("éé", 3, 2), ("x", 3, 5)];
+        assert_eq!(v.len(), expect.len());
+        for ((t, p), (et, el, ec)) in v.iter().zip(expect) {
+            assert_eq!(t, et);
+            assert_eq!(*p, Pos::Line { line: el, col: ec });
+        }
+        assert_eq!(w.here(Path::new("f")).to_string(), "f:4:1");
+    }
+
+    #[test]
+    fn load_text_continuation_and_comments() {
+        let mut w = Words::new("f 1 2\\\n 3 # c\nv 4\\\n5\nx", 7)
+            .with_continuation()
+            .with_comment(b'#');
+        assert!(w.next_line());
+        let l: Vec<_> = std::iter::from_fn(|| w.next_in_line())
+            .map(|x| (x.text, x.pos()))
+            .collect();
+        assert_eq!(l.len(), 4);
+        assert_eq!(l[3], ("3", Pos::Line { line: 8, col: 2 }));
+        assert!(w.next_line());
+        assert_eq!(w.next_in_line().unwrap().text, "v");
+        assert!(w.next_line(), "skips the continued rest of 'v 4 5'");
+        assert_eq!(
+            w.next_in_line().unwrap().pos(),
+            Pos::Line { line: 11, col: 1 }
+        );
+        assert!(!w.next_line());
+    }
+
+    #[test]
+    fn load_text_decode_reports_line_and_column() {
+        let e = decode(Path::new("g.obj"), b"v 1 2 3\nv \xc3\xa9 \xff\n", 1).unwrap_err();
+        assert!(matches!(e, Error::Parse(..)));
+        assert!(
+            e.to_string()
+                .starts_with("g.obj:2:5: invalid UTF-8 (byte 0xFF)"),
+            "{e}"
+        );
+        let e = decode(Path::new("h.ply"), b"\x80", 10).unwrap_err();
+        assert!(e.to_string().starts_with("h.ply:10:1: "), "{e}");
+    }
+}
