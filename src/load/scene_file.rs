@@ -271,10 +271,12 @@ impl Loader<'_> {
             match c.name() {
                 t if is_transform(t) => transforms.push(c),
                 "inbox" => set_once(&mut inbox, c)?,
-                other => return Err(c.parse_err(format!(
+                other => {
+                    return Err(c.parse_err(format!(
                     "unknown node `{other}` in `instance`: expected a transform ({}) or `inbox`",
                     quoted_list(&super::transform::TRANSFORM_NODES)
-                ))),
+                )))
+                }
             }
         }
         let m = xf * compose(&transforms)?;
@@ -512,4 +514,422 @@ fn check_unique(placed: &[Placed]) -> Result<()> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::V3;
+    use crate::scene::Content;
+
+    /// A fresh directory for one test's files.
+    fn dir(test: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("kepler-scene-{}-{test}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    fn write(d: &Path, name: &str, text: &str) -> PathBuf {
+        let p = d.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    fn load(test: &str, text: &str) -> (Result<Scene>, Warnings) {
+        let d = dir(test);
+        let p = write(&d, "s.kdl", text);
+        let mut w = Vec::new();
+        let r = load_scene_file(&p, &mut w);
+        (r, w)
+    }
+
+    fn ok(test: &str, text: &str) -> Scene {
+        load(test, text).0.unwrap()
+    }
+
+    /// The error text with the temporary directory cut off.
+    fn err(test: &str, text: &str) -> String {
+        let e = load(test, text).0.unwrap_err().to_string();
+        let d = dir_name(test);
+        e.replace(&d, "")
+    }
+
+    fn dir_name(test: &str) -> String {
+        let d = std::env::temp_dir().join(format!("kepler-scene-{}-{test}", std::process::id()));
+        format!("{}/", d.display())
+    }
+
+    /// The tree as nested names with kinds: leaf `name`, group `name(...)`, instance `name@`.
+    fn tree(o: &Object) -> String {
+        match &o.content {
+            Content::Mesh(m) => format!("{}[{}]", o.name, m.faces.len()),
+            Content::Instance(_) => format!("{}@", o.name),
+            Content::Subobjects(s) => {
+                let inner: Vec<String> = s.iter().map(tree).collect();
+                format!("{}({})", o.name, inner.join(" "))
+            }
+        }
+    }
+
+    #[test]
+    fn leaves_groups_and_default_names() {
+        let s = ok(
+            "names",
+            r#"
+            object "a" { box 0 0 0 1 1 1 }
+            object "b" {
+                box 0 0 0 1 1 1
+                box 2 0 0 3 1 1
+                polyhedron "tetrahedron" name="tet"
+                prism 5
+                object "sub" { antiprism 4 }
+            }
+            "#,
+        );
+        assert_eq!(
+            tree(&s.root),
+            "(a[6] b(box[6] box.2[6] tet[4] prism[7] sub[10]))"
+        );
+        assert_eq!(s.root.name, "");
+        assert!(s.camera.is_none());
+        let paths: Vec<String> = s.leaves().into_iter().map(|l| l.path).collect();
+        assert_eq!(
+            paths,
+            ["a", "b/box", "b/box.2", "b/tet", "b/prism", "b/sub"]
+        );
+    }
+
+    #[test]
+    fn transforms_are_baked_in_order() {
+        let s = ok(
+            "bake",
+            r#"
+            object "outer" {
+                translate 100 0 0
+                object "inner" {
+                    vertices { v 1 0 0; v 0 1 0; v 0 0 1 }
+                    face 0 1 2
+                    scale 2
+                    rotate 90 axis="z"
+                }
+            }
+            "#,
+        );
+        let inner = &s.root.subobjects()[0].subobjects()[0];
+        // (1,0,0) -> scale -> (2,0,0) -> rotate z 90 -> (0,2,0) -> outer translate -> (100,2,0).
+        assert_eq!(inner.vertices()[0], P3::new(100., 2., 0.));
+        assert_eq!(inner.vertices()[1], P3::new(98., 0., 0.));
+        assert_eq!(inner.vertices()[2], P3::new(100., 0., 2.));
+        assert_eq!(
+            inner.cbox,
+            Box3::new(P3::new(98., 0., 0.), P3::new(100., 2., 2.))
+        );
+        assert_eq!(s.root.cbox, inner.cbox);
+    }
+
+    #[test]
+    fn instances_share_their_prototype() {
+        let s = ok(
+            "inst",
+            r#"
+            prototype "house" {
+                box 0 0 0 4 3 5
+                object "roof" { prism 3; translate 2 3 0 }
+                inbox 0.5 0.5 0.5 3.5 2.5 4.5
+            }
+            object "town" {
+                instance "h1" of="house" { translate 10 0 0 }
+                instance "h2" of="house" { rotate 90 axis="y"; translate 0 0 -20 }
+                instance "h3" of="house" { rotate 30 axis="y" }
+            }
+            instance "h0" of="house"
+            "#,
+        );
+        assert_eq!(tree(&s.root), "(town(h1@ h2@ h3@) h0@)");
+        let town = s.root.subobjects()[0].subobjects();
+        let proto = |o: &Object| match &o.content {
+            Content::Instance(i) => i.prototype.clone(),
+            _ => panic!("not an instance"),
+        };
+        let p1 = proto(&town[0]);
+        assert!(Arc::ptr_eq(&p1, &proto(&town[1])));
+        assert!(Arc::ptr_eq(&p1, &proto(&s.root.subobjects()[1])));
+        assert_eq!(tree(&p1), "house(box[6] roof[5])");
+        // The prototype keeps its own INBOX; placements carry it when axis-preserving.
+        let inbox = Box3::new(P3::new(0.5, 0.5, 0.5), P3::new(3.5, 2.5, 4.5));
+        assert_eq!(p1.inbox, Some(inbox));
+        assert_eq!(
+            town[0].inbox,
+            Some(Box3::new(P3::new(10.5, 0.5, 0.5), P3::new(13.5, 2.5, 4.5)))
+        );
+        // rotate 90 about y: (x,y,z) -> (z,y,-x); then z -= 20.
+        assert_eq!(
+            town[1].inbox,
+            Some(Box3::new(
+                P3::new(0.5, 0.5, -23.5),
+                P3::new(4.5, 2.5, -20.5)
+            ))
+        );
+        assert_eq!(town[2].inbox, None);
+        let leaves = s.leaves();
+        assert_eq!(leaves[0].path, "town/h1/box");
+        assert_eq!(leaves[0].world_vertex(0), P3::new(10., 0., 0.));
+    }
+
+    #[test]
+    fn inbox_of_an_object_follows_its_transforms() {
+        let (s, w) = load(
+            "inbox",
+            r#"
+            object "a" { box 0 0 0 2 2 2; inbox 0.5 0.5 0.5 1.5 1.5 1.5; translate 1 0 0 }
+            object "b" { box 0 0 0 2 2 2; inbox 0.5 0.5 0.5 1.5 1.5 1.5; rotate 45 axis="x" }
+            "#,
+        );
+        let s = s.unwrap();
+        let objs = s.root.subobjects();
+        assert_eq!(
+            objs[0].inbox,
+            Some(Box3::new(P3::new(1.5, 0.5, 0.5), P3::new(2.5, 1.5, 1.5)))
+        );
+        assert_eq!(objs[1].inbox, None);
+        assert_eq!(w.len(), 1);
+        assert!(w[0].message.contains("INBOX dropped"), "{}", w[0]);
+        let e = err(
+            "inbox2",
+            "object \"a\" { box 0 0 0 1 1 1; inbox 0 0 0 2 2 2 }",
+        );
+        assert!(e.starts_with("s.kdl:1:31: the INBOX"), "{e}");
+    }
+
+    #[test]
+    fn duplicate_names_name_both_positions() {
+        let e = err(
+            "dup",
+            "object \"a\" { box 0 0 0 1 1 1 }\nobject \"a\" { box 0 0 0 1 1 1 }\n",
+        );
+        assert_eq!(
+            e,
+            "s.kdl:2:1: duplicate name \"a\": a sibling at s.kdl:1:1 has it already"
+        );
+        let e = err(
+            "dup2",
+            "object \"a\" {\n box 0 0 0 1 1 1\n object \"box\" { box 0 0 0 1 1 1 }\n}\n",
+        );
+        assert_eq!(
+            e,
+            "s.kdl:3:2: duplicate name \"box\": a sibling at s.kdl:2:2 has it already"
+        );
+        let e = err(
+            "dup3",
+            "prototype \"p\" { prism 3 }\nprototype \"p\" { prism 4 }\n",
+        );
+        assert_eq!(
+            e,
+            "s.kdl:2:1: prototype \"p\" is defined twice (first at s.kdl:1:1)"
+        );
+    }
+
+    #[test]
+    fn prototype_errors() {
+        let e = err(
+            "proto1",
+            "object \"a\" {\n  instance \"x\" of=\"nope\"\n}\n",
+        );
+        assert_eq!(
+            e,
+            "s.kdl:2:16: unknown prototype \"nope\": no prototype is defined before this point"
+        );
+        let e = err(
+            "proto2",
+            "instance \"x\" of=\"p\"\nprototype \"p\" { box 0 0 0 1 1 1 }\n",
+        );
+        assert_eq!(
+            e,
+            "s.kdl:1:14: prototype \"p\" is used before its definition at s.kdl:2:1"
+        );
+        let e = err("proto3", "prototype \"p\" { instance \"q\" of=\"p\" }\n");
+        assert!(e.contains("cannot place itself"), "{e}");
+        let e = err(
+            "proto4",
+            "prototype \"p\" { prism 3 }\ninstance \"x\" of=\"q\"\n",
+        );
+        assert!(e.ends_with("the defined ones are `p`"), "{e}");
+        let e = err("proto5", "instance \"x\"\n");
+        assert!(e.contains("needs of="), "{e}");
+    }
+
+    #[test]
+    fn structural_errors() {
+        let cases = [
+            ("box 0 0 0 1 1 1", "s.kdl:1:1: `box` belongs inside"),
+            ("foo 1", "s.kdl:1:1: unknown node `foo`: expected `camera`"),
+            ("object \"a\" { }", "s.kdl:1:1: object \"a\" is empty"),
+            ("object \"a\"", "s.kdl:1:1: `object` needs a { ... } block"),
+            ("object \"a/b\" { prism 3 }", "s.kdl:1:8: the name \"a/b\""),
+            (
+                "object \"a\" { face 0 1 2 }",
+                "s.kdl:1:14: `face` needs a `vertices`",
+            ),
+            (
+                "object \"a\" { cube }",
+                "s.kdl:1:14: unknown node `cube` in `object`",
+            ),
+            (
+                "object \"a\" { prism 3; camera { dir 0 0 -1 } }",
+                "s.kdl:1:23: `camera` is allowed only",
+            ),
+            (
+                "object \"a\" { prism 3; inbox 0 0 0 0 0 0; inbox 0 0 0 0 0 0 }",
+                "s.kdl:1:42: `inbox` given twice",
+            ),
+            (
+                "object \"a\" x=1 { prism 3 }",
+                "s.kdl:1:12: unknown property `x` of `object`",
+            ),
+            (
+                "object \"a\" { box 0 0 0 1 1 1 color=\"red\" }",
+                "s.kdl:1:30: unknown property `color` of `box`",
+            ),
+            (
+                "camera { dir 0 0 -1 }\ncamera { dir 0 0 -1 }\nobject \"a\" { prism 3 }",
+                "s.kdl:2:1: a second camera",
+            ),
+            (
+                "object \"a\" { prism 3; scale 1e7; translate 1e12 0 0 }",
+                "s.kdl:1:14: after the transforms",
+            ),
+            ("// only a comment\n", "s.kdl:1:1: the scene has no objects"),
+        ];
+        for (text, want) in cases {
+            let e = err("structural", text);
+            assert!(e.starts_with(want), "{text}\n  got: {e}\n want: {want}");
+        }
+    }
+
+    #[test]
+    fn camera_is_read() {
+        let s = ok("cam", "camera { dir -1 -1 -1 }\nobject \"a\" { prism 3 }\n");
+        assert_eq!(
+            s.camera,
+            Some(CameraSpec::Orthographic {
+                dir: V3::new(-1., -1., -1.),
+                up: V3::y()
+            })
+        );
+    }
+
+    #[test]
+    fn includes_bring_prototypes_and_objects() {
+        let d = dir("incl");
+        std::fs::create_dir_all(d.join("lib")).unwrap();
+        write(
+            &d,
+            "lib/parts.kdl",
+            "camera { dir 0 0 -1 }\nprototype \"p\" { prism 3 }\nobject \"from_lib\" { antiprism 3 }\n",
+        );
+        write(
+            &d,
+            "lib/more.kdl",
+            "include \"parts.kdl\"\nobject \"more\" { prism 6 }\n",
+        );
+        let top = write(
+            &d,
+            "top.kdl",
+            "include \"lib/parts.kdl\"\ninclude \"lib/more.kdl\"\ninstance \"x\" of=\"p\"\n",
+        );
+        let mut w = Vec::new();
+        let s = load_scene_file(&top, &mut w).unwrap();
+        // parts.kdl is read once: more.kdl's include of it is skipped.
+        assert_eq!(tree(&s.root), "(from_lib[8] more[8] x@)");
+        assert!(s.camera.is_none());
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].message.contains("camera of an included file"));
+    }
+
+    #[test]
+    fn include_cycles_and_missing_files() {
+        let d = dir("cycle");
+        let a = write(&d, "a.kdl", "object \"a\" { prism 3 }\ninclude \"b.kdl\"\n");
+        write(&d, "b.kdl", "\n\ninclude \"a.kdl\"\n");
+        let mut w = Vec::new();
+        let e = load_scene_file(&a, &mut w).unwrap_err().to_string();
+        let p = |f: &str| d.join(f).display().to_string();
+        assert_eq!(
+            e,
+            format!(
+                "{}:2:1: include cycle: {} includes {} includes {}",
+                p("a.kdl"),
+                p("a.kdl"),
+                p("b.kdl"),
+                p("a.kdl")
+            )
+        );
+        let e = err(
+            "missing",
+            "object \"a\" { prism 3 }\n  include \"nope.kdl\"\n",
+        );
+        assert!(e.starts_with("s.kdl:2:3: cannot read nope.kdl"), "{e}");
+        let e = err("missing2", "object \"a\" { mesh \"nope.obj\" }\n");
+        assert!(
+            e.starts_with("s.kdl:1:14: cannot read mesh file nope.obj"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn mesh_files_are_loaded_once_and_shared() {
+        let d = dir("mesh");
+        write(
+            &d,
+            "two.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\no first\nf 1 2 3\no second\nf 1 2 4\no first\nf 1 3 4\n",
+        );
+        write(&d, "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        let top = write(
+            &d,
+            "s.kdl",
+            r#"
+            object "p" { mesh "two.obj" }
+            object "q" { mesh "./two.obj"; translate 5 0 0 }
+            object "r" { mesh "tri.obj"; box 0 0 0 1 1 1 }
+            "#,
+        );
+        let mut w = Vec::new();
+        let s = load_scene_file(&top, &mut w).unwrap();
+        assert_eq!(tree(&s.root), "(p@ q@ r(mesh@ box[6]))");
+        let objs = s.root.subobjects();
+        let proto = |o: &Object| match &o.content {
+            Content::Instance(i) => i.prototype.clone(),
+            _ => panic!("not an instance"),
+        };
+        assert!(Arc::ptr_eq(&proto(&objs[0]), &proto(&objs[1])));
+        assert_eq!(tree(&proto(&objs[0])), "two(first[1] second[1] first.2[1])");
+        let paths: Vec<String> = s.leaves().into_iter().map(|l| l.path).collect();
+        assert_eq!(
+            paths,
+            [
+                "p/first",
+                "p/second",
+                "p/first.2",
+                "q/first",
+                "q/second",
+                "q/first.2",
+                "r/mesh",
+                "r/box"
+            ]
+        );
+        assert_eq!(s.leaves()[3].world_vertex(1), P3::new(6., 0., 0.));
+    }
+
+    #[test]
+    fn plain_mesh_scene() {
+        let d = dir("plain");
+        let p = write(&d, "m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        let mut w = Vec::new();
+        let s = crate::load::load_scene(&p, &mut w).unwrap();
+        assert_eq!(tree(&s.root), "(m[1])");
+        let e = crate::load::load_scene(&d.join("x.txt"), &mut w).unwrap_err();
+        assert!(matches!(e, Error::Usage(_)));
+    }
 }

@@ -158,7 +158,7 @@ fn check_invertible(n: &Node, m: &M4) -> Result<()> {
     let lin = m.fixed_view::<3, 3>(0, 0);
     let det = lin.determinant();
     let scale: f64 = (0..3).map(|i| lin.row(i).norm()).product();
-    if !(det.abs() > SINGULAR_TOL * scale) {
+    if !det.is_finite() || det.abs() <= SINGULAR_TOL * scale {
         return Err(n.invalid(format!(
             "the transform is singular (determinant {det:e}): it would flatten the object"
         )));
