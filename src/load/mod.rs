@@ -1,9 +1,48 @@
-//! Loading scene input: mesh files (OBJ, STL, PLY) into named polygon meshes.
+//! Loading scene input: KDL scene files and mesh files (OBJ, STL, PLY) into a [`Scene`].
 
+pub mod args;
+pub mod camera;
+pub mod geometry;
 pub mod mesh_file;
 pub mod obj;
 pub mod ply;
+pub mod scene_file;
+pub mod source;
 pub mod stl;
 mod text;
+pub mod transform;
+
+use std::path::Path;
 
 pub use mesh_file::{load_mesh, parse_mesh, MeshFile, MeshGroup, MAX_COORD};
+pub use scene_file::load_scene_file;
+
+use crate::error::{Error, Result, Warnings};
+use crate::scene::{Object, Scene};
+
+/// Loads a scene: a `.kdl` scene file, or a mesh file (`.obj`, `.stl`, `.ply`) whose groups
+/// become the top-level objects (one object, named after its group, for a single group).
+/// The root object has the name "" (object paths leave it out). Repairs made on the way are
+/// appended to `warnings`.
+pub fn load_scene(path: &Path, warnings: &mut Warnings) -> Result<Scene> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    match ext.as_str() {
+        "kdl" => load_scene_file(path, warnings),
+        "obj" | "stl" | "ply" => mesh_scene(path, warnings),
+        _ => Err(Error::Usage(format!(
+            "{}: unknown scene file extension (expected .kdl, .obj, .stl or .ply)",
+            path.display()
+        ))),
+    }
+}
+
+/// A scene made of one mesh file: its cleaned groups under the root.
+fn mesh_scene(path: &Path, warnings: &mut Warnings) -> Result<Scene> {
+    let file = load_mesh(path)?;
+    let objects = geometry::mesh_file_objects(&file, warnings)?;
+    Ok(Scene::new(Object::group("", objects), path.to_path_buf()))
+}
