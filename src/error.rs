@@ -63,7 +63,7 @@ impl fmt::Display for Location {
 pub enum Error {
     /// A file could not be read or written.
     #[error("{0}: {1}")]
-    Io(Location, #[source] std::io::Error),
+    Io(Location, std::io::Error),
     /// Malformed input: bad syntax, truncated data, unknown keys.
     #[error("{0}: {1}")]
     Parse(Location, String),

@@ -75,8 +75,15 @@ pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
         s.push_str(if first { "\n" } else { ",\n" });
         first = false;
         let leaf = &view.screen.leaves[view.screen.faces[id].leaf as usize];
-        let _ = write!(s, "{{\"id\":{id},\"object\":{},\"area\":{},\"visible\":", json_string(&leaf.path), num(f.area));
-        list(&mut s, &f.visible, |s, poly| list(s, poly, |s, r| ring(s, r)));
+        let _ = write!(
+            s,
+            "{{\"id\":{id},\"object\":{},\"area\":{},\"visible\":",
+            json_string(&leaf.path),
+            num(f.area)
+        );
+        list(&mut s, &f.visible, |s, poly| {
+            list(s, poly, |s, r| ring(s, r))
+        });
         s.push('}');
     }
     s.push_str("\n]");

@@ -2,8 +2,13 @@
 //!
 //! Errors: non-finite or huge coordinates, indices out of range. Repairs (each a warning):
 //! duplicate vertices merged, faces with fewer than 3 distinct vertices or zero area dropped,
-//! non-planar faces split into triangles. Planarity tolerance: every vertex within
-//! [`PLANAR_TOL`] × (face diameter) of the face's Newell plane through its centroid.
+//! non-planar faces reported or split. Deviation = largest distance of a vertex from the
+//! face's Newell plane through its centroid, relative to the face's diameter:
+//! - up to [`PLANAR_TOL`] (1e-9): planar;
+//! - up to [`SPLIT_TOL`] (0.25): warped; kept as one face with a warning (a modelled quad
+//!   stays a quad, as in suzanne.obj, whose quads deviate up to 0.12); visibility uses the
+//!   plane through three well-spread vertices, so its answer is exact for that plane;
+//! - beyond: split into planar triangles (ear clipping) with a warning.
 
 use std::path::Path;
 
@@ -17,6 +22,8 @@ use super::topology::is_closed_oriented;
 pub const MAX_COORD: f64 = 1e12;
 /// Relative distance from the face plane above which a face counts as non-planar.
 pub const PLANAR_TOL: f64 = 1e-9;
+/// Relative distance from the face plane above which a non-planar face is split.
+pub const SPLIT_TOL: f64 = 0.25;
 /// Relative area (|vector area| / diameter²) below which a face counts as zero-area.
 pub const AREA_TOL: f64 = 1e-14;
 
@@ -187,6 +194,17 @@ fn clean_face(
         out.push(Face::new(idx));
         return;
     }
+    if shape.deviation <= SPLIT_TOL * shape.diameter {
+        warnings.push(Warning {
+            location: loc.clone(),
+            message: format!(
+                "face is not planar (a vertex is {:.2e} of its diameter off its plane); kept as one face (split above {SPLIT_TOL})",
+                shape.deviation / shape.diameter
+            ),
+        });
+        out.push(Face::new(idx));
+        return;
+    }
     let tris = super::triangulate::ear_clip(&pts, &shape.normal);
     let before = out.len();
     for t in tris {
@@ -199,9 +217,8 @@ fn clean_face(
     warnings.push(Warning {
         location: loc.clone(),
         message: format!(
-            "face is not planar (a vertex is {:.3e} off its plane, tolerance {:.1e} x diameter); split into {} triangles",
-            shape.deviation,
-            PLANAR_TOL,
+            "face is not planar (a vertex is {:.2e} of its diameter off its plane, above {SPLIT_TOL}); split into {} triangles",
+            shape.deviation / shape.diameter,
             out.len() - before
         ),
     });
@@ -287,9 +304,27 @@ mod tests {
     }
 
     #[test]
+    fn warped_quad_is_kept_with_warning() {
+        let mut w = Vec::new();
+        let m = cleanup(&quad_mesh(0.1), &origin(), &mut w).unwrap();
+        assert_eq!(m.faces.len(), 1);
+        assert_eq!(w.len(), 1);
+        assert!(
+            w[0].message.contains("kept as one face"),
+            "{}",
+            w[0].message
+        );
+    }
+
+    #[test]
     fn non_planar_quad_is_split_with_warning() {
         let mut w = Vec::new();
-        let m = cleanup(&quad_mesh(0.25), &origin(), &mut w).unwrap();
+        // A saddle: every vertex 0.5 off the best plane z = 0.5, diameter sqrt(3): 0.29 > 0.25.
+        let saddle = PolyMesh::new(
+            vec![P3::new(0., 0., 0.), P3::new(1., 0., 1.), P3::new(1., 1., 0.), P3::new(0., 1., 1.)],
+            vec![vec![0, 1, 2, 3]],
+        );
+        let m = cleanup(&saddle, &origin(), &mut w).unwrap();
         assert_eq!(m.faces.len(), 2);
         assert_eq!(w.len(), 1);
         assert!(w[0].message.contains("not planar"), "{}", w[0].message);

@@ -1,0 +1,30 @@
+//! `kepler flatten`: the paper's FLATTEN, written as one OBJ.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::Args;
+
+use super::{load, write};
+
+/// Arguments of `kepler flatten`.
+#[derive(Args, Debug)]
+pub struct FlattenArgs {
+    /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
+    pub scene: PathBuf,
+    /// Output OBJ file.
+    #[arg(short = 'o', long = "output", value_name = "F.obj")]
+    pub output: PathBuf,
+    /// Do not print warnings.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Runs `kepler flatten`.
+pub fn run(a: FlattenArgs) -> Result<ExitCode> {
+    let scene = load(&a.scene, a.quiet)?;
+    let flat = kepler::scene::flatten(&scene);
+    write(&a.output, flat.to_obj())?;
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,80 @@
+//! Command-line interface: argument definitions and dispatch to the subcommands.
+
+mod camera_args;
+mod flatten;
+mod info;
+mod query;
+mod render;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+use kepler::scene::Scene;
+
+pub use camera_args::CameraArgs;
+
+/// kepler: exact hidden-surface removal for polyhedral scenes.
+#[derive(Parser, Debug)]
+#[command(name = "kepler", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Compute the exact visible region of every face and write SVG, PNG or JSON.
+    Render(render::RenderArgs),
+    /// Ask INCLUDE, VISP or VISOBJ questions about a scene.
+    Query(query::QueryArgs),
+    /// Write the scene as one OBJ: world coordinates, one `o` group per object, global face order.
+    Flatten(flatten::FlattenArgs),
+    /// Show the object tree with counts, boxes and closedness.
+    Info(info::InfoArgs),
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        Command::Render(a) => render::run(a),
+        Command::Query(a) => query::run(a),
+        Command::Flatten(a) => flatten::run(a),
+        Command::Info(a) => info::run(a),
+    }
+}
+
+/// Loads a scene, printing its warnings to standard error.
+pub fn load(path: &Path, quiet: bool) -> Result<Scene> {
+    let mut warnings = Vec::new();
+    let scene = kepler::load::load_scene(path, &mut warnings)?;
+    if !quiet {
+        print_warnings(&warnings);
+    }
+    Ok(scene)
+}
+
+/// Prints warnings, at most 20 in full and a count of the rest.
+fn print_warnings(warnings: &[kepler::Warning]) {
+    for w in warnings.iter().take(20) {
+        eprintln!("{w}");
+    }
+    if warnings.len() > 20 {
+        eprintln!("warning: ... and {} more", warnings.len() - 20);
+    }
+}
+
+/// Prints to standard output; a closed pipe (`kepler info | head`) is not an error.
+pub fn out(text: &str) {
+    use std::io::Write;
+    let mut o = std::io::stdout().lock();
+    let _ = o
+        .write_all(text.as_bytes())
+        .and_then(|_| o.write_all(b"\n"));
+}
+
+/// Writes a file, naming it in the error.
+pub fn write(path: &PathBuf, bytes: impl AsRef<[u8]>) -> Result<()> {
+    std::fs::write(path, bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
+}

@@ -1,0 +1,83 @@
+//! `kepler query`: INCLUDE (point in scene), VISP (point visibility), VISOBJ (what A does to B).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{anyhow, bail, Result};
+use clap::Args;
+use kepler::geom::{M4, P3};
+use kepler::view::View;
+use kepler::visibility::{include, visobj, visp, Inclusion, PointVisibility, Verdict};
+
+use super::camera_args::parse_vec3;
+use super::{load, out, CameraArgs};
+
+/// Arguments of `kepler query`.
+#[derive(Args, Debug)]
+pub struct QueryArgs {
+    /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
+    pub scene: PathBuf,
+    /// INCLUDE: is the point X,Y,Z inside the scene's solids? Prints IN or OUT.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub include: Option<String>,
+    /// VISP: is the point X,Y,Z visible from the camera? Prints VISIBLE or HIDDEN.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub visp: Option<String>,
+    /// VISOBJ: what object A does to object B (paths as in `kepler info`). Prints VISIBLE, HIDDEN or MIXED.
+    #[arg(long, num_args = 2, value_names = ["A", "B"])]
+    pub visobj: Option<Vec<String>>,
+    #[command(flatten)]
+    pub camera: CameraArgs,
+    /// Do not print warnings.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Runs `kepler query`.
+pub fn run(a: QueryArgs) -> Result<ExitCode> {
+    let scene = load(&a.scene, a.quiet)?;
+    let asked = a.include.is_some() as u8 + a.visp.is_some() as u8 + a.visobj.is_some() as u8;
+    if asked != 1 {
+        bail!("give exactly one of --include, --visp, --visobj");
+    }
+    if let Some(p) = &a.include {
+        let p = P3::from(parse_vec3(p, "include")?);
+        let r = include(&scene.root, &M4::identity(), &p);
+        out(&format!(
+            "{}",
+            if r == Inclusion::In { "IN" } else { "OUT" }
+        ));
+        return Ok(ExitCode::SUCCESS);
+    }
+    let view = View::new(&scene, a.camera.camera(&scene)?);
+    if let Some(p) = &a.visp {
+        let p = P3::from(parse_vec3(p, "visp")?);
+        let r = visp(&view, view.tree.root(), &p, None);
+        out(&format!(
+            "{}",
+            if r == PointVisibility::Visible {
+                "VISIBLE"
+            } else {
+                "HIDDEN"
+            }
+        ));
+    }
+    if let Some(ab) = &a.visobj {
+        let find = |p: &str| {
+            view.tree
+                .object(p)
+                .ok_or_else(|| anyhow!("no object '{p}' (see `kepler info`)"))
+        };
+        let (oa, ob) = (find(&ab[0])?, find(&ab[1])?);
+        let r = visobj(&view, oa.node, ob.faces.clone());
+        out(&format!(
+            "{}",
+            match r {
+                Verdict::Visible => "VISIBLE",
+                Verdict::Hidden => "HIDDEN",
+                Verdict::Mixed => "MIXED",
+            }
+        ));
+    }
+    Ok(ExitCode::SUCCESS)
+}
