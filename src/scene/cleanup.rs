@@ -321,7 +321,12 @@ mod tests {
         let mut w = Vec::new();
         // A saddle: every vertex 0.5 off the best plane z = 0.5, diameter sqrt(3): 0.29 > 0.25.
         let saddle = PolyMesh::new(
-            vec![P3::new(0., 0., 0.), P3::new(1., 0., 1.), P3::new(1., 1., 0.), P3::new(0., 1., 1.)],
+            vec![
+                P3::new(0., 0., 0.),
+                P3::new(1., 0., 1.),
+                P3::new(1., 1., 0.),
+                P3::new(0., 1., 1.),
+            ],
             vec![vec![0, 1, 2, 3]],
         );
         let m = cleanup(&saddle, &origin(), &mut w).unwrap();

@@ -43,6 +43,7 @@ pub struct Scratch {
     stack: Vec<u32>,
     occluders: Vec<Ring>,
     sides: Vec<f64>,
+    ring: Ring,
 }
 
 /// Outcome of the walk.
@@ -130,14 +131,24 @@ fn examine(view: &View, g: usize, t: &Target, scratch: &mut Scratch, stats: &mut
         return Walk::Open;
     }
     stats.faces_examined += 1;
+    // Convex regions (every triangle, every convex face cut by a plane) get exact quick tests;
+    // separation of G's whole projection (cheaper than classifying its vertices) comes first.
+    let convex = sg.convex;
+    if convex && t.convex {
+        scratch.ring.clear();
+        scratch
+            .ring
+            .extend(view.screen.pts(g).iter().map(|p| [p[0], p[1]]));
+        if sg.facing == crate::view::Facing::Back {
+            scratch.ring.reverse();
+        }
+        if separated_convex(&scratch.ring, &t.ring) {
+            return Walk::Open;
+        }
+    }
     let Occlusion::Region(region) = occluder_region(&view.screen, g, t, &mut scratch.sides) else {
         return Walk::Open;
     };
-    // Convex regions (every triangle, every convex face cut by a plane) get exact quick tests.
-    let convex = sg.convex;
-    if convex && t.convex && separated_convex(&region, &t.ring) {
-        return Walk::Open;
-    }
     if convex && covers_convex(&region, &t.ring) {
         stats.emptied_by_face += 1;
         return Walk::Emptied;
