@@ -74,7 +74,7 @@ pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
         }
         s.push_str(if first { "\n" } else { ",\n" });
         first = false;
-        let leaf = &view.screen.leaves[view.screen.faces[id].leaf as usize];
+        let leaf = view.screen.leaf_of_face(id);
         let _ = write!(
             s,
             "{{\"id\":{id},\"object\":{},\"area\":{},\"visible\":",

@@ -19,9 +19,12 @@ pub enum Facing {
     Clipped,
 }
 
-/// One face in screen space.
+/// One planar piece of a face in screen space (a planar face is one piece; a warped face is
+/// split into planar triangles here, so that every piece has a plane).
 #[derive(Debug, Clone, Copy)]
 pub struct ScreenFace {
+    /// Global id of the face this piece belongs to.
+    pub id: u32,
     /// First point in [`ScreenFaces::points`].
     pub start: u32,
     /// Number of points.
@@ -64,11 +67,13 @@ pub struct LeafInfo {
     pub face_count: u32,
 }
 
-/// All faces in screen space, indexed by global face id.
+/// All faces in screen space, as planar pieces in global face order.
 #[derive(Debug, Clone, Default)]
 pub struct ScreenFaces {
-    /// Faces by global id.
+    /// Pieces; pieces of one face are consecutive, faces in global order.
     pub faces: Vec<ScreenFace>,
+    /// Piece range of face `f`: `pieces[f]..pieces[f + 1]` (length: face count + 1).
+    pub pieces: Vec<u32>,
     /// Projected points (x, y, depth) of all faces, face after face.
     pub points: Vec<[f64; 3]>,
     /// World position of each point in `points` (exact input coordinates where not clipped);
@@ -90,10 +95,26 @@ impl ScreenFaces {
             camera: Some(*camera),
             ..Default::default()
         };
+        out.pieces.push(0);
         for (li, leaf) in scene.leaves().iter().enumerate() {
             out.add_leaf(li as u32, leaf, camera);
         }
         out
+    }
+
+    /// Number of faces (not pieces).
+    pub fn face_count(&self) -> usize {
+        self.pieces.len() - 1
+    }
+
+    /// The pieces of the faces in a global face id range.
+    pub fn piece_range(&self, faces: std::ops::Range<u32>) -> std::ops::Range<u32> {
+        self.pieces[faces.start as usize]..self.pieces[faces.end as usize]
+    }
+
+    /// The leaf object of face `id`.
+    pub fn leaf_of_face(&self, id: usize) -> &LeafInfo {
+        &self.leaves[self.faces[self.pieces[id] as usize].leaf as usize]
     }
 
     /// The projected points of face `f`.
@@ -141,35 +162,80 @@ impl ScreenFaces {
             first_face: leaf.first_face as u32,
             face_count: leaf.mesh.faces.len() as u32,
         });
-        let mut poly: Vec<([f64; 4], P3)> = Vec::new();
-        for f in &leaf.mesh.faces {
-            poly.clear();
-            poly.extend(
-                f.vertices
-                    .iter()
-                    .map(|&k| (clip[k as usize], world[k as usize])),
-            );
+        for (k, f) in leaf.mesh.faces.iter().enumerate() {
+            let mut idx: Vec<u32> = f.vertices.clone();
             if mirrors {
-                poly.reverse();
+                idx.reverse();
             }
-            if !all_in_front {
-                poly = clip_near(&poly, camera.near);
-            }
-            let start = self.points.len() as u32;
-            self.world.extend(poly.iter().map(|(_, w)| *w));
-            let poly: Vec<[f64; 4]> = poly.iter().map(|(h, _)| *h).collect();
-            let persp = camera.projection == Projection::Perspective;
-            self.points.extend(poly.iter().map(|h| {
-                if persp {
-                    [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
-                } else {
-                    [h[0], h[1], h[2]]
+            let id = (leaf.first_face + k) as u32;
+            for piece in planar_pieces(&idx, &world) {
+                let mut poly: Vec<([f64; 4], P3)> = piece
+                    .iter()
+                    .map(|&v| (clip[v as usize], world[v as usize]))
+                    .collect();
+                if !all_in_front {
+                    poly = clip_near(&poly, camera.near);
                 }
-            }));
-            let face = describe(&self.points[start as usize..], start, li, may_cull);
-            self.faces.push(face);
+                self.add_piece(id, li, &poly, camera, may_cull);
+            }
+            self.pieces.push(self.faces.len() as u32);
         }
     }
+
+    fn add_piece(
+        &mut self,
+        id: u32,
+        leaf: u32,
+        poly: &[([f64; 4], P3)],
+        camera: &Camera,
+        may_cull: bool,
+    ) {
+        let start = self.points.len() as u32;
+        self.world.extend(poly.iter().map(|(_, w)| *w));
+        let persp = camera.projection == Projection::Perspective;
+        self.points.extend(poly.iter().map(|(h, _)| {
+            if persp {
+                [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+            } else {
+                [h[0], h[1], h[2]]
+            }
+        }));
+        let mut face = describe(&self.points[start as usize..], start, leaf, may_cull);
+        face.id = id;
+        self.faces.push(face);
+    }
+}
+
+/// The planar pieces of a face: itself when its vertices lie exactly on one plane (robust
+/// orient3d = 0 against three of them), else the triangles of an ear-clipping triangulation.
+/// Exact planarity is what makes "G in front of F's plane" and "F behind G's plane" the same
+/// question, so VTPs and VISP agree by construction; axis-aligned and primitive faces stay whole.
+fn planar_pieces(idx: &[u32], world: &[P3]) -> Vec<Vec<u32>> {
+    if idx.len() > 3 {
+        let pts: Vec<P3> = idx.iter().map(|&k| world[k as usize]).collect();
+        if !exactly_planar(&pts) {
+            let shape = crate::scene::cleanup::FaceShape::of(&pts);
+            let tris = crate::scene::triangulate::ear_clip(&pts, &shape.normal);
+            return tris
+                .iter()
+                .map(|t| t.iter().map(|&i| idx[i]).collect())
+                .collect();
+        }
+    }
+    vec![idx.to_vec()]
+}
+
+/// True when every point lies exactly on the plane of a well-spread triple of them.
+fn exactly_planar(pts: &[P3]) -> bool {
+    let arr: Vec<[f64; 3]> = pts.iter().map(|p| [p.x, p.y, p.z]).collect();
+    let [a, b, c] = reference_triple(&arr).map(|k| pts[k as usize]);
+    let co = |v: &P3| robust::Coord3D {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    };
+    pts.iter()
+        .all(|p| robust::orient3d(co(&a), co(&b), co(&c), co(p)) == 0.0)
 }
 
 /// Sutherland–Hodgman clip of a homogeneous polygon (with its world points) to w >= near.
@@ -198,6 +264,7 @@ fn clip_near(poly: &[([f64; 4], P3)], near: f64) -> Vec<([f64; 4], P3)> {
 /// Bounds, reference triple, facing and convexity of a projected face.
 fn describe(p: &[[f64; 3]], start: u32, leaf: u32, may_cull: bool) -> ScreenFace {
     let mut f = ScreenFace {
+        id: 0,
         start,
         len: p.len() as u32,
         leaf,

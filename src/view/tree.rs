@@ -60,7 +60,7 @@ pub struct ObjectNode {
     pub path: String,
     /// Its node.
     pub node: u32,
-    /// Its faces: a contiguous range of global face ids.
+    /// Its faces: a contiguous range of global face ids (see [`ScreenFaces::piece_range`]).
     pub faces: Range<u32>,
 }
 
@@ -117,7 +117,9 @@ impl Builder<'_> {
         let inbox = obj.inbox;
         let node = match &obj.content {
             Content::Mesh(m) => {
-                let ids: Vec<u32> = (first..first + m.faces.len() as u32)
+                let ids: Vec<u32> = self
+                    .sf
+                    .piece_range(first..first + m.faces.len() as u32)
                     .filter(|&f| self.sf.faces[f as usize].is_occluder())
                     .collect();
                 self.next_face += m.faces.len() as u32;

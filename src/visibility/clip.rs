@@ -38,6 +38,27 @@ pub fn subtract(subject: &[Pt2], rect: &[f64; 4], clips: &[Ring]) -> MultiPolygo
     overlay.overlay(OverlayRule::Difference, FillRule::NonZero)
 }
 
+/// The union of disjoint-interior multipolygons (the pieces of one warped face), on the
+/// fixed grid of `rect`, which must contain them all.
+pub fn union(parts: &[MultiPolygon], rect: &[f64; 4]) -> MultiPolygon {
+    // The parts come out of earlier boolean calls on their own grids: a point may sit an ulp
+    // outside its piece's rectangle, so take the rectangle of the parts themselves, padded.
+    let b = crate::geom::poly2::bounds(parts.iter().flatten().flatten().flatten());
+    let r = super::super::view::tree::union_rect(rect, &b);
+    let pad = 1e-9 * (r[2] - r[0]).max(r[3] - r[1]);
+    let rect = [r[0] - pad, r[1] - pad, r[2] + pad, r[3] + pad];
+    let Ok(frect) = FloatRect::new(rect[0], rect[2], rect[1], rect[3]) else {
+        return Vec::new();
+    };
+    let adapter = FloatPointAdapter::<Pt2, i64>::new_conservative(frect);
+    let options = OverlayOptions::<f64, i64>::default();
+    let mut overlay = FloatOverlay::new_custom(adapter, options, SOLVER, 64);
+    for ring in parts.iter().flatten().flatten() {
+        overlay = overlay.unsafe_add_contour(ring, ShapeType::Subject);
+    }
+    overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
+}
+
 /// Clips a ring to an axis-aligned rectangle (Sutherland–Hodgman; a non-convex ring may gain
 /// zero-width bridges along the border, which carry no area under NonZero fill).
 pub fn clip_to_rect(ring: &[Pt2], rect: &[f64; 4]) -> Ring {
@@ -140,5 +161,19 @@ mod tests {
             .fold(0.0, f64::max);
         assert_eq!(max_y, 1.0);
         assert!((multipolygon_area(&r) - 0.999).abs() < 1e-12);
+    }
+}
+
+#[cfg(test)]
+mod union_tests {
+    use super::*;
+    use crate::geom::poly2::multipolygon_area;
+
+    #[test]
+    fn two_triangles_sharing_a_diagonal_make_the_square() {
+        let a: MultiPolygon = vec![vec![vec![[0., 0.], [1., 0.], [1., 1.]]]];
+        let b: MultiPolygon = vec![vec![vec![[0., 0.], [1., 1.], [0., 1.]]]];
+        let u = union(&[a, b], &[0., 0., 1., 1.]);
+        assert_eq!(multipolygon_area(&u), 1.0);
     }
 }

@@ -9,8 +9,11 @@ use crate::view::{Facing, Projection, ScreenFaces};
 /// The face being solved, prepared once for all its occluders.
 #[derive(Debug, Clone)]
 pub struct Target {
-    /// Global face id (its order decides coplanar ties: the earlier face is in front).
+    /// Piece index (piece order follows global face order: it decides coplanar ties, the
+    /// earlier face is in front).
     pub id: u32,
+    /// Global id of the face the piece belongs to: a face never hides itself.
+    pub face: u32,
     /// World reference triple of F's plane.
     pub refs: [P3; 3],
     /// Sign making orient3d positive on the viewer's side: -(turn of refs on screen) * sign(det M).
@@ -33,6 +36,7 @@ impl Target {
         let face = &sf.faces[f];
         Target {
             id: f as u32,
+            face: face.id,
             refs: sf.plane_refs(f),
             front_sign: -face.ref_turn * sf.det_sign,
             ring: sf.ring_ccw(f),
@@ -85,7 +89,8 @@ pub fn occluder_region(sf: &ScreenFaces, g: usize, t: &Target, sides: &mut Vec<f
     } else {
         front_part(sf, g, sides)
     };
-    if ring.len() < 3 {
+    // A region with no proper turn (all points equal or collinear) has no area: it hides nothing.
+    if ring.len() < 3 || !has_turn(&ring) {
         return Occlusion::Nothing;
     }
     if sf.faces[g].facing == Facing::Back {
@@ -142,8 +147,18 @@ fn edge_separates(a: &[Pt2], b: &[Pt2]) -> bool {
     })
 }
 
-/// True when convex counter-clockwise `outer` contains every point of `inner` (closed).
+/// True when some three consecutive points of the ring make a proper turn (exact): the
+/// ring encloses area.
+pub fn has_turn(r: &[Pt2]) -> bool {
+    let n = r.len();
+    (0..n).any(|i| orient2d(r[i], r[(i + 1) % n], r[(i + 2) % n]) != 0.0)
+}
+
+/// True when convex counter-clockwise `outer` (with area) contains every point of `inner` (closed).
 pub fn covers_convex(outer: &[Pt2], inner: &[Pt2]) -> bool {
+    if !has_turn(outer) {
+        return false;
+    }
     let n = outer.len();
     (0..n).all(|i| {
         let (p, q) = (outer[i], outer[(i + 1) % n]);
@@ -168,6 +183,13 @@ mod tests {
         assert!(separated_convex(&f, &g));
         let h = [[0.2, 0.2], [2., 0.2], [0.2, 2.]];
         assert!(!separated_convex(&f, &h));
+    }
+
+    #[test]
+    fn degenerate_ring_covers_nothing() {
+        let p = [1.0, 1.0];
+        assert!(!covers_convex(&[p, p, p], &[[0., 0.], [1., 0.], [0., 1.]]));
+        assert!(!covers_convex(&[[0., 0.], [1., 1.], [2., 2.]], &[[1., 1.]]));
     }
 
     #[test]

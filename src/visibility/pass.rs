@@ -37,7 +37,7 @@ pub struct FaceVisibility {
 /// The visible-polygon set of a view.
 #[derive(Debug, Clone)]
 pub struct Visibility {
-    /// One entry per face, by global face id.
+    /// One entry per face, by global face id (a warped face's planar pieces merged).
     pub faces: Vec<FaceVisibility>,
     /// What the pass did.
     pub counters: Counters,
@@ -57,18 +57,65 @@ pub fn solve(view: &View, opts: PassOptions) -> Visibility {
         std::borrow::Cow::Owned(without_inboxes(view))
     };
     let root = view_used.tree.root();
-    let results: Vec<(FaceVisibility, Counters)> = (0..view.screen.faces.len())
+    let sf = &view.screen;
+    let results: Vec<(FaceVisibility, Counters)> = (0..sf.faces.len())
         .into_par_iter()
         .map_init(Scratch::default, |scratch, f| {
             solve_face(&view_used, root, f, hidden[f], scratch)
         })
         .collect();
-    let mut faces = Vec::with_capacity(results.len());
-    for (fv, c) in results {
-        counters += c;
-        faces.push(fv);
+    for (_, c) in &results {
+        counters += *c;
     }
+    let faces = (0..sf.face_count() as u32)
+        .into_par_iter()
+        .map(|id| {
+            let r = sf.piece_range(id..id + 1);
+            merge_pieces(&results[r.start as usize..r.end as usize], sf, r)
+        })
+        .collect();
     Visibility { faces, counters }
+}
+
+/// One face's visibility from its pieces' (a planar face is one piece; the pieces of a warped
+/// face have disjoint interiors, so their union is exact and their areas add).
+fn merge_pieces(
+    pieces: &[(FaceVisibility, Counters)],
+    sf: &crate::view::ScreenFaces,
+    r: std::ops::Range<u32>,
+) -> FaceVisibility {
+    if pieces.len() == 1 {
+        return pieces[0].0.clone();
+    }
+    let projected_area = pieces.iter().map(|p| p.0.projected_area).sum();
+    let parts: Vec<MultiPolygon> = pieces
+        .iter()
+        .filter(|p| !p.0.visible.is_empty())
+        .map(|p| p.0.visible.clone())
+        .collect();
+    let mut visible = match parts.len() {
+        0 => Vec::new(),
+        1 => parts[0].clone(),
+        _ => {
+            let empty = [
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            ];
+            let rect = r.fold(empty, |acc, p| {
+                crate::view::tree::union_rect(&acc, &sf.faces[p as usize].rect)
+            });
+            super::clip::union(&parts, &rect)
+        }
+    };
+    canonicalize(&mut visible);
+    let area = multipolygon_area(&visible);
+    FaceVisibility {
+        visible,
+        area,
+        projected_area,
+    }
 }
 
 fn without_inboxes(view: &View) -> View {
@@ -138,10 +185,11 @@ fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
     let tree = &view.tree;
     let mut hidden = vec![false; view.screen.faces.len()];
     for obj in &tree.objects {
-        if obj.faces.is_empty() || hidden[obj.faces.start as usize] {
+        let pieces = view.screen.piece_range(obj.faces.clone());
+        if pieces.is_empty() || hidden[pieces.start as usize] {
             continue;
         }
-        let bounds = match subtree_bounds(view, obj.faces.clone()) {
+        let bounds = match subtree_bounds(view, pieces.clone()) {
             Some(b) => b,
             None => continue,
         };
@@ -159,7 +207,7 @@ fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
         });
         if by.is_some() {
             counters.subtrees_hidden += 1;
-            for f in obj.faces.clone() {
+            for f in pieces {
                 hidden[f as usize] = true;
             }
         }
@@ -167,7 +215,7 @@ fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
     hidden
 }
 
-/// Screen rectangle and greatest depth of all drawable faces in a range (None if none).
+/// Screen rectangle and greatest depth of all drawable pieces in a range (None if none).
 fn subtree_bounds(view: &View, faces: std::ops::Range<u32>) -> Option<([f64; 4], f64)> {
     let mut rect = [
         f64::INFINITY,

@@ -127,7 +127,7 @@ fn visfac2(view: &View, a: u32, t: &Target, scratch: &mut Scratch, stats: &mut C
 /// One candidate occluder at a leaf.
 fn examine(view: &View, g: usize, t: &Target, scratch: &mut Scratch, stats: &mut Counters) -> Walk {
     let sg = &view.screen.faces[g];
-    if g as u32 == t.id || !rects_overlap(&sg.rect, &t.rect) || sg.zmax < t.zmin {
+    if sg.id == t.face || !rects_overlap(&sg.rect, &t.rect) || sg.zmax < t.zmin {
         return Walk::Open;
     }
     stats.faces_examined += 1;

@@ -11,7 +11,7 @@ pub fn visobj(view: &View, a: u32, b_faces: std::ops::Range<u32>) -> Verdict {
     let mut scratch = Scratch::default();
     let mut stats = Counters::default();
     let (mut any_visible, mut any_hidden, mut any_mixed) = (false, false, false);
-    for f in b_faces {
+    for f in view.screen.piece_range(b_faces) {
         if !matches!(
             view.screen.faces[f as usize].facing,
             Facing::Front | Facing::Back

@@ -18,7 +18,7 @@ pub enum PointVisibility {
 
 /// VISP(A, P): whether world point `p` is hidden by the subtree at node `a`. A face hides P
 /// when P is strictly behind its plane and P's projection is strictly inside the face's.
-/// `on_face` names the face P lies on, so that coplanar faces earlier in global order hide it
+/// `on_face` names the face (global id) P lies on, so that coplanar faces earlier in global order hide it
 /// (DESIGN's coplanar rule). A point behind the near plane of a perspective camera is HIDDEN.
 pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<u32>) -> PointVisibility {
     if !view.camera.in_front(p) {
@@ -66,7 +66,8 @@ pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<u32>) -> PointVisibilit
 pub fn face_hides(view: &View, g: usize, p: &P3, q: Pt2, on_face: Option<u32>) -> bool {
     let sf = &view.screen;
     let face = &sf.faces[g];
-    if on_face == Some(g as u32)
+    // A face never hides itself (nor do the planar pieces of a warped face hide each other).
+    if on_face == Some(face.id)
         || !(face.rect[0] < q[0]
             && q[0] < face.rect[2]
             && face.rect[1] < q[1]
@@ -81,7 +82,7 @@ pub fn face_hides(view: &View, g: usize, p: &P3, q: Pt2, on_face: Option<u32>) -
         z: v.z,
     };
     let side = robust::orient3d(co(&a), co(&b), co(&c), co(p)) * (-face.ref_turn * sf.det_sign);
-    let in_front_of_p = side < 0.0 || (side == 0.0 && on_face.is_some_and(|f| (g as u32) < f));
+    let in_front_of_p = side < 0.0 || (side == 0.0 && on_face.is_some_and(|f| face.id < f));
     if !in_front_of_p {
         return false;
     }
