@@ -67,6 +67,10 @@ fn format_of(path: &Path) -> Result<Format> {
 
 /// Reads and parses the mesh file at `path`, choosing the format by its extension
 /// (`.obj`, `.stl`, `.ply`, case-insensitive).
+///
+/// # Errors
+/// [`Error::Usage`] for an unknown extension, [`Error::Io`] if the file cannot be read, and the
+/// format parser's [`Error::Parse`] or [`Error::Invalid`] (with the position) for bad contents.
 pub fn load_mesh(path: &Path) -> Result<MeshFile> {
     format_of(path)?;
     let bytes = std::fs::read(path).map_err(|e| Error::Io(Location::file(path), e))?;
@@ -75,6 +79,9 @@ pub fn load_mesh(path: &Path) -> Result<MeshFile> {
 
 /// Parses mesh file contents already in memory; `path` picks the format by its extension
 /// and names the file in messages.
+///
+/// # Errors
+/// As [`load_mesh`], without I/O errors; an empty input is [`Error::Invalid`].
 pub fn parse_mesh(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
     let format = format_of(path)?;
     if bytes.is_empty() {

@@ -13,6 +13,11 @@ const IGNORED: [&str; 8] = ["vt", "vn", "vp", "usemtl", "mtllib", "s", "l", "p"]
 /// Parses OBJ text. Faces keep their polygons; each `o`/`g` group gets its own vertex list
 /// holding the vertices its faces use, in order of first use. Faces before any `o`/`g` go to a
 /// group named after the file stem; groups without faces are dropped.
+///
+/// # Errors
+/// [`Error::Parse`] for malformed text (bad numbers, unknown statements, invalid UTF-8) and
+/// [`Error::Invalid`] for bad values (index 0 or out of range, faces with fewer than 3
+/// vertices, NaN or huge coordinates, no faces at all), each at the offending `file:line:col`.
 pub fn parse_obj(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
     let text = decode(path, bytes, 1)?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
@@ -189,7 +194,7 @@ impl<'p> ObjParser<'p> {
         if !done.mesh.faces.is_empty() {
             self.groups.push(done);
         }
-        self.current_id += 1;
+        self.current_id = self.current_id.wrapping_add(1);
     }
 
     /// All groups, the current one included.

@@ -20,6 +20,11 @@ const TRIANGLE: u64 = 50;
 /// with `solid`), ASCII when it starts with `solid` and holds text, and an error otherwise.
 /// Facet normals are ignored. Vertices with bitwise-equal coordinates (after -0.0 becomes 0.0)
 /// are shared.
+///
+/// # Errors
+/// [`Error::Parse`] for malformed ASCII (at `file:line:col`) or a binary size that disagrees
+/// with the triangle count (at the byte offset of the first incomplete triangle);
+/// [`Error::Invalid`] for NaN or huge coordinates and facets with fewer than 3 vertices.
 pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
     let len = bytes.len() as u64;
     let count = triangle_count(bytes);
@@ -27,6 +32,13 @@ pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
         Some(n) if len == HEADER + TRIANGLE * n => binary(path, bytes, n)?,
         _ if starts_with_solid(bytes) && !bytes.contains(&0) => ascii(path, bytes)?,
         Some(n) => return Err(size_mismatch(path, len, n)),
+        None if starts_with_solid(bytes) => {
+            let nul = bytes.iter().position(|&b| b == 0).unwrap_or(0) as u64;
+            return Err(Error::parse(
+                Location::byte(path, nul),
+                "NUL byte in an ASCII STL file",
+            ));
+        }
         None => {
             let msg = format!(
                 "not an STL file: it does not start with 'solid' and its {len} bytes are too few for a binary STL header"
@@ -298,7 +310,7 @@ impl Welder {
     fn with_capacity(triangles: usize) -> Self {
         let n = triangles / 2 + 1;
         Welder {
-            index: HashMap::with_capacity_and_hasher(n, Default::default()),
+            index: HashMap::with_capacity_and_hasher(n, BuildHasherDefault::default()),
             vertices: Vec::with_capacity(n),
         }
     }
@@ -481,7 +493,7 @@ mod tests {
             .to_string();
         assert!(e.starts_with("t/s.stl:2:42: invalid UTF-8"), "{e}");
         let e = parse(b"solid s\0\nfacet").unwrap_err().to_string();
-        assert!(e.starts_with("t/s.stl: byte 0: not an STL file"), "{e}");
+        assert_eq!(e, "t/s.stl: byte 7: NUL byte in an ASCII STL file");
     }
 
     #[test]

@@ -45,6 +45,11 @@ pub(crate) struct Word<'a> {
 }
 
 impl Word<'_> {
+    /// The word's 1-based line number.
+    pub fn line(&self) -> usize {
+        self.line
+    }
+
     /// The word's line and column.
     pub fn pos(&self) -> Pos {
         Pos::Line {
@@ -63,6 +68,7 @@ impl Word<'_> {
 }
 
 /// The words of a text, line by line, with optional `\` line continuation and end-of-line comments.
+#[derive(Clone)]
 pub(crate) struct Words<'a> {
     lines: std::str::Split<'a, char>,
     line_text: &'a str,
@@ -177,6 +183,12 @@ impl<'a> Words<'a> {
                 return None;
             }
         }
+    }
+
+    /// Whether nothing but blanks is left of the text (a scan of the rest: for error messages).
+    pub fn at_end(&self) -> bool {
+        let rest = self.line_text.get(self.pos..).unwrap_or_default();
+        rest.trim().is_empty() && self.lines.clone().all(|l| l.trim().is_empty())
     }
 
     /// The current line and the column just after the last word read (or the end of the text).
