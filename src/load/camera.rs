@@ -129,9 +129,10 @@ fn check_up(n: &Node, dir: &V3, dn: &Node, up: &Option<(V3, Node)>) -> Result<()
         return Err(at.invalid("the up vector is zero"));
     }
     if u.cross(dir).norm() <= 1e-9 * u.norm() * dir.norm() {
-        return Err(
-            at.invalid("the up vector is parallel to the viewing direction: give `up` across it")
-        );
+        let which = if up.is_some() { "" } else { " (default 0 1 0)" };
+        return Err(at.invalid(format!(
+            "the up vector{which} is parallel to the viewing direction: give `up` across it"
+        )));
     }
     Ok(())
 }

@@ -1,16 +1,16 @@
 //! Loading scene input: KDL scene files and mesh files (OBJ, STL, PLY) into a [`Scene`].
 
-pub mod args;
-pub mod camera;
-pub mod geometry;
+mod args;
+mod camera;
+mod geometry;
 pub mod mesh_file;
 pub mod obj;
 pub mod ply;
 pub mod scene_file;
-pub mod source;
+mod source;
 pub mod stl;
 mod text;
-pub mod transform;
+mod transform;
 
 use std::path::Path;
 

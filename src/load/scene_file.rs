@@ -60,7 +60,13 @@ struct Placed {
 struct Prototype {
     object: Arc<Object>,
     loc: Location,
+    /// How many prototypes deep its instances go (0: it places none).
+    depth: usize,
 }
+
+/// The deepest chain of prototypes placing prototypes accepted (bounds the recursion of the
+/// later stages, which walk instances recursively).
+pub const MAX_PROTOTYPE_DEPTH: usize = 64;
 
 /// A file being loaded, and the include node in it that is being followed, if any.
 struct Open {
@@ -74,8 +80,9 @@ struct Loader<'w> {
     warnings: &'w mut Warnings,
     meshes: MeshCache,
     prototypes: HashMap<String, Prototype>,
-    /// Prototypes whose bodies are being read (to explain self-reference).
-    defining: Vec<String>,
+    /// Prototypes whose bodies are being read (to explain self-reference), with the depth
+    /// of the deepest prototype each places so far.
+    defining: Vec<(String, usize)>,
     /// The include chain from the top file.
     stack: Vec<Open>,
     /// Files already loaded (an include of one again is skipped).
@@ -201,14 +208,15 @@ impl Loader<'_> {
                 p.loc
             )));
         }
-        self.defining.push(name.clone());
+        self.defining.push((name.clone(), 0));
         let object = self.body(n, name.clone(), &M4::identity(), later);
-        self.defining.pop();
+        let depth = self.defining.pop().map_or(0, |d| d.1);
         self.prototypes.insert(
             name,
             Prototype {
                 object: Arc::new(object?),
                 loc: n.loc(),
+                depth,
             },
         );
         Ok(())
@@ -290,15 +298,24 @@ impl Loader<'_> {
     }
 
     fn find_prototype(
-        &self,
+        &mut self,
         name: &str,
         n: &Node,
         later: &HashMap<String, Location>,
     ) -> Result<Arc<Object>> {
         if let Some(p) = self.prototypes.get(name) {
+            let depth = p.depth + 1;
+            if depth > MAX_PROTOTYPE_DEPTH {
+                return Err(n.invalid(format!(
+                    "prototypes are nested more than {MAX_PROTOTYPE_DEPTH} deep here"
+                )));
+            }
+            if let Some(current) = self.defining.last_mut() {
+                current.1 = current.1.max(depth);
+            }
             return Ok(p.object.clone());
         }
-        let msg = if self.defining.iter().any(|d| d == name) {
+        let msg = if self.defining.iter().any(|d| d.0 == name) {
             format!("prototype {name:?} cannot place itself (it is still being defined)")
         } else if let Some(at) = later.get(name) {
             format!("prototype {name:?} is used before its definition at {at}")
@@ -757,6 +774,18 @@ mod tests {
         assert!(e.ends_with("the defined ones are `p`"), "{e}");
         let e = err("proto5", "instance \"x\"\n");
         assert!(e.contains("needs of="), "{e}");
+        let mut chain = "prototype \"p0\" { prism 3 }\n".to_string();
+        for k in 1..=MAX_PROTOTYPE_DEPTH + 1 {
+            chain += &format!(
+                "prototype \"p{k}\" {{ instance \"i\" of=\"p{}\" }}\n",
+                k - 1
+            );
+        }
+        let e = err("proto6", &chain);
+        assert!(
+            e.starts_with("s.kdl:66:19: prototypes are nested more than 64 deep"),
+            "{e}"
+        );
     }
 
     #[test]

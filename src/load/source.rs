@@ -79,8 +79,15 @@ impl Source {
         self.loc(entry.span().offset())
     }
 
-    /// Parses the text as a KDL v2 document; a syntax error names the first diagnostic's position.
+    /// Parses the text as a KDL v2 document; a syntax error names the first diagnostic's
+    /// position. Blocks nested deeper than [`MAX_DEPTH`] are refused before parsing.
     pub fn parse(&self) -> Result<KdlDocument> {
+        if let Some(at) = too_deep(self.text.as_bytes(), MAX_DEPTH) {
+            return Err(Error::parse(
+                self.loc(at),
+                format!("blocks are nested more than {MAX_DEPTH} deep"),
+            ));
+        }
         KdlDocument::parse_v2(&self.text).map_err(|e| {
             let Some(d) = e.diagnostics.first() else {
                 return Error::parse(self.loc(0), "KDL syntax error");
@@ -97,6 +104,89 @@ impl Source {
             Error::parse(self.loc(d.span.offset()), msg)
         })
     }
+}
+
+/// The deepest `{ }` nesting accepted (the KDL parser recurses once per level).
+pub const MAX_DEPTH: usize = 64;
+
+/// The offset of the first `{` nested deeper than `max`, if any. Braces in comments and
+/// strings do not count (a rough scan of KDL's comment and string forms).
+fn too_deep(b: &[u8], max: usize) -> Option<usize> {
+    let mut depth = 0usize;
+    let mut i = 0;
+    while i < b.len() {
+        match (b[i], b.get(i + 1).copied()) {
+            (b'/', Some(b'/')) => i = skip_to(b, i, b"\n"),
+            (b'/', Some(b'*')) => i = skip_block_comment(b, i),
+            (b'"', _) if b[i..].starts_with(b"\"\"\"") => i = skip_to(b, i + 3, b"\"\"\""),
+            (b'"', _) => i = skip_quoted(b, i + 1),
+            (b'#', Some(b'#' | b'"')) => i = skip_raw(b, i),
+            (b'{', _) => {
+                depth += 1;
+                if depth > max {
+                    return Some(i);
+                }
+                i += 1;
+            }
+            (b'}', _) => {
+                depth = depth.saturating_sub(1);
+                i += 1;
+            }
+            _ => i += 1,
+        }
+    }
+    None
+}
+
+/// The offset just past the first `end` at or after `from` (or the end of the text).
+fn skip_to(b: &[u8], from: usize, end: &[u8]) -> usize {
+    b.get(from..)
+        .and_then(|rest| rest.windows(end.len()).position(|w| w == end))
+        .map_or(b.len(), |k| from + k + end.len())
+}
+
+/// Past a `/* ... */` comment (they nest in KDL) starting at `i`.
+fn skip_block_comment(b: &[u8], mut i: usize) -> usize {
+    let mut nest = 0usize;
+    while i < b.len() {
+        if b[i..].starts_with(b"/*") {
+            nest += 1;
+            i += 2;
+        } else if b[i..].starts_with(b"*/") {
+            nest -= 1;
+            i += 2;
+            if nest == 0 {
+                return i;
+            }
+        } else {
+            i += 1;
+        }
+    }
+    b.len()
+}
+
+/// Past a quoted string whose body starts at `i` (ends at an unescaped quote or a newline).
+fn skip_quoted(b: &[u8], mut i: usize) -> usize {
+    while i < b.len() {
+        match b[i] {
+            b'\\' => i += 2,
+            b'"' | b'\n' => return i + 1,
+            _ => i += 1,
+        }
+    }
+    b.len()
+}
+
+/// Past a raw string `#"..."#` (any number of `#`) starting at `i`.
+fn skip_raw(b: &[u8], i: usize) -> usize {
+    let hashes = b[i..].iter().take_while(|&&c| c == b'#').count();
+    let open = i + hashes;
+    if b.get(open) != Some(&b'"') {
+        return open;
+    }
+    let mut end = vec![b'"'];
+    end.extend(std::iter::repeat_n(b'#', hashes));
+    skip_to(b, open + 1, &end)
 }
 
 #[cfg(test)]
@@ -125,6 +215,27 @@ mod tests {
     fn syntax_error_has_position() {
         let e = src("a 1\nb 1.\n").parse().unwrap_err().to_string();
         assert!(e.starts_with("s.kdl:2:3: KDL syntax error"), "{e}");
+    }
+
+    #[test]
+    fn deep_nesting_is_refused_before_parsing() {
+        let deep = "a {\n".repeat(5000) + &"}\n".repeat(5000);
+        let e = src(&deep).parse().unwrap_err().to_string();
+        assert_eq!(e, "s.kdl:65:3: blocks are nested more than 64 deep");
+        // Braces in comments and strings do not count.
+        let braces = "{".repeat(100);
+        for text in [
+            format!("a \"{braces}\""),
+            format!("a #\"{braces}\"#"),
+            format!("a ##\"x\"#{braces}\"##"),
+            format!("// {braces}\na"),
+            format!("/* /* */ {braces} */ a"),
+            format!("a \"\"\"\n{braces}\n\"\"\""),
+        ] {
+            assert!(src(&text).parse().is_ok(), "{text}");
+        }
+        assert!(too_deep(b"a { b { c } }", 2).is_none());
+        assert_eq!(too_deep(b"a { b { c { } } }", 2), Some(10));
     }
 
     #[test]
