@@ -6,6 +6,10 @@ pub mod edges;
 pub mod intersect;
 pub mod json;
 pub mod lines;
+pub mod marks;
+pub mod picture;
+pub mod png;
+pub mod svg;
 pub mod world;
 
 pub use edges::{EdgeKind, EdgeOptions, EdgeSet};
