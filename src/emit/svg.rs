@@ -33,7 +33,11 @@ pub fn to_svg(pic: &Picture, size: u32) -> String {
                 .set("fill", "white"),
         );
     if !pic.fills.is_empty() {
-        let mut g = Group::new().set("id", "fill").set("stroke", "none");
+        // A thin stroke in each face's own grey closes anti-aliasing seams between faces.
+        let mut g = Group::new()
+            .set("id", "fill")
+            .set("stroke-width", num(0.0005 * pic.unit))
+            .set("stroke-linejoin", "round");
         for f in &pic.fills {
             let mut d = String::new();
             for r in &f.rings {
@@ -43,6 +47,7 @@ pub fn to_svg(pic: &Picture, size: u32) -> String {
                 Path::new()
                     .set("d", d)
                     .set("fill", grey(f.grey))
+                    .set("stroke", grey(f.grey))
                     .set("fill-rule", "evenodd"),
             );
         }
