@@ -41,7 +41,7 @@ fn model(name: &str) -> Option<PathBuf> {
     found
 }
 
-fn load(path: &PathBuf) -> Scene {
+fn load(path: &std::path::Path) -> Scene {
     kepler::load::load_scene(path, &mut Vec::new()).unwrap()
 }
 

@@ -126,7 +126,10 @@ fn current_matrix(view: &View) -> Option<Vec<f64>> {
 }
 
 /// Faces by id and the flattened camera matrix of a kepler-visible/1 document.
-fn parse_golden(text: &str) -> Result<(BTreeMap<u64, GoldenFace>, Option<Vec<f64>>)> {
+type Golden = (BTreeMap<u64, GoldenFace>, Option<Vec<f64>>);
+
+/// Parses a kepler-visible/1 document.
+fn parse_golden(text: &str) -> Result<Golden> {
     let v: Value = serde_json::from_str(text).map_err(|e| anyhow!("not JSON: {e}"))?;
     if v.get("format").and_then(Value::as_str) != Some("kepler-visible/1") {
         anyhow::bail!("not a kepler-visible/1 file (no \"format\": \"kepler-visible/1\")");
