@@ -36,7 +36,7 @@ pub fn to_svg(pic: &Picture, size: u32) -> String {
         // A thin stroke in each face's own grey closes anti-aliasing seams between faces.
         let mut g = Group::new()
             .set("id", "fill")
-            .set("stroke-width", num(0.0005 * pic.unit))
+            .set("stroke-width", num(0.0003 * pic.unit))
             .set("stroke-linejoin", "round");
         for f in &pic.fills {
             let mut d = String::new();
