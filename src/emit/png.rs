@@ -58,6 +58,12 @@ pub fn rasterise(pic: &Picture, size: u32) -> Result<Pixmap, Error> {
                 Transform::identity(),
                 None,
             );
+            // A hairline in the same grey closes anti-aliasing seams between faces.
+            let seam = Stroke {
+                width: 0.5,
+                ..Stroke::default()
+            };
+            pm.stroke_path(&path, &paint, &seam, Transform::identity(), None);
         }
     }
     for layer in &pic.layers {
