@@ -1,6 +1,7 @@
 //! Command-line interface: argument definitions and dispatch to the subcommands.
 
 mod camera_args;
+mod check;
 mod flatten;
 mod info;
 mod query;
@@ -33,6 +34,8 @@ enum Command {
     Flatten(flatten::FlattenArgs),
     /// Show the object tree with counts, boxes and closedness.
     Info(info::InfoArgs),
+    /// Re-render and compare the visible-polygon set with a golden file (exit 1 on changes).
+    Check(check::CheckArgs),
 }
 
 /// Runs a parsed command line.
@@ -42,6 +45,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Query(a) => query::run(a),
         Command::Flatten(a) => flatten::run(a),
         Command::Info(a) => info::run(a),
+        Command::Check(a) => check::run(a),
     }
 }
 

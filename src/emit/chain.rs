@@ -1,0 +1,224 @@
+//! Joining segments into long polylines (at exactly equal end points) and ordering polylines
+//! greedily (nearest next start, reversal allowed) so that a pen plotter lifts the pen little.
+
+use std::collections::HashMap;
+
+use crate::geom::poly2::Pt2;
+
+fn key(p: Pt2) -> (u64, u64) {
+    // -0 and 0 are the same point.
+    ((p[0] + 0.0).to_bits(), (p[1] + 0.0).to_bits())
+}
+
+/// Joins segments into polylines: each polyline follows unused segments that share an end
+/// point exactly, forward then backward. Deterministic (segments taken in input order).
+pub fn chain(segments: &[[Pt2; 2]]) -> Vec<Vec<Pt2>> {
+    let mut at: HashMap<(u64, u64), Vec<usize>> = HashMap::new();
+    for (i, s) in segments.iter().enumerate() {
+        at.entry(key(s[0])).or_default().push(i);
+        if key(s[1]) != key(s[0]) {
+            at.entry(key(s[1])).or_default().push(i);
+        }
+    }
+    let mut used = vec![false; segments.len()];
+    let mut out = Vec::new();
+    for i in 0..segments.len() {
+        if used[i] {
+            continue;
+        }
+        used[i] = true;
+        let mut line = vec![segments[i][0], segments[i][1]];
+        extend(&mut line, segments, &at, &mut used);
+        line.reverse();
+        extend(&mut line, segments, &at, &mut used);
+        out.push(line);
+    }
+    out
+}
+
+/// Extends `line` at its last point with unused segments.
+fn extend(
+    line: &mut Vec<Pt2>,
+    segments: &[[Pt2; 2]],
+    at: &HashMap<(u64, u64), Vec<usize>>,
+    used: &mut [bool],
+) {
+    loop {
+        let Some(&end) = line.last() else { return };
+        let next = at
+            .get(&key(end))
+            .and_then(|v| v.iter().copied().find(|&j| !used[j]));
+        let Some(j) = next else { return };
+        used[j] = true;
+        let s = segments[j];
+        line.push(if key(s[0]) == key(end) { s[1] } else { s[0] });
+    }
+}
+
+/// Orders polylines greedily from the first one: next is the one whose start or end is
+/// nearest the pen (reversed when its end is nearer). A uniform grid keeps it near-linear.
+pub fn order(mut lines: Vec<Vec<Pt2>>) -> Vec<Vec<Pt2>> {
+    lines.retain(|l| !l.is_empty());
+    if lines.len() < 3 {
+        return lines;
+    }
+    let mut grid = Grid::new(&lines);
+    let mut used = vec![false; lines.len()];
+    let mut out = Vec::with_capacity(lines.len());
+    let mut cur = 0;
+    let mut reversed = false;
+    loop {
+        used[cur] = true;
+        let mut l = std::mem::take(&mut lines[cur]);
+        if reversed {
+            l.reverse();
+        }
+        let pen = l[l.len() - 1];
+        out.push(l);
+        match grid.nearest(pen, &lines, &used) {
+            Some((n, rev)) => {
+                cur = n;
+                reversed = rev;
+            }
+            None => break,
+        }
+    }
+    out
+}
+
+/// A uniform grid over polyline end points.
+struct Grid {
+    origin: Pt2,
+    cell: f64,
+    n: usize,
+    cells: Vec<Vec<(usize, bool)>>,
+}
+
+impl Grid {
+    fn new(lines: &[Vec<Pt2>]) -> Grid {
+        let ends = lines.iter().flat_map(|l| [l[0], l[l.len() - 1]]);
+        let b = crate::geom::poly2::bounds(ends.collect::<Vec<_>>().iter());
+        let n = ((lines.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
+        let size = (b[2] - b[0]).max(b[3] - b[1]);
+        let cell = if size > 0.0 && size.is_finite() {
+            size / n as f64
+        } else {
+            1.0
+        };
+        let mut g = Grid {
+            origin: [b[0], b[1]],
+            cell,
+            n,
+            cells: vec![Vec::new(); n * n],
+        };
+        for (i, l) in lines.iter().enumerate() {
+            let c = g.index(l[0]);
+            g.cells[c].push((i, false));
+            let c = g.index(l[l.len() - 1]);
+            g.cells[c].push((i, true));
+        }
+        g
+    }
+
+    fn coords(&self, p: Pt2) -> (usize, usize) {
+        let f = |v: f64, o: f64| (((v - o) / self.cell).floor().max(0.0) as usize).min(self.n - 1);
+        (f(p[0], self.origin[0]), f(p[1], self.origin[1]))
+    }
+
+    fn index(&self, p: Pt2) -> usize {
+        let (x, y) = self.coords(p);
+        y * self.n + x
+    }
+
+    /// Nearest unused end point: (line, true when it is the line's end). Entries of used lines
+    /// are dropped lazily.
+    fn nearest(&mut self, p: Pt2, lines: &[Vec<Pt2>], used: &[bool]) -> Option<(usize, bool)> {
+        let (cx, cy) = self.coords(p);
+        let mut best: Option<(f64, usize, bool)> = None;
+        for r in 0..self.n {
+            // Every point in ring r is at least (r - 1) cells away.
+            if let Some((d, _, _)) = best {
+                if r > 1 && d < ((r - 1) as f64 * self.cell).powi(2) {
+                    break;
+                }
+            }
+            let mut any_cell = false;
+            for y in cy.saturating_sub(r)..=(cy + r).min(self.n - 1) {
+                for x in cx.saturating_sub(r)..=(cx + r).min(self.n - 1) {
+                    if x.abs_diff(cx) != r && y.abs_diff(cy) != r {
+                        continue;
+                    }
+                    any_cell = true;
+                    let cell = &mut self.cells[y * self.n + x];
+                    cell.retain(|&(i, _)| !used[i]);
+                    for &(i, rev) in cell.iter() {
+                        let l = &lines[i];
+                        let q = if rev { l[l.len() - 1] } else { l[0] };
+                        let d = (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2);
+                        if best.is_none_or(|(bd, bi, br)| (d, i, rev) < (bd, bi, br)) {
+                            best = Some((d, i, rev));
+                        }
+                    }
+                }
+            }
+            if !any_cell {
+                break;
+            }
+        }
+        best.map(|(_, i, rev)| (i, rev))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chains_segments_in_any_direction() {
+        let s = [
+            [[1., 0.], [2., 0.]],
+            [[5., 5.], [6., 6.]],
+            [[0., 0.], [1., 0.]],
+            [[3., 0.], [2., 0.]],
+        ];
+        let c = chain(&s);
+        assert_eq!(c.len(), 2);
+        let long = c.iter().find(|l| l.len() == 4).unwrap();
+        let mut xs: Vec<f64> = long.iter().map(|p| p[0]).collect();
+        if xs[0] > xs[3] {
+            xs.reverse();
+        }
+        assert_eq!(xs, vec![0., 1., 2., 3.]);
+    }
+
+    #[test]
+    fn closed_loop_chains_to_one_line() {
+        let s = [
+            [[0., 0.], [1., 0.]],
+            [[1., 0.], [1., 1.]],
+            [[1., 1.], [0., 0.]],
+        ];
+        let c = chain(&s);
+        assert_eq!(c.len(), 1);
+        assert_eq!(c[0].len(), 4);
+        assert_eq!(c[0][0], c[0][3]);
+    }
+
+    #[test]
+    fn order_picks_nearest_and_reverses() {
+        let lines = vec![
+            vec![[0., 0.], [1., 0.]],
+            vec![[10., 0.], [11., 0.]],
+            vec![[3., 0.], [1.5, 0.]],
+        ];
+        let o = order(lines);
+        assert_eq!(
+            o,
+            vec![
+                vec![[0., 0.], [1., 0.]],
+                vec![[1.5, 0.], [3., 0.]],
+                vec![[10., 0.], [11., 0.]],
+            ]
+        );
+    }
+}

@@ -1,0 +1,205 @@
+//! A screen segment against a closed region: the parameter intervals where it lies in the
+//! region or on its boundary, from exact crossings (orient2d) and exact location tests.
+
+use crate::geom::poly2::{bounds, locate, orient2d, MultiPolygon, Pt2, Side};
+
+/// A closed parameter interval [t0, t1] along a segment a → b (point a + t (b - a)).
+pub type Interval = [f64; 2];
+
+/// Relative distance under which a point counts as on a region's boundary: the regions come
+/// from a fixed i64 grid that may move a boundary point by a few units in the last place.
+const BOUNDARY_EPS: f64 = 1e-12;
+
+/// Point at parameter `t` of the segment a → b (exactly a at 0 and b at 1).
+pub fn at(a: Pt2, b: Pt2, t: f64) -> Pt2 {
+    if t == 1.0 {
+        return b;
+    }
+    [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+}
+
+/// The sub-intervals of [0, 1] where the segment a → b lies in the closed region `m`, sorted
+/// and disjoint (touching intervals merged). A zero-length segment gives nothing.
+pub fn intervals_in(a: Pt2, b: Pt2, m: &MultiPolygon) -> Vec<Interval> {
+    if a == b || m.is_empty() {
+        return Vec::new();
+    }
+    let sb = bounds([a, b].iter());
+    let mb = bounds(m.iter().flatten().flatten());
+    let scale = [a[0], a[1], b[0], b[1], mb[0], mb[1], mb[2], mb[3]]
+        .iter()
+        .fold(0.0f64, |s, x| s.max(x.abs()));
+    let eps = BOUNDARY_EPS * scale.max(f64::MIN_POSITIVE);
+    if sb[2] < mb[0] - eps || sb[0] > mb[2] + eps || sb[3] < mb[1] - eps || sb[1] > mb[3] + eps {
+        return Vec::new();
+    }
+    let mut ts = vec![0.0, 1.0];
+    for r in m.iter().flatten() {
+        for i in 0..r.len() {
+            splits(a, b, r[i], r[(i + 1) % r.len()], &sb, eps, &mut ts);
+        }
+    }
+    ts.sort_by(f64::total_cmp);
+    ts.dedup();
+    let mut out: Vec<Interval> = Vec::new();
+    for w in ts.windows(2) {
+        let mid = at(a, b, 0.5 * (w[0] + w[1]));
+        if locate(m, mid) != Side::Outside || near_boundary(m, mid, eps) {
+            push_merged(&mut out, [w[0], w[1]]);
+        }
+    }
+    out
+}
+
+/// Adds the parameters where ring edge c → d crosses or touches the segment a → b.
+fn splits(a: Pt2, b: Pt2, c: Pt2, d: Pt2, sb: &[f64; 4], eps: f64, ts: &mut Vec<f64>) {
+    if c[0].max(d[0]) < sb[0] - eps
+        || c[0].min(d[0]) > sb[2] + eps
+        || c[1].max(d[1]) < sb[1] - eps
+        || c[1].min(d[1]) > sb[3] + eps
+    {
+        return;
+    }
+    let (oc, od) = (orient2d(a, b, c), orient2d(a, b, d));
+    let mut push = |t: f64| {
+        if t > 0.0 && t < 1.0 {
+            ts.push(t);
+        }
+    };
+    if oc == 0.0 || od == 0.0 {
+        if oc == 0.0 {
+            push(param(a, b, c));
+        }
+        if od == 0.0 {
+            push(param(a, b, d));
+        }
+        return;
+    }
+    if (oc > 0.0) == (od > 0.0) {
+        // Nearly collinear ring edges (grid-snapped boundaries) still split where they end.
+        if dist_to_line(a, b, c) <= eps && dist_to_line(a, b, d) <= eps {
+            push(param(a, b, c));
+            push(param(a, b, d));
+        }
+        return;
+    }
+    let (oa, ob) = (orient2d(c, d, a), orient2d(c, d, b));
+    if oa != 0.0 && ob != 0.0 && (oa > 0.0) != (ob > 0.0) {
+        push(oa / (oa - ob));
+    }
+}
+
+/// Parameter of the projection of `p` on the line a → b.
+fn param(a: Pt2, b: Pt2, p: Pt2) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)
+}
+
+/// Distance of `p` from the line through a and b (a != b).
+fn dist_to_line(a: Pt2, b: Pt2, p: Pt2) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    ((p[0] - a[0]) * dy - (p[1] - a[1]) * dx).abs() / dx.hypot(dy)
+}
+
+/// Distance of `p` from the segment c → d.
+fn dist_to_segment(c: Pt2, d: Pt2, p: Pt2) -> f64 {
+    let (dx, dy) = (d[0] - c[0], d[1] - c[1]);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 > 0.0 {
+        (((p[0] - c[0]) * dx + (p[1] - c[1]) * dy) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p[0] - c[0] - t * dx).hypot(p[1] - c[1] - t * dy)
+}
+
+/// True when `p` lies within `eps` of a ring edge of `m`.
+fn near_boundary(m: &MultiPolygon, p: Pt2, eps: f64) -> bool {
+    m.iter()
+        .flatten()
+        .any(|r| (0..r.len()).any(|i| dist_to_segment(r[i], r[(i + 1) % r.len()], p) <= eps))
+}
+
+/// Appends an interval, merging it with the last one when they touch.
+fn push_merged(out: &mut Vec<Interval>, iv: Interval) {
+    match out.last_mut() {
+        Some(last) if last[1] >= iv[0] => last[1] = last[1].max(iv[1]),
+        _ => out.push(iv),
+    }
+}
+
+/// Union of interval lists (each sorted and disjoint), sorted and merged.
+pub fn union(lists: &[Vec<Interval>]) -> Vec<Interval> {
+    let mut all: Vec<Interval> = lists.iter().flatten().copied().collect();
+    all.sort_by(|p, q| p[0].total_cmp(&q[0]));
+    let mut out = Vec::with_capacity(all.len());
+    for iv in all {
+        push_merged(&mut out, iv);
+    }
+    out
+}
+
+/// The complement of sorted, disjoint intervals within [0, 1] (zero-length gaps dropped).
+pub fn complement(ivs: &[Interval]) -> Vec<Interval> {
+    let mut out = Vec::new();
+    let mut t = 0.0;
+    for iv in ivs {
+        if iv[0] > t {
+            out.push([t, iv[0]]);
+        }
+        t = t.max(iv[1]);
+    }
+    if t < 1.0 {
+        out.push([t, 1.0]);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x: f64, y: f64, s: f64) -> MultiPolygon {
+        vec![vec![vec![[x, y], [x + s, y], [x + s, y + s], [x, y + s]]]]
+    }
+
+    #[test]
+    fn crossing_segment_keeps_inside_part() {
+        let m = square(0., 0., 2.);
+        assert_eq!(intervals_in([-1., 1.], [3., 1.], &m), vec![[0.25, 0.75]]);
+        assert!(intervals_in([-1., 3.], [3., 3.], &m).is_empty());
+    }
+
+    #[test]
+    fn boundary_edge_is_in_closed_region() {
+        let m = square(0., 0., 2.);
+        assert_eq!(intervals_in([0., 0.], [2., 0.], &m), vec![[0.0, 1.0]]);
+        assert_eq!(intervals_in([-2., 0.], [2., 0.], &m), vec![[0.5, 1.0]]);
+    }
+
+    #[test]
+    fn hole_splits_segment() {
+        let mut m = square(0., 0., 4.);
+        m[0].push(vec![[1., 1.], [1., 3.], [3., 3.], [3., 1.]]);
+        assert_eq!(
+            intervals_in([0., 2.], [4., 2.], &m),
+            vec![[0.0, 0.25], [0.75, 1.0]]
+        );
+    }
+
+    #[test]
+    fn nearly_collinear_snapped_boundary_counts() {
+        // Boundary a hair off the segment (as a snapped grid boundary may be).
+        let m = vec![vec![vec![[0., 1e-17], [1., 0.], [1., 1.], [0., 1.]]]];
+        assert_eq!(intervals_in([0., 0.], [1., 0.], &m), vec![[0.0, 1.0]]);
+    }
+
+    #[test]
+    fn union_and_complement() {
+        let u = union(&[vec![[0.0, 0.25], [0.5, 0.6]], vec![[0.2, 0.3]]]);
+        assert_eq!(u, vec![[0.0, 0.3], [0.5, 0.6]]);
+        assert_eq!(complement(&u), vec![[0.3, 0.5], [0.6, 1.0]]);
+        assert_eq!(complement(&[]), vec![[0.0, 1.0]]);
+        assert!(complement(&[[0.0, 1.0]]).is_empty());
+    }
+}

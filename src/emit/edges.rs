@@ -1,0 +1,273 @@
+//! The edge set of a view: every leaf mesh's undirected edges with the faces beside them, classified.
+//!
+//! Each shared edge appears once. Kinds: silhouette (the surface folds over it in this view),
+//! border (one face beside it, or more than two), crease (dihedral angle above a threshold),
+//! plain (any other polygon edge); intersection curves come from [`super::intersect`].
+
+use std::collections::HashMap;
+
+use crate::geom::{P3, V3};
+use crate::view::{Facing, View};
+
+use super::world::WorldFaces;
+
+/// What a line of the drawing is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum EdgeKind {
+    /// Outline: one face beside it turns toward the viewer, the other away (or is edge-on).
+    Silhouette,
+    /// Edge of an open surface (one face beside it) or a non-manifold edge (three or more).
+    Border,
+    /// Dihedral angle between the faces beside it above the crease threshold.
+    Crease,
+    /// Where two faces cross each other.
+    Intersection,
+    /// Any other polygon edge.
+    Plain,
+}
+
+impl EdgeKind {
+    /// Every kind, in drawing order.
+    pub const ALL: [EdgeKind; 5] = [
+        EdgeKind::Silhouette,
+        EdgeKind::Border,
+        EdgeKind::Crease,
+        EdgeKind::Intersection,
+        EdgeKind::Plain,
+    ];
+
+    /// Lower-case name (used for SVG ids).
+    pub fn name(self) -> &'static str {
+        match self {
+            EdgeKind::Silhouette => "silhouette",
+            EdgeKind::Border => "border",
+            EdgeKind::Crease => "crease",
+            EdgeKind::Intersection => "intersection",
+            EdgeKind::Plain => "plain",
+        }
+    }
+}
+
+/// Which edges a drawing shows (`--edges`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum EdgeSet {
+    /// Silhouettes, borders, creases and intersection curves.
+    #[default]
+    Feature,
+    /// Every polygon edge (and intersection curves).
+    All,
+}
+
+/// Options of the edge set.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeOptions {
+    /// Feature edges or all edges.
+    pub set: EdgeSet,
+    /// Crease threshold: dihedral angle in degrees between face normals.
+    pub crease_deg: f64,
+}
+
+impl Default for EdgeOptions {
+    fn default() -> Self {
+        EdgeOptions {
+            set: EdgeSet::Feature,
+            crease_deg: 30.0,
+        }
+    }
+}
+
+/// One edge (or intersection segment) in world space with the faces beside it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Edge {
+    /// Leaf object the edge is drawn with.
+    pub leaf: u32,
+    /// World end points.
+    pub ends: [P3; 2],
+    /// Global ids of the faces it lies on.
+    pub faces: Vec<u32>,
+    /// Classification.
+    pub kind: EdgeKind,
+}
+
+/// An undirected edge of one leaf while collecting: its faces and their traversal directions.
+struct Adjacent {
+    a: u32,
+    b: u32,
+    faces: Vec<(u32, bool)>,
+}
+
+/// The mesh edges of every leaf (in order of first appearance), classified, filtered by `opts.set`.
+pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Edge> {
+    let cos_crease = opts.crease_deg.to_radians().cos();
+    let mut out = Vec::new();
+    let mut start = 0;
+    while start < world.faces.len() {
+        let leaf = world.faces[start].leaf;
+        let end = (start..world.faces.len())
+            .find(|&f| world.faces[f].leaf != leaf)
+            .unwrap_or(world.faces.len());
+        for adj in leaf_edges(world, start, end) {
+            let kind = classify(&adj, world, view, cos_crease);
+            if opts.set == EdgeSet::All || kind != EdgeKind::Plain {
+                let f0 = &world.faces[adj.faces[0].0 as usize];
+                let at = |k: u32| f0.points[f0.vertices.iter().position(|&v| v == k).unwrap_or(0)];
+                out.push(Edge {
+                    leaf,
+                    ends: [at(adj.a), at(adj.b)],
+                    faces: adj.faces.iter().map(|f| f.0).collect(),
+                    kind,
+                });
+            }
+        }
+        start = end;
+    }
+    out
+}
+
+/// Undirected edges of the faces `start..end` (one leaf), in order of first appearance.
+fn leaf_edges(world: &WorldFaces, start: usize, end: usize) -> Vec<Adjacent> {
+    let mut index: HashMap<(u32, u32), usize> = HashMap::new();
+    let mut edges: Vec<Adjacent> = Vec::new();
+    for f in start..end {
+        let v = &world.faces[f].vertices;
+        for i in 0..v.len() {
+            let (p, q) = (v[i], v[(i + 1) % v.len()]);
+            if p == q {
+                continue;
+            }
+            let key = (p.min(q), p.max(q));
+            let k = *index.entry(key).or_insert_with(|| {
+                edges.push(Adjacent {
+                    a: key.0,
+                    b: key.1,
+                    faces: Vec::new(),
+                });
+                edges.len() - 1
+            });
+            edges[k].faces.push((f as u32, p < q));
+        }
+    }
+    edges
+}
+
+/// Kind of a mesh edge in this view.
+fn classify(adj: &Adjacent, world: &WorldFaces, view: &View, cos_crease: f64) -> EdgeKind {
+    let [(f, f_fwd), (g, g_fwd)] = match adj.faces[..] {
+        [x, y] => [x, y],
+        _ => return EdgeKind::Border,
+    };
+    let facing = |k: u32| view.screen.faces[k as usize].facing;
+    let (ff, fg) = (facing(f), facing(g));
+    let drawn = |x: Facing| matches!(x, Facing::Front | Facing::Back);
+    if ff == Facing::Clipped || fg == Facing::Clipped {
+        return EdgeKind::Border;
+    }
+    if (ff == Facing::EdgeOn && drawn(fg)) || (fg == Facing::EdgeOn && drawn(ff)) {
+        return EdgeKind::Silhouette;
+    }
+    // Consistently oriented neighbours traverse the edge in opposite directions.
+    let consistent = f_fwd != g_fwd;
+    if drawn(ff) && drawn(fg) && ((ff != fg) == consistent) {
+        return EdgeKind::Silhouette;
+    }
+    let (nf, mut ng) = (
+        world.faces[f as usize].normal,
+        world.faces[g as usize].normal,
+    );
+    if !consistent {
+        ng = -ng;
+    }
+    if is_crease(&nf, &ng, cos_crease) {
+        EdgeKind::Crease
+    } else {
+        EdgeKind::Plain
+    }
+}
+
+/// True when the angle between two (non-zero) normals exceeds the threshold given by its cosine.
+fn is_crease(n1: &V3, n2: &V3, cos_crease: f64) -> bool {
+    let l = n1.norm() * n2.norm();
+    l > 0.0 && n1.dot(n2) < cos_crease * l
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::PolyMesh;
+    use crate::scene::cleanup::{cleanup, Origin};
+    use crate::scene::{Object, Scene};
+    use crate::view::Camera;
+
+    fn cube_scene() -> Scene {
+        let raw = crate::primitives::cuboid(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
+        let origin = Origin {
+            file: std::path::Path::new("t"),
+            face_pos: &[],
+        };
+        let mesh = cleanup(&raw, &origin, &mut Vec::new()).unwrap();
+        Scene::new(
+            Object::group("", vec![Object::from_mesh("cube", mesh)]),
+            "t".into(),
+        )
+    }
+
+    fn count(edges: &[Edge], kind: EdgeKind) -> usize {
+        edges.iter().filter(|e| e.kind == kind).count()
+    }
+
+    #[test]
+    fn cube_three_quarter_has_six_silhouette_edges() {
+        let scene = cube_scene();
+        let view = View::new(&scene, Camera::three_quarter());
+        let world = WorldFaces::build(&scene);
+        let opts = EdgeOptions {
+            set: EdgeSet::All,
+            crease_deg: 30.0,
+        };
+        let all = mesh_edges(&world, &view, &opts);
+        assert_eq!(all.len(), 12, "each shared edge once");
+        assert!(all.iter().all(|e| e.faces.len() == 2));
+        assert_eq!(count(&all, EdgeKind::Silhouette), 6);
+        assert_eq!(count(&all, EdgeKind::Crease), 6);
+        let feat = mesh_edges(&world, &view, &EdgeOptions::default());
+        assert_eq!(feat.len(), 12);
+        let none = EdgeOptions {
+            set: EdgeSet::Feature,
+            crease_deg: 95.0,
+        };
+        assert_eq!(mesh_edges(&world, &view, &none).len(), 6);
+    }
+
+    #[test]
+    fn open_square_has_four_borders() {
+        let raw = PolyMesh::new(
+            vec![
+                P3::new(0., 0., 0.),
+                P3::new(1., 0., 0.),
+                P3::new(1., 1., 0.),
+                P3::new(0., 1., 0.),
+            ],
+            vec![vec![0, 1, 2], vec![0, 2, 3]],
+        );
+        let origin = Origin {
+            file: std::path::Path::new("t"),
+            face_pos: &[],
+        };
+        let mesh = cleanup(&raw, &origin, &mut Vec::new()).unwrap();
+        let scene = Scene::new(
+            Object::group("", vec![Object::from_mesh("sq", mesh)]),
+            "t".into(),
+        );
+        let view = View::new(&scene, Camera::three_quarter());
+        let world = WorldFaces::build(&scene);
+        let opts = EdgeOptions {
+            set: EdgeSet::All,
+            crease_deg: 30.0,
+        };
+        let e = mesh_edges(&world, &view, &opts);
+        assert_eq!(e.len(), 5);
+        assert_eq!(count(&e, EdgeKind::Border), 4);
+        assert_eq!(count(&e, EdgeKind::Plain), 1);
+        assert_eq!(mesh_edges(&world, &view, &EdgeOptions::default()).len(), 4);
+    }
+}

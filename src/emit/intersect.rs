@@ -1,0 +1,208 @@
+//! Intersection curves: where two faces interpenetrate, the segments of their planes'
+//! intersection line that lie inside both faces.
+//!
+//! Candidate pairs come from a sweep over the faces' world boxes along x; side-of-plane
+//! decisions use the exact `robust::orient3d`. A vertex exactly on the other plane counts as
+//! on its positive side (symbolic perturbation), so crossings always pair up.
+
+use crate::geom::{P3, V3};
+
+use super::edges::{Edge, EdgeKind};
+use super::world::{WorldFace, WorldFaces};
+
+/// Every intersection segment between pairs of faces that cross (both faces with vertices
+/// strictly on both sides of the other's plane); `keep(f)` filters faces worth testing.
+pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(usize) -> bool) -> Vec<Edge> {
+    let faces = &world.faces;
+    let mut order: Vec<usize> = (0..faces.len())
+        .filter(|&f| keep(f) && faces[f].points.len() >= 3)
+        .collect();
+    order.sort_by(|&p, &q| faces[p].bbox[0][0].total_cmp(&faces[q].bbox[0][0]));
+    let mut out = Vec::new();
+    for (i, &f) in order.iter().enumerate() {
+        let bf = &faces[f].bbox;
+        for &g in &order[i + 1..] {
+            let bg = &faces[g].bbox;
+            if bg[0][0] > bf[1][0] {
+                break;
+            }
+            if !boxes_overlap(bf, bg) || adjacent(&faces[f], &faces[g]) {
+                continue;
+            }
+            let (lo, hi) = (f.min(g), f.max(g));
+            for seg in cross(&faces[lo], &faces[hi]) {
+                out.push(Edge {
+                    leaf: faces[lo].leaf,
+                    ends: seg,
+                    faces: vec![lo as u32, hi as u32],
+                    kind: EdgeKind::Intersection,
+                });
+            }
+        }
+    }
+    out.sort_by(|p, q| p.faces.cmp(&q.faces));
+    out
+}
+
+fn boxes_overlap(a: &[[f64; 3]; 2], b: &[[f64; 3]; 2]) -> bool {
+    (0..3).all(|k| a[0][k] <= b[1][k] && b[0][k] <= a[1][k])
+}
+
+/// Faces of one leaf that share a vertex (neighbours meet, they do not cross).
+fn adjacent(f: &WorldFace, g: &WorldFace) -> bool {
+    f.leaf == g.leaf && f.vertices.iter().any(|v| g.vertices.contains(v))
+}
+
+/// Three well-spread points of a face's plane.
+fn plane_refs(p: &[P3]) -> [P3; 3] {
+    let a = p[0];
+    let b = *p
+        .iter()
+        .max_by(|x, y| (*x - a).norm_squared().total_cmp(&(*y - a).norm_squared()))
+        .unwrap_or(&a);
+    let c = *p
+        .iter()
+        .max_by(|x, y| {
+            let ax = (b - a).cross(&(*x - a)).norm_squared();
+            let ay = (b - a).cross(&(*y - a)).norm_squared();
+            ax.total_cmp(&ay)
+        })
+        .unwrap_or(&a);
+    [a, b, c]
+}
+
+fn orient3d(r: &[P3; 3], p: &P3) -> f64 {
+    let c = |q: &P3| robust::Coord3D {
+        x: q.x,
+        y: q.y,
+        z: q.z,
+    };
+    robust::orient3d(c(&r[0]), c(&r[1]), c(&r[2]), c(p))
+}
+
+/// Segments of the intersection of faces `f` and `g` (empty unless they cross).
+pub fn cross(f: &WorldFace, g: &WorldFace) -> Vec<[P3; 2]> {
+    let (rf, rg) = (plane_refs(&f.points), plane_refs(&g.points));
+    let sf: Vec<f64> = f.points.iter().map(|p| orient3d(&rg, p)).collect();
+    let sg: Vec<f64> = g.points.iter().map(|p| orient3d(&rf, p)).collect();
+    let straddles = |s: &[f64]| s.iter().any(|&x| x < 0.0) && s.iter().any(|&x| x > 0.0);
+    if !straddles(&sf) || !straddles(&sg) {
+        return Vec::new();
+    }
+    let dir = f.normal.cross(&g.normal);
+    if dir.norm_squared() == 0.0 {
+        return Vec::new();
+    }
+    let a = spans(&f.points, &sf, &dir);
+    let b = spans(&g.points, &sg, &dir);
+    let mut out = Vec::new();
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() && j < b.len() {
+        let lo = if a[i][0].0 >= b[j][0].0 {
+            a[i][0]
+        } else {
+            b[j][0]
+        };
+        let hi = if a[i][1].0 <= b[j][1].0 {
+            a[i][1]
+        } else {
+            b[j][1]
+        };
+        if lo.0 < hi.0 {
+            out.push([lo.1, hi.1]);
+        }
+        if a[i][1].0 <= b[j][1].0 {
+            i += 1;
+        } else {
+            j += 1;
+        }
+    }
+    out
+}
+
+/// The spans of a polygon along the line where its signs `s` change, as (parameter, point)
+/// pairs sorted along `dir`.
+fn spans(p: &[P3], s: &[f64], dir: &V3) -> Vec<[(f64, P3); 2]> {
+    let n = p.len();
+    let mut hits: Vec<(f64, P3)> = Vec::new();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        let (ni, nj) = (s[i] < 0.0, s[j] < 0.0);
+        if ni == nj {
+            continue;
+        }
+        let x = if s[j] == 0.0 {
+            p[j]
+        } else if s[i] == 0.0 {
+            p[i]
+        } else {
+            let t = s[i] / (s[i] - s[j]);
+            p[i] + (p[j] - p[i]) * t
+        };
+        hits.push((dir.dot(&x.coords), x));
+    }
+    hits.sort_by(|u, v| u.0.total_cmp(&v.0));
+    hits.chunks_exact(2).map(|c| [c[0], c[1]]).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn face(leaf: u32, base: u32, pts: &[[f64; 3]]) -> WorldFace {
+        let points: Vec<P3> = pts.iter().map(|p| P3::new(p[0], p[1], p[2])).collect();
+        let mut bbox = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+        for p in &points {
+            for k in 0..3 {
+                bbox[0][k] = bbox[0][k].min(p[k]);
+                bbox[1][k] = bbox[1][k].max(p[k]);
+            }
+        }
+        WorldFace {
+            leaf,
+            vertices: (base..base + pts.len() as u32).collect(),
+            normal: crate::scene::cleanup::FaceShape::of(&points).normal,
+            bbox,
+            points,
+        }
+    }
+
+    #[test]
+    fn two_crossing_squares() {
+        // Horizontal square z = 0 over [0,2]^2; vertical square x = 1, y in [0.5,3], z in [-1,1].
+        let f = face(
+            0,
+            0,
+            &[[0., 0., 0.], [2., 0., 0.], [2., 2., 0.], [0., 2., 0.]],
+        );
+        let g = face(
+            1,
+            0,
+            &[[1., 0.5, -1.], [1., 3., -1.], [1., 3., 1.], [1., 0.5, 1.]],
+        );
+        let segs = cross(&f, &g);
+        assert_eq!(segs.len(), 1);
+        let mut e = [segs[0][0], segs[0][1]];
+        e.sort_by(|p, q| p.y.total_cmp(&q.y));
+        assert_eq!(e, [P3::new(1., 0.5, 0.), P3::new(1., 2., 0.)]);
+        let w = WorldFaces { faces: vec![f, g] };
+        let all = intersection_edges(&w, |_| true);
+        assert_eq!(all.len(), 1);
+        assert_eq!(all[0].faces, vec![0, 1]);
+    }
+
+    #[test]
+    fn touching_faces_do_not_cross() {
+        let f = face(
+            0,
+            0,
+            &[[0., 0., 0.], [2., 0., 0.], [2., 2., 0.], [0., 2., 0.]],
+        );
+        let g = face(
+            1,
+            0,
+            &[[1., 0., 0.], [1., 2., 0.], [1., 2., 1.], [1., 0., 1.]],
+        );
+        assert!(cross(&f, &g).is_empty());
+    }
+}

@@ -1,0 +1,96 @@
+//! World-space polygons of every face (unclipped, in mesh vertex order), with their leaf and vertex indices.
+
+use crate::geom::{P3, V3};
+use crate::scene::cleanup::FaceShape;
+use crate::scene::Scene;
+
+/// One face in world space.
+#[derive(Debug, Clone)]
+pub struct WorldFace {
+    /// Index of the leaf object (as in [`crate::view::ScreenFaces::leaves`]).
+    pub leaf: u32,
+    /// The face's vertex indices in its leaf mesh.
+    pub vertices: Vec<u32>,
+    /// World points, in mesh order (not reversed for mirroring transforms).
+    pub points: Vec<P3>,
+    /// Newell normal of `points` (twice the vector area; zero for a degenerate face).
+    pub normal: V3,
+    /// World bounding box: min then max.
+    pub bbox: [[f64; 3]; 2],
+}
+
+/// Every face of a scene in world space, by global face id.
+#[derive(Debug, Clone, Default)]
+pub struct WorldFaces {
+    /// Faces by global id.
+    pub faces: Vec<WorldFace>,
+}
+
+impl WorldFaces {
+    /// The world polygons of every face of `scene`, in global face order.
+    pub fn build(scene: &Scene) -> WorldFaces {
+        let mut faces = Vec::with_capacity(scene.face_count());
+        for (li, leaf) in scene.leaves().iter().enumerate() {
+            let world: Vec<P3> = (0..leaf.mesh.vertices.len() as u32)
+                .map(|k| leaf.world_vertex(k))
+                .collect();
+            for f in &leaf.mesh.faces {
+                let points: Vec<P3> = f.vertices.iter().map(|&k| world[k as usize]).collect();
+                faces.push(WorldFace {
+                    leaf: li as u32,
+                    vertices: f.vertices.clone(),
+                    normal: FaceShape::of(&points).normal,
+                    bbox: bbox(&points),
+                    points,
+                });
+            }
+        }
+        WorldFaces { faces }
+    }
+}
+
+/// Bounding box of points: min then max.
+fn bbox(pts: &[P3]) -> [[f64; 3]; 2] {
+    let mut b = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+    for p in pts {
+        for k in 0..3 {
+            b[0][k] = b[0][k].min(p[k]);
+            b[1][k] = b[1][k].max(p[k]);
+        }
+    }
+    b
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::PolyMesh;
+    use crate::scene::cleanup::{cleanup, Origin};
+    use crate::scene::Object;
+
+    #[test]
+    fn square_face_in_world() {
+        let raw = PolyMesh::new(
+            vec![
+                P3::new(0., 0., 0.),
+                P3::new(1., 0., 0.),
+                P3::new(1., 1., 0.),
+                P3::new(0., 1., 0.),
+            ],
+            vec![vec![0, 1, 2, 3]],
+        );
+        let origin = Origin {
+            file: std::path::Path::new("t"),
+            face_pos: &[],
+        };
+        let mesh = cleanup(&raw, &origin, &mut Vec::new()).unwrap();
+        let scene = Scene::new(
+            Object::group("", vec![Object::from_mesh("sq", mesh)]),
+            "t".into(),
+        );
+        let w = WorldFaces::build(&scene);
+        assert_eq!(w.faces.len(), 1);
+        assert_eq!(w.faces[0].normal, V3::new(0., 0., 2.));
+        assert_eq!(w.faces[0].bbox, [[0., 0., 0.], [1., 1., 0.]]);
+    }
+}

@@ -1,0 +1,104 @@
+//! The `kepler` binary end to end: `check` against a golden, SVG and PNG output, JSON lines.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const CUBES: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+v 2 0.2 0.3\nv 2.5 0.2 0.3\nv 2.5 0.7 0.3\nv 2 0.7 0.3\n\
+f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\nf 9 10 11 12\n";
+
+/// A fresh directory for one test.
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("kepler-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn kepler(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_kepler"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+#[test]
+fn check_passes_unchanged_and_names_the_moved_face() {
+    let d = temp_dir("check");
+    let mesh = d.join("m.obj");
+    let golden = d.join("g.json");
+    std::fs::write(&mesh, CUBES).unwrap();
+    let o = kepler(&["check", s(&mesh), "--golden", s(&golden), "--update"]);
+    assert!(o.status.success(), "{o:?}");
+    let o = kepler(&["check", s(&mesh), "--golden", s(&golden)]);
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+    // Move one corner of the square (face 6).
+    std::fs::write(&mesh, CUBES.replace("v 2.5 0.7 0.3", "v 2.5 0.75 0.3")).unwrap();
+    let o = kepler(&["check", s(&mesh), "--golden", s(&golden)]);
+    assert_eq!(o.status.code(), Some(1), "{o:?}");
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("face 6 (m)"), "{text}");
+    // A malformed golden is an error naming the file.
+    std::fs::write(&golden, "{\"faces\": 3}").unwrap();
+    let o = kepler(&["check", s(&mesh), "--golden", s(&golden)]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("g.json"));
+}
+
+#[test]
+fn svg_is_well_formed_and_deterministic_png_has_the_size() {
+    let d = temp_dir("pictures");
+    let mesh = d.join("m.obj");
+    std::fs::write(&mesh, CUBES).unwrap();
+    let (a, b, png) = (d.join("a.svg"), d.join("b.svg"), d.join("p.png"));
+    for out in [&a, &b] {
+        let o = kepler(&["render", s(&mesh), "--svg", s(out), "--fill", "--hidden"]);
+        assert!(o.status.success(), "{o:?}");
+    }
+    let text = std::fs::read_to_string(&a).unwrap();
+    assert_eq!(text, std::fs::read_to_string(&b).unwrap(), "deterministic");
+    assert!(text.starts_with("<svg"));
+    assert!(text.trim_end().ends_with("</svg>"));
+    assert!(text.contains("viewBox=\""));
+    assert_eq!(text.matches("<g ").count(), text.matches("</g>").count());
+    // 7 filled faces at most, plus line paths (hidden and visible pens of two objects).
+    assert!(text.matches("<path").count() >= 4, "{text}");
+    let o = kepler(&["render", s(&mesh), "--png", s(&png), "--size", "300"]);
+    assert!(o.status.success(), "{o:?}");
+    let img = image::open(&png).unwrap();
+    assert_eq!(img.width().max(img.height()), 300);
+}
+
+#[test]
+fn json_carries_lines_when_edges_are_asked_for() {
+    let d = temp_dir("json");
+    let mesh = d.join("m.obj");
+    std::fs::write(&mesh, CUBES).unwrap();
+    let (plain, lined) = (d.join("a.json"), d.join("b.json"));
+    assert!(kepler(&["render", s(&mesh), "--json", s(&plain)])
+        .status
+        .success());
+    assert!(kepler(&[
+        "render",
+        s(&mesh),
+        "--json",
+        s(&lined),
+        "--edges",
+        "all",
+        "--hidden"
+    ])
+    .status
+    .success());
+    let a: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&plain).unwrap()).unwrap();
+    let b: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&lined).unwrap()).unwrap();
+    assert!(a.get("lines").is_none());
+    assert_eq!(a["faces"], b["faces"]);
+    assert!(!b["lines"]["visible"].as_array().unwrap().is_empty());
+    assert!(!b["lines"]["hidden"].as_array().unwrap().is_empty());
+}

@@ -1,0 +1,218 @@
+//! Line drawings against independent answers: convex solids (an edge is visible exactly when a
+//! face beside it is front-facing), visible + hidden = all (non-convex scenes), and the
+//! intersection segment of two crossing faces, endpoints worked by hand.
+
+mod common;
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+use common::*;
+use kepler::emit::edges::{mesh_edges, EdgeKind, EdgeOptions, EdgeSet};
+use kepler::emit::intersect::intersection_edges;
+use kepler::emit::lines::{draw, project_segment, total_length, LineOptions};
+use kepler::emit::world::WorldFaces;
+use kepler::geom::{PolyMesh, P3, V3};
+use kepler::scene::Scene;
+use kepler::view::{Camera, View};
+
+fn all_edges(hidden: bool) -> LineOptions {
+    LineOptions {
+        edges: EdgeOptions {
+            set: EdgeSet::All,
+            crease_deg: 30.0,
+        },
+        hidden,
+    }
+}
+
+/// Models directory: `$KEPLER_MODELS`, `../shared/models` or `/work/shared/models`.
+fn model(name: &str) -> Option<PathBuf> {
+    let mut dirs: Vec<PathBuf> = std::env::var_os("KEPLER_MODELS")
+        .map(PathBuf::from)
+        .into_iter()
+        .collect();
+    dirs.push(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/models"));
+    dirs.push(PathBuf::from("/work/shared/models"));
+    let found = dirs.into_iter().map(|d| d.join(name)).find(|p| p.is_file());
+    if found.is_none() {
+        println!("skipped: {name} not found (set KEPLER_MODELS to the models directory)");
+    }
+    found
+}
+
+fn load(path: &std::path::Path) -> Scene {
+    kepler::load::load_scene(path, &mut Vec::new()).unwrap()
+}
+
+/// Icosphere: an icosahedron subdivided `n` times, pushed onto the unit sphere.
+fn icosphere(n: u32) -> PolyMesh {
+    let ico = kepler::primitives::by_name("icosahedron").unwrap();
+    let mut verts: Vec<P3> = ico
+        .vertices
+        .iter()
+        .map(|p| P3::from(p.coords.normalize()))
+        .collect();
+    let mut faces: Vec<Vec<u32>> = ico.faces.clone();
+    for _ in 0..n {
+        let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut next = Vec::new();
+        for f in &faces {
+            let mut m = |a: u32, b: u32| {
+                *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                    let p = (verts[a as usize].coords + verts[b as usize].coords).normalize();
+                    verts.push(P3::from(p));
+                    verts.len() as u32 - 1
+                })
+            };
+            let (a, b, c) = (f[0], f[1], f[2]);
+            let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
+            next.extend([
+                vec![a, ab, ca],
+                vec![b, bc, ab],
+                vec![c, ca, bc],
+                vec![ab, bc, ca],
+            ]);
+        }
+        faces = next;
+    }
+    PolyMesh::new(verts, faces)
+}
+
+/// Analytic visible length of a closed convex scene's edges: an edge counts when a face
+/// beside it faces the viewer (world normal against the view direction).
+fn convex_visible_length(scene: &Scene, cam: &Camera, dir: V3) -> f64 {
+    let mut edges: HashMap<(usize, u32, u32), (P3, P3, bool)> = HashMap::new();
+    for (li, leaf) in scene.leaves().iter().enumerate() {
+        for f in &leaf.mesh.faces {
+            let p: Vec<P3> = f.vertices.iter().map(|&k| leaf.world_vertex(k)).collect();
+            let n = (p[1] - p[0]).cross(&(p[2] - p[0]));
+            let front = n.dot(&dir) < 0.0;
+            for i in 0..p.len() {
+                let (a, b) = (f.vertices[i], f.vertices[(i + 1) % p.len()]);
+                let e = edges.entry((li, a.min(b), a.max(b))).or_insert((
+                    p[i],
+                    p[(i + 1) % p.len()],
+                    false,
+                ));
+                e.2 |= front;
+            }
+        }
+    }
+    edges
+        .values()
+        .filter(|e| e.2)
+        .map(|(a, b, _)| {
+            let [p, q] = project_segment(cam, a, b).unwrap();
+            (q[0] - p[0]).hypot(q[1] - p[1])
+        })
+        .sum()
+}
+
+fn check_convex(scene: &Scene, name: &str) {
+    for dir in [V3::new(-0.55, -0.5, -0.75), V3::new(0.3, 0.9, -0.2)] {
+        let cam = Camera::orthographic(dir, V3::y()).unwrap();
+        let (view, vis) = run(scene, cam);
+        let d = draw(scene, &view, &vis, &all_edges(true));
+        let got = total_length(&d.visible);
+        let want = convex_visible_length(scene, &cam, dir);
+        assert!(
+            (got - want).abs() <= 1e-9 * want,
+            "{name}: visible length {got} != {want}"
+        );
+    }
+}
+
+#[test]
+fn convex_solids_visible_length_is_analytic() {
+    check_convex(&scene(vec![("ico", prim(icosphere(2)))]), "icosphere");
+    for name in ["cube", "dodecahedron", "truncated_icosahedron", "snub_cube"] {
+        let m = prim(kepler::primitives::by_name(name).unwrap());
+        check_convex(&scene(vec![(name, m)]), name);
+    }
+}
+
+#[test]
+fn ico5_visible_length_is_analytic() {
+    let Some(p) = model("ico5.obj") else { return };
+    check_convex(&load(&p), "ico5");
+}
+
+/// Total projected length of the edge set (mesh edges and intersection segments).
+fn projected_total(scene: &Scene, view: &View) -> f64 {
+    let world = WorldFaces::build(scene);
+    let mut edges = mesh_edges(&world, view, &all_edges(true).edges);
+    edges.extend(intersection_edges(&world, |_| true));
+    edges
+        .iter()
+        .filter_map(|e| project_segment(&view.camera, &e.ends[0], &e.ends[1]))
+        .map(|[p, q]| (q[0] - p[0]).hypot(q[1] - p[1]))
+        .sum()
+}
+
+fn check_complement(scene: &Scene, cam: Camera, name: &str) {
+    let (view, vis) = run(scene, cam);
+    let d = draw(scene, &view, &vis, &all_edges(true));
+    let (v, h) = (total_length(&d.visible), total_length(&d.hidden));
+    let all = projected_total(scene, &view);
+    assert!(v > 0.0 && h > 0.0, "{name}: {v} {h}");
+    assert!(
+        (v + h - all).abs() <= 1e-9 * all,
+        "{name}: visible {v} + hidden {h} != {all}"
+    );
+}
+
+#[test]
+fn visible_plus_hidden_is_everything() {
+    let s = scene(vec![
+        ("a", cuboid([0., 0., 0.], [2., 1., 1.])),
+        ("b", cuboid([0.5, -0.5, 0.3], [1.2, 2., 0.6])),
+        ("floor", square(-1., -1., 4., -0.5)),
+    ]);
+    check_complement(&s, Camera::three_quarter(), "boxes");
+    let persp = Camera::perspective(
+        P3::new(4., 3., 5.),
+        P3::new(0.5, 0.5, 0.),
+        V3::y(),
+        40.0,
+        0.1,
+    )
+    .unwrap();
+    check_complement(&s, persp, "boxes in perspective");
+    if let Some(p) = model("twocubes.obj") {
+        check_complement(&load(&p), Camera::three_quarter(), "twocubes");
+    }
+}
+
+#[test]
+fn crossing_faces_draw_their_intersection_exactly() {
+    // Horizontal square z = 0 over [0,2]^2; vertical square x = 1, y in [0.5,3], z in [-1,1].
+    let f = mesh(
+        &[[0., 0., 0.], [2., 0., 0.], [2., 2., 0.], [0., 2., 0.]],
+        &[&[0, 1, 2, 3]],
+    );
+    let g = mesh(
+        &[[1., 0.5, -1.], [1., 3., -1.], [1., 3., 1.], [1., 0.5, 1.]],
+        &[&[0, 1, 2, 3]],
+    );
+    let s = scene(vec![("f", f), ("g", g)]);
+    let cam = Camera::orthographic(V3::new(0.3, -0.2, -1.0), V3::y()).unwrap();
+    let (view, vis) = run(&s, cam);
+    let opts = LineOptions::default();
+    let d = draw(&s, &view, &vis, &opts);
+    let cut: Vec<_> = d
+        .visible
+        .iter()
+        .filter(|s| s.kind == EdgeKind::Intersection)
+        .collect();
+    assert_eq!(cut.len(), 1, "{:?}", d.visible);
+    let p = |x: [f64; 3]| {
+        let q = cam.project(&P3::new(x[0], x[1], x[2]));
+        [q[0], q[1]]
+    };
+    let mut got = vec![cut[0].pts[0], cut[0].pts[cut[0].pts.len() - 1]];
+    let mut want = vec![p([1., 0.5, 0.]), p([1., 2., 0.])];
+    got.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    want.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    assert_eq!(got, want);
+}
