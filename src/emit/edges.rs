@@ -156,7 +156,7 @@ fn classify(adj: &Adjacent, world: &WorldFaces, view: &View, cos_crease: f64) ->
         [x, y] => [x, y],
         _ => return EdgeKind::Border,
     };
-    let facing = |k: u32| view.screen.faces[k as usize].facing;
+    let facing = |k: u32| view.screen.face_facing(k as usize);
     let (ff, fg) = (facing(f), facing(g));
     let drawn = |x: Facing| matches!(x, Facing::Front | Facing::Back);
     if ff == Facing::Clipped || fg == Facing::Clipped {

@@ -138,12 +138,31 @@ pub fn picture(
         .iter()
         .flat_map(|l| l.pens.iter().flat_map(|p| p.1.iter().flatten()))
         .chain(fills.iter().flat_map(|f| f.rings.iter().flatten()));
-    let (frame, unit) = frame(bounds(pts));
+    let (frame, unit) = frame(field_of_view(view, bounds(pts)));
     Picture {
         frame,
         unit,
         fills,
         layers,
+    }
+}
+
+/// Widest screen aspect a perspective picture keeps (x from -A to A, y from -1 to 1).
+const MAX_ASPECT: f64 = 1.6;
+
+/// Drawing bounds limited, for a perspective camera, to its field of view: the projection
+/// puts the edges of the vertical field of view at y = ±1, and a ground plane clipped near the
+/// eye would otherwise stretch the frame far beyond what the camera sees.
+fn field_of_view(view: &View, b: [f64; 4]) -> [f64; 4] {
+    if view.camera.projection != crate::view::Projection::Perspective {
+        return b;
+    }
+    let fov = [-MAX_ASPECT, -1.0, MAX_ASPECT, 1.0];
+    let c = [b[0].max(fov[0]), b[1].max(fov[1]), b[2].min(fov[2]), b[3].min(fov[3])];
+    if c[0] < c[2] && c[1] < c[3] {
+        c
+    } else {
+        b
     }
 }
 
@@ -183,7 +202,16 @@ fn fills(view: &View, vis: &Visibility) -> Vec<Fill> {
 
 /// Newell normal of face `f`'s world points.
 fn world_normal(view: &View, f: usize) -> V3 {
-    let p = view.screen.world_pts(f);
+    let r = view.screen.piece_range(f as u32..f as u32 + 1);
+    if r.len() != 1 {
+        // A warped face: the sum of its pieces' normals.
+        return r.map(|p| piece_normal(view.screen.world_pts(p as usize))).sum();
+    }
+    piece_normal(view.screen.world_pts(r.start as usize))
+}
+
+/// Newell normal of a polygon.
+fn piece_normal(p: &[crate::geom::P3]) -> V3 {
     let n = p.len();
     let mut s = V3::zeros();
     for i in 0..n {

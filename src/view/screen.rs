@@ -112,6 +112,40 @@ impl ScreenFaces {
         self.pieces[faces.start as usize]..self.pieces[faces.end as usize]
     }
 
+    /// How face `id` presents itself: its single piece's facing, or for a warped face split
+    /// into pieces, the sign of the pieces' summed projected area (clipped or edge-on when no
+    /// piece shows area).
+    pub fn face_facing(&self, id: usize) -> Facing {
+        let r = self.piece_range(id as u32..id as u32 + 1);
+        if r.len() == 1 {
+            return self.faces[r.start as usize].facing;
+        }
+        let mut area = 0.0;
+        let mut any_clipped = false;
+        for p in r {
+            match self.faces[p as usize].facing {
+                Facing::Front | Facing::Back => area += ring_area(&self.pts(p as usize).iter().map(|q| [q[0], q[1]]).collect::<Vec<_>>()),
+                Facing::Clipped => any_clipped = true,
+                Facing::EdgeOn => {}
+            }
+        }
+        if area > 0.0 {
+            Facing::Front
+        } else if area < 0.0 {
+            Facing::Back
+        } else if any_clipped {
+            Facing::Clipped
+        } else {
+            Facing::EdgeOn
+        }
+    }
+
+    /// The world points of all pieces of face `id` (the face's own corners when it is one piece).
+    pub fn face_world_pts(&self, id: usize) -> Vec<P3> {
+        let r = self.piece_range(id as u32..id as u32 + 1);
+        r.flat_map(|p| self.world_pts(p as usize).iter().copied()).collect()
+    }
+
     /// The leaf object of face `id`.
     pub fn leaf_of_face(&self, id: usize) -> &LeafInfo {
         &self.leaves[self.faces[self.pieces[id] as usize].leaf as usize]
