@@ -10,7 +10,7 @@ use kepler::emit::to_json;
 use kepler::view::View;
 use kepler::visibility::{solve, PassOptions};
 
-use super::{load, write, CameraArgs};
+use super::{load_only, prepare, write, CameraArgs};
 
 /// Arguments of `kepler render`.
 #[derive(Args, Debug)]
@@ -37,8 +37,11 @@ pub struct RenderArgs {
 pub fn run(a: RenderArgs) -> Result<ExitCode> {
     let mut times: Vec<(&str, Duration)> = Vec::new();
     let t = Instant::now();
-    let scene = load(&a.scene, a.quiet)?;
+    let mut scene = load_only(&a.scene, a.quiet)?;
     times.push(("load", t.elapsed()));
+    let t = Instant::now();
+    prepare(&mut scene);
+    times.push(("prepare", t.elapsed()));
     let t = Instant::now();
     let camera = a.camera.camera(&scene)?;
     let view = View::new(&scene, camera);
