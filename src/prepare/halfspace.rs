@@ -19,8 +19,8 @@ pub struct HalfSpace {
     pub offset: f64,
 }
 
-/// Target duality gap, in units of log-volume (1e-6 ≈ 0.0001 % of volume).
-const GAP: f64 = 1e-6;
+/// Target duality gap, in units of log-volume (1e-5 ≈ 0.001 % of volume).
+const GAP: f64 = 1e-5;
 /// Factor by which the barrier weight grows per outer step.
 const MU: f64 = 20.0;
 /// Most Newton steps in total.
@@ -30,7 +30,7 @@ const MAX_NEWTON: usize = 400;
 /// strictly inside all of them. None when no strictly feasible start exists or the
 /// iteration breaks down (an unbounded or degenerate region).
 pub fn largest_box(planes: &[HalfSpace], interior: &P3) -> Option<Box3> {
-    let rows: Vec<(Vector6<f64>, f64)> = planes.iter().map(constraint_row).collect();
+    let rows: Vec<Row> = planes.iter().map(constraint_row).collect();
     let mut x = start(planes, interior)?;
     let mut t = 1.0;
     let mut steps = 0;
@@ -45,18 +45,27 @@ pub fn largest_box(planes: &[HalfSpace], interior: &P3) -> Option<Box3> {
     (b.has_interior() && (0..3).all(|i| b.lo[i].is_finite() && b.hi[i].is_finite())).then_some(b)
 }
 
-/// The linear constraint of one half-space on (lo, hi).
-fn constraint_row(h: &HalfSpace) -> (Vector6<f64>, f64) {
-    let mut a = Vector6::zeros();
-    for i in 0..3 {
-        let n = h.normal[i];
-        if n > 0.0 {
-            a[3 + i] = n;
-        } else {
-            a[i] = n;
-        }
+/// A linear constraint on (lo, hi) with three non-zero coefficients: Σ val·x[idx] ≤ offset.
+struct Row {
+    idx: [usize; 3],
+    val: [f64; 3],
+    offset: f64,
+}
+
+impl Row {
+    fn slack(&self, x: &Vector6<f64>) -> f64 {
+        self.offset - (0..3).map(|k| self.val[k] * x[self.idx[k]]).sum::<f64>()
     }
-    (a, h.offset)
+}
+
+/// The linear constraint of one half-space on (lo, hi).
+fn constraint_row(h: &HalfSpace) -> Row {
+    let n = h.normal;
+    Row {
+        idx: std::array::from_fn(|i| if n[i] > 0.0 { 3 + i } else { i }),
+        val: [n.x, n.y, n.z],
+        offset: h.offset,
+    }
 }
 
 /// A small cube around `p` strictly inside every half-space.
@@ -83,7 +92,7 @@ fn start(planes: &[HalfSpace], p: &P3) -> Option<Vector6<f64>> {
 }
 
 /// The barrier objective: −t Σ log widths − Σ log slacks (None when infeasible).
-fn objective(rows: &[(Vector6<f64>, f64)], x: &Vector6<f64>, t: f64) -> Option<f64> {
+fn objective(rows: &[Row], x: &Vector6<f64>, t: f64) -> Option<f64> {
     let mut f = 0.0;
     for i in 0..3 {
         let w = x[3 + i] - x[i];
@@ -92,8 +101,8 @@ fn objective(rows: &[(Vector6<f64>, f64)], x: &Vector6<f64>, t: f64) -> Option<f
         }
         f -= t * w.ln();
     }
-    for (a, d) in rows {
-        let s = d - a.dot(x);
+    for r in rows {
+        let s = r.slack(x);
         if s <= 0.0 {
             return None;
         }
@@ -103,11 +112,7 @@ fn objective(rows: &[(Vector6<f64>, f64)], x: &Vector6<f64>, t: f64) -> Option<f
 }
 
 /// Gradient and Hessian of the objective at a feasible `x`.
-fn derivatives(
-    rows: &[(Vector6<f64>, f64)],
-    x: &Vector6<f64>,
-    t: f64,
-) -> (Vector6<f64>, Matrix6<f64>) {
+fn derivatives(rows: &[Row], x: &Vector6<f64>, t: f64) -> (Vector6<f64>, Matrix6<f64>) {
     let mut g = Vector6::zeros();
     let mut h = Matrix6::zeros();
     for i in 0..3 {
@@ -120,21 +125,21 @@ fn derivatives(
         h[(i, 3 + i)] -= c;
         h[(3 + i, i)] -= c;
     }
-    for (a, d) in rows {
-        let s = d - a.dot(x);
-        g += a / s;
-        h += (a * a.transpose()) / (s * s);
+    for r in rows {
+        let s = r.slack(x);
+        for k in 0..3 {
+            let gk = r.val[k] / s;
+            g[r.idx[k]] += gk;
+            for l in 0..3 {
+                h[(r.idx[k], r.idx[l])] += gk * r.val[l] / s;
+            }
+        }
     }
     (g, h)
 }
 
 /// Newton's method on the barrier objective for one `t`; returns the steps taken.
-fn centre(
-    rows: &[(Vector6<f64>, f64)],
-    x: &mut Vector6<f64>,
-    t: f64,
-    budget: usize,
-) -> Option<usize> {
+fn centre(rows: &[Row], x: &mut Vector6<f64>, t: f64, budget: usize) -> Option<usize> {
     let mut f = objective(rows, x, t)?;
     for step in 0..budget {
         let (g, h) = derivatives(rows, x, t);

@@ -137,6 +137,16 @@ fn solve_face(
 fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
     let tree = &view.tree;
     let mut hidden = vec![false; view.screen.faces.len()];
+    // Inboxes by decreasing rectangle area: one that covers a rectangle has at least its
+    // area, so the scan stops at the first smaller one (same answers as a full scan).
+    let area = |r: &[f64; 4]| (r[2] - r[0]).max(0.0) * (r[3] - r[1]).max(0.0);
+    let mut order: Vec<(f64, usize)> = tree
+        .inboxes
+        .iter()
+        .enumerate()
+        .map(|(k, ib)| (area(&ib.rect), k))
+        .collect();
+    order.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
     for obj in &tree.objects {
         if obj.faces.is_empty() || hidden[obj.faces.start as usize] {
             continue;
@@ -151,12 +161,17 @@ fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
             [bounds.0[2], bounds.0[3]],
             [bounds.0[0], bounds.0[3]],
         ];
-        let by = tree.inboxes.iter().find(|ib| {
-            ib.node != obj.node
-                && bounds.1 < ib.zmin
-                && rects_overlap(&ib.rect, &bounds.0)
-                && covers_convex(&ib.hull, &corners)
-        });
+        let need = area(&bounds.0);
+        let by = order
+            .iter()
+            .take_while(|(a, _)| *a >= need)
+            .find(|&&(_, k)| {
+                let ib = &tree.inboxes[k];
+                ib.node != obj.node
+                    && bounds.1 < ib.zmin
+                    && rects_overlap(&ib.rect, &bounds.0)
+                    && covers_convex(&ib.hull, &corners)
+            });
         if by.is_some() {
             counters.subtrees_hidden += 1;
             for f in obj.faces.clone() {
