@@ -50,7 +50,9 @@ fn building(name: &str, w: f64, h: f64, bays: usize, floors: usize) -> Object {
     Object::group(name, parts)
 }
 
-/// The town of `n` buildings on a grid under a wall (the camera looks down, slightly tilted).
+/// The town of `n` buildings on a grid under a wall (the camera looks down, slightly tilted:
+/// a steep tilt gives the wide wall a depth range that reaches the roofs, and an INBOX hides
+/// only what lies behind its farthest corner).
 fn town(n: usize) -> Scene {
     let protos = [
         Arc::new(building("tower", 10., 40., 5, 10)),
@@ -61,7 +63,7 @@ fn town(n: usize) -> Scene {
     let extent = side as f64 * PITCH;
     let mut objs = vec![Object::from_mesh(
         "wall",
-        cuboid([-20., -20., 60.], [extent + 20., extent + 20., 62.]),
+        cuboid([-20., -20., 100.], [extent + 20., extent + 20., 102.]),
     )];
     for k in 0..n {
         let (i, j) = (k % side, k / side);
@@ -73,7 +75,7 @@ fn town(n: usize) -> Scene {
 }
 
 fn camera() -> Camera {
-    Camera::orthographic(V3::new(0.1, 0.15, -1.), V3::y()).expect("valid camera")
+    Camera::orthographic(V3::new(0.02, 0.03, -1.), V3::y()).expect("valid camera")
 }
 
 /// Stage times in ms of one run: build, prepare, view, visibility.

@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use crate::geom::poly2::{canonicalize, multipolygon_area, ring_area, MultiPolygon};
+use crate::geom::poly2::{canonicalize, multipolygon_area, MultiPolygon};
 use crate::view::{Facing, View};
 
 use super::occlusion::{covers_convex, rects_overlap};
@@ -89,9 +89,8 @@ fn solve_face(
 ) -> (FaceVisibility, Counters) {
     let mut c = Counters::default();
     let sf = &view.screen.faces[f];
-    let ring = view.screen.ring_ccw(f);
     let projected_area = if matches!(sf.facing, Facing::Front | Facing::Back) {
-        ring_area(&ring)
+        ccw_area(view, f)
     } else {
         0.0
     };
@@ -115,6 +114,7 @@ fn solve_face(
         }
         _ => {}
     }
+    let ring = view.screen.ring_ccw(f);
     let mut visible = match visfac(view, root, f, scratch, &mut c) {
         Vtp::Whole => vec![vec![ring]],
         Vtp::Empty => Vec::new(),
@@ -131,6 +131,31 @@ fn solve_face(
         c,
     )
 }
+
+/// `ring_area(ring_ccw(f))` without building the ring (same arithmetic, same bits).
+fn ccw_area(view: &View, f: usize) -> f64 {
+    let pts = view.screen.pts(f);
+    let n = pts.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let back = view.screen.faces[f].facing == Facing::Back;
+    let at = |i: usize| {
+        let p = pts[if back { n - 1 - i } else { i }];
+        [p[0], p[1]]
+    };
+    let o = at(0);
+    let mut s = 0.0;
+    for i in 1..n - 1 {
+        let (a, b) = (at(i), at(i + 1));
+        s += (a[0] - o[0]) * (b[1] - o[1]) - (b[0] - o[0]) * (a[1] - o[1]);
+    }
+    0.5 * s
+}
+
+/// Most inboxes tried per object (the largest first): pruning is optional, so a cap only
+/// trades pruning for time, never correctness, and keeps the scan linear in the objects.
+const MAX_INBOX_TESTS: usize = 64;
 
 /// Marks the faces of every named object whose screen bounds lie behind and inside the
 /// projected INBOX of another object: HIDDEN as a whole, without touching its faces.
@@ -165,6 +190,7 @@ fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
         let by = order
             .iter()
             .take_while(|(a, _)| *a >= need)
+            .take(MAX_INBOX_TESTS)
             .find(|&&(_, k)| {
                 let ib = &tree.inboxes[k];
                 ib.node != obj.node
