@@ -6,6 +6,7 @@ pub mod emit;
 pub mod error;
 pub mod geom;
 pub mod load;
+pub mod prepare;
 pub mod primitives;
 pub mod scene;
 pub mod view;

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::Args;
 
-use super::{load, write};
+use super::{load_only, write};
 
 /// Arguments of `kepler flatten`.
 #[derive(Args, Debug)]
@@ -23,7 +23,7 @@ pub struct FlattenArgs {
 
 /// Runs `kepler flatten`.
 pub fn run(a: FlattenArgs) -> Result<ExitCode> {
-    let scene = load(&a.scene, a.quiet)?;
+    let scene = load_only(&a.scene, a.quiet)?;
     let flat = kepler::scene::flatten(&scene);
     write(&a.output, flat.to_obj())?;
     Ok(ExitCode::SUCCESS)

@@ -49,8 +49,20 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
     }
 }
 
-/// Loads a scene, printing its warnings to standard error.
+/// Loads a scene and runs the prepare stage (INBOXes), printing warnings to standard error.
 pub fn load(path: &Path, quiet: bool) -> Result<Scene> {
+    let mut scene = load_only(path, quiet)?;
+    prepare(&mut scene);
+    Ok(scene)
+}
+
+/// The prepare stage: view-independent bounds (INBOXes) for every object lacking them.
+pub fn prepare(scene: &mut Scene) {
+    kepler::prepare::compute_inboxes(&mut scene.root);
+}
+
+/// Loads a scene without preparing it, printing its warnings to standard error.
+pub fn load_only(path: &Path, quiet: bool) -> Result<Scene> {
     let mut warnings = Vec::new();
     let scene = kepler::load::load_scene(path, &mut warnings)?;
     if !quiet {

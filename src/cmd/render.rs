@@ -11,7 +11,7 @@ use kepler::scene::Scene;
 use kepler::view::View;
 use kepler::visibility::{solve, PassOptions};
 
-use super::{load, write, CameraArgs};
+use super::{load_only, prepare, write, CameraArgs};
 
 /// Arguments of `kepler render`.
 #[derive(Args, Debug)]
@@ -124,8 +124,11 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
     a.line_options()?;
     let mut times: Vec<(&str, Duration)> = Vec::new();
     let t = Instant::now();
-    let scene = load(&a.scene, a.quiet)?;
+    let mut scene = load_only(&a.scene, a.quiet)?;
     times.push(("load", t.elapsed()));
+    let t = Instant::now();
+    prepare(&mut scene);
+    times.push(("prepare", t.elapsed()));
     let t = Instant::now();
     let camera = a.camera.camera(&scene)?;
     let view = View::new(&scene, camera);

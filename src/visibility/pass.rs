@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use crate::geom::poly2::{canonicalize, multipolygon_area, ring_area, MultiPolygon};
+use crate::geom::poly2::{canonicalize, multipolygon_area, MultiPolygon};
 use crate::view::{Facing, View};
 
 use super::occlusion::{covers_convex, rects_overlap};
@@ -136,9 +136,8 @@ fn solve_face(
 ) -> (FaceVisibility, Counters) {
     let mut c = Counters::default();
     let sf = &view.screen.faces[f];
-    let ring = view.screen.ring_ccw(f);
     let projected_area = if matches!(sf.facing, Facing::Front | Facing::Back) {
-        ring_area(&ring)
+        ccw_area(view, f)
     } else {
         0.0
     };
@@ -162,6 +161,7 @@ fn solve_face(
         }
         _ => {}
     }
+    let ring = view.screen.ring_ccw(f);
     let mut visible = match visfac(view, root, f, scratch, &mut c) {
         Vtp::Whole => vec![vec![ring]],
         Vtp::Empty => Vec::new(),
@@ -179,11 +179,46 @@ fn solve_face(
     )
 }
 
+/// `ring_area(ring_ccw(f))` without building the ring (same arithmetic, same bits).
+fn ccw_area(view: &View, f: usize) -> f64 {
+    let pts = view.screen.pts(f);
+    let n = pts.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let back = view.screen.faces[f].facing == Facing::Back;
+    let at = |i: usize| {
+        let p = pts[if back { n - 1 - i } else { i }];
+        [p[0], p[1]]
+    };
+    let o = at(0);
+    let mut s = 0.0;
+    for i in 1..n - 1 {
+        let (a, b) = (at(i), at(i + 1));
+        s += (a[0] - o[0]) * (b[1] - o[1]) - (b[0] - o[0]) * (a[1] - o[1]);
+    }
+    0.5 * s
+}
+
+/// Most inboxes tried per object (the largest first): pruning is optional, so a cap only
+/// trades pruning for time, never correctness, and keeps the scan linear in the objects.
+const MAX_INBOX_TESTS: usize = 64;
+
 /// Marks the faces of every named object whose screen bounds lie behind and inside the
 /// projected INBOX of another object: HIDDEN as a whole, without touching its faces.
 fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
     let tree = &view.tree;
     let mut hidden = vec![false; view.screen.faces.len()];
+    // Inboxes by decreasing rectangle area: one that covers a rectangle has at least its
+    // area, so the scan stops at the first smaller one (same answers as a full scan).
+    let area = |r: &[f64; 4]| (r[2] - r[0]).max(0.0) * (r[3] - r[1]).max(0.0);
+    let mut order: Vec<(f64, usize)> = tree
+        .inboxes
+        .iter()
+        .enumerate()
+        .map(|(k, ib)| (area(&ib.rect), k))
+        .collect();
+    order.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
     for obj in &tree.objects {
         let pieces = view.screen.piece_range(obj.faces.clone());
         if pieces.is_empty() || hidden[pieces.start as usize] {
@@ -199,12 +234,18 @@ fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
             [bounds.0[2], bounds.0[3]],
             [bounds.0[0], bounds.0[3]],
         ];
-        let by = tree.inboxes.iter().find(|ib| {
-            ib.node != obj.node
-                && bounds.1 < ib.zmin
-                && rects_overlap(&ib.rect, &bounds.0)
-                && covers_convex(&ib.hull, &corners)
-        });
+        let need = area(&bounds.0);
+        let by = order
+            .iter()
+            .take_while(|(a, _)| *a >= need)
+            .take(MAX_INBOX_TESTS)
+            .find(|&&(_, k)| {
+                let ib = &tree.inboxes[k];
+                ib.node != obj.node
+                    && bounds.1 < ib.zmin
+                    && rects_overlap(&ib.rect, &bounds.0)
+                    && covers_convex(&ib.hull, &corners)
+            });
         if by.is_some() {
             counters.subtrees_hidden += 1;
             for f in pieces {

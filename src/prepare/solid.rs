@@ -1,0 +1,111 @@
+//! Geometry of a closed mesh shared by the inbox methods: orientation, fan triangles, face
+//! planes, and the exact test that a box lies on the inner side of every face.
+
+use robust::{orient3d, Coord3D};
+
+use crate::geom::{Box3, P3, V3};
+use crate::scene::Mesh;
+
+use super::halfspace::HalfSpace;
+
+/// A mesh's faces as fan triangles, oriented so that the solid's inside is on their
+/// negative side (normal = (b − a) × (c − a) points out).
+#[derive(Debug, Clone)]
+pub struct Triangles {
+    /// The triangles.
+    pub tris: Vec<[P3; 3]>,
+    /// True when the mesh's faces were oriented inward (the triangles are flipped).
+    pub flipped: bool,
+}
+
+impl Triangles {
+    /// The fan triangles of every face, flipped when the mesh is oriented inward. None when
+    /// the signed volume is zero (no interior).
+    pub fn of(mesh: &Mesh) -> Option<Triangles> {
+        let mut tris = Vec::with_capacity(mesh.faces.len() * 2);
+        for f in &mesh.faces {
+            let v = &f.vertices;
+            for i in 1..v.len().saturating_sub(1) {
+                tris.push([
+                    mesh.vertices[v[0] as usize],
+                    mesh.vertices[v[i] as usize],
+                    mesh.vertices[v[i + 1] as usize],
+                ]);
+            }
+        }
+        let volume = signed_volume(&tris);
+        if !(volume.abs() > 0.0 && volume.is_finite()) {
+            return None;
+        }
+        let flipped = volume < 0.0;
+        if flipped {
+            for t in &mut tris {
+                t.swap(1, 2);
+            }
+        }
+        Some(Triangles { tris, flipped })
+    }
+
+    /// Exact test: every corner of `b` is on the inner side of (or on) every triangle's
+    /// plane. Such a box lies in the kernel of the polyhedron, hence inside it.
+    pub fn box_in_kernel(&self, b: &Box3) -> bool {
+        let corners = b.corners().map(|c| co(&c));
+        self.tris.iter().all(|t| {
+            let (a, b, c) = (co(&t[0]), co(&t[1]), co(&t[2]));
+            // orient3d > 0: the point lies below the counter-clockwise triangle, i.e. inside.
+            corners.iter().all(|&p| orient3d(a, b, c, p) >= 0.0)
+        })
+    }
+
+    /// One half-space per triangle (Newell normal of the triangle, offset through its vertices).
+    pub fn half_spaces(&self) -> Vec<HalfSpace> {
+        self.tris
+            .iter()
+            .filter_map(|t| {
+                let n: V3 = (t[1] - t[0]).cross(&(t[2] - t[0]));
+                let len = n.norm();
+                (len > 0.0).then(|| {
+                    let n = n / len;
+                    let d = t
+                        .iter()
+                        .map(|p| n.dot(&p.coords))
+                        .fold(f64::INFINITY, f64::min);
+                    HalfSpace {
+                        normal: n,
+                        offset: d,
+                    }
+                })
+            })
+            .collect()
+    }
+}
+
+/// The signed volume enclosed by triangles (positive when they face outward).
+fn signed_volume(tris: &[[P3; 3]]) -> f64 {
+    let o = tris.first().map_or(P3::origin(), |t| t[0]);
+    tris.iter()
+        .map(|t| (t[0] - o).dot(&(t[1] - o).cross(&(t[2] - o))))
+        .sum::<f64>()
+        / 6.0
+}
+
+/// A point for the robust predicates.
+pub fn co(p: &P3) -> Coord3D<f64> {
+    Coord3D {
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    }
+}
+
+/// The box scaled about its centre by `1 − eps` on every axis.
+pub fn shrink(b: &Box3, eps: f64) -> Box3 {
+    let c = b.center();
+    let mut out = *b;
+    for i in 0..3 {
+        let h = 0.5 * (b.hi[i] - b.lo[i]) * (1.0 - eps);
+        out.lo[i] = c[i] - h;
+        out.hi[i] = c[i] + h;
+    }
+    out
+}
