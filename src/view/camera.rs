@@ -23,6 +23,9 @@ pub struct Camera {
     pub projection: Projection,
     /// Perspective only: the near plane, as the least allowed w' (distance along the view axis).
     pub near: f64,
+    /// Perspective only: the eye point. A face whose plane passes exactly through it is seen
+    /// exactly edge-on.
+    pub eye: Option<P3>,
 }
 
 /// The orthonormal frame (u, v, w) of a view direction: w = -dir, u = up x w, v = w x u.
@@ -63,6 +66,7 @@ impl Camera {
             matrix,
             projection: Projection::Orthographic,
             near: 0.0,
+            eye: None,
         })
     }
 
@@ -89,6 +93,7 @@ impl Camera {
             matrix,
             projection: Projection::Perspective,
             near,
+            eye: Some(eye),
         })
     }
 

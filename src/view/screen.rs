@@ -235,6 +235,16 @@ impl ScreenFaces {
             }
         }));
         let mut face = describe(&self.points[start as usize..], start, leaf, may_cull);
+        let w = &self.world[start as usize..];
+        if let (Some(eye), true) = (camera.eye, w.len() >= 3) {
+            // The eye exactly in the piece's plane: edge-on, whatever rounding the divide did.
+            let [a, b, c] = face.refs.map(|k| w[k as usize]);
+            let co = |v: &P3| robust::Coord3D { x: v.x, y: v.y, z: v.z };
+            if robust::orient3d(co(&a), co(&b), co(&c), co(&eye)) == 0.0 {
+                face.facing = Facing::EdgeOn;
+                face.culled = false;
+            }
+        }
         face.id = id;
         self.faces.push(face);
     }
