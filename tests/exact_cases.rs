@@ -271,10 +271,27 @@ fn perspective_eye_in_a_face_plane_sees_it_edge_on() {
     use kepler::view::Facing;
     // A box whose top face lies in the plane z = 2, eye at height 2 looking across it, and a
     // wall in front of the box: the top face is exactly edge-on, nothing leaks past the wall.
-    let s = scene(vec![("wall", cuboid([-5., -1., 0.], [5., 0., 4.])), ("box", cuboid([-1., -4., 0.], [1., -2., 2.]))]);
-    let cam = Camera::perspective(P3::new(0.3, 10., 2.), P3::new(0., 0., 2.), V3::z(), 50.0, 0.1).unwrap();
+    let s = scene(vec![
+        ("wall", cuboid([-5., -1., 0.], [5., 0., 4.])),
+        ("box", cuboid([-1., -4., 0.], [1., -2., 2.])),
+    ]);
+    let cam = Camera::perspective(
+        P3::new(0.3, 10., 2.),
+        P3::new(0., 0., 2.),
+        V3::z(),
+        50.0,
+        0.1,
+    )
+    .unwrap();
     let (view, vis) = run(&s, cam);
-    let top = (0..view.screen.faces.len()).find(|&f| view.screen.face_world_pts(f).iter().all(|p| p.z == 2.0 && p.y < -1.0)).unwrap();
+    let top = (0..view.screen.faces.len())
+        .find(|&f| {
+            view.screen
+                .face_world_pts(f)
+                .iter()
+                .all(|p| p.z == 2.0 && p.y < -1.0)
+        })
+        .unwrap();
     assert_eq!(view.screen.face_facing(top), Facing::EdgeOn);
     // Every face of the box is behind the wall.
     let box_faces = view.tree.object("box").unwrap().faces.clone();

@@ -16,9 +16,25 @@ fn every_scene_matches_its_golden() {
         }
         let name = scene.file_stem().unwrap().to_str().unwrap().to_string();
         let golden = root.join("tests/golden").join(format!("{name}.json"));
-        assert!(golden.exists(), "scene {name} has no golden at {}", golden.display());
-        let out = Command::new(env!("CARGO_BIN_EXE_kepler")).arg("check").arg(&scene).arg("--golden").arg(&golden).arg("-q").output().unwrap();
-        assert!(out.status.success(), "{name}: {}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        assert!(
+            golden.exists(),
+            "scene {name} has no golden at {}",
+            golden.display()
+        );
+        let out = Command::new(env!("CARGO_BIN_EXE_kepler"))
+            .arg("check")
+            .arg(&scene)
+            .arg("--golden")
+            .arg(&golden)
+            .arg("-q")
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{name}: {}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
         checked += 1;
     }
     assert!(checked >= 3, "only {checked} scenes");

@@ -57,7 +57,12 @@ pub fn load(path: &Path, quiet: bool) -> Result<Scene> {
 }
 
 /// The prepare stage: view-independent bounds (INBOXes) for every object lacking them.
+/// A scene of one leaf object is left alone: an object's inbox prunes only other objects, so
+/// there is nothing for it to do ("model no more than a scene needs").
 pub fn prepare(scene: &mut Scene) {
+    if scene.leaves().len() < 2 {
+        return;
+    }
     kepler::prepare::compute_inboxes(&mut scene.root);
 }
 

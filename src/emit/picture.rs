@@ -158,7 +158,12 @@ fn field_of_view(view: &View, b: [f64; 4]) -> [f64; 4] {
         return b;
     }
     let fov = [-MAX_ASPECT, -1.0, MAX_ASPECT, 1.0];
-    let c = [b[0].max(fov[0]), b[1].max(fov[1]), b[2].min(fov[2]), b[3].min(fov[3])];
+    let c = [
+        b[0].max(fov[0]),
+        b[1].max(fov[1]),
+        b[2].min(fov[2]),
+        b[3].min(fov[3]),
+    ];
     if c[0] < c[2] && c[1] < c[3] {
         c
     } else {
@@ -205,7 +210,9 @@ fn world_normal(view: &View, f: usize) -> V3 {
     let r = view.screen.piece_range(f as u32..f as u32 + 1);
     if r.len() != 1 {
         // A warped face: the sum of its pieces' normals.
-        return r.map(|p| piece_normal(view.screen.world_pts(p as usize))).sum();
+        return r
+            .map(|p| piece_normal(view.screen.world_pts(p as usize)))
+            .sum();
     }
     piece_normal(view.screen.world_pts(r.start as usize))
 }

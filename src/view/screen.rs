@@ -124,7 +124,15 @@ impl ScreenFaces {
         let mut any_clipped = false;
         for p in r {
             match self.faces[p as usize].facing {
-                Facing::Front | Facing::Back => area += ring_area(&self.pts(p as usize).iter().map(|q| [q[0], q[1]]).collect::<Vec<_>>()),
+                Facing::Front | Facing::Back => {
+                    area += ring_area(
+                        &self
+                            .pts(p as usize)
+                            .iter()
+                            .map(|q| [q[0], q[1]])
+                            .collect::<Vec<_>>(),
+                    )
+                }
                 Facing::Clipped => any_clipped = true,
                 Facing::EdgeOn => {}
             }
@@ -143,7 +151,8 @@ impl ScreenFaces {
     /// The world points of all pieces of face `id` (the face's own corners when it is one piece).
     pub fn face_world_pts(&self, id: usize) -> Vec<P3> {
         let r = self.piece_range(id as u32..id as u32 + 1);
-        r.flat_map(|p| self.world_pts(p as usize).iter().copied()).collect()
+        r.flat_map(|p| self.world_pts(p as usize).iter().copied())
+            .collect()
     }
 
     /// The leaf object of face `id`.
@@ -239,7 +248,11 @@ impl ScreenFaces {
         if let (Some(eye), true) = (camera.eye, w.len() >= 3) {
             // The eye exactly in the piece's plane: edge-on, whatever rounding the divide did.
             let [a, b, c] = face.refs.map(|k| w[k as usize]);
-            let co = |v: &P3| robust::Coord3D { x: v.x, y: v.y, z: v.z };
+            let co = |v: &P3| robust::Coord3D {
+                x: v.x,
+                y: v.y,
+                z: v.z,
+            };
             if robust::orient3d(co(&a), co(&b), co(&c), co(&eye)) == 0.0 {
                 face.facing = Facing::EdgeOn;
                 face.culled = false;
