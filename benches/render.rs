@@ -16,6 +16,9 @@ fn models_dir() -> PathBuf {
         .unwrap_or_else(|| PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/models")))
 }
 
+/// How a benchmark view makes its camera from the scene.
+type CameraFor = Box<dyn Fn(&kepler::scene::Scene) -> Camera>;
+
 fn median(mut v: Vec<Duration>) -> Duration {
     v.sort();
     v[v.len() / 2]
@@ -47,7 +50,7 @@ fn main() {
             println!("{name}: skipped (not found in {})", dir.display());
             continue;
         }
-        let views: Vec<(&str, Box<dyn Fn(&kepler::scene::Scene) -> Camera>)> = vec![
+        let views: Vec<(&str, CameraFor)> = vec![
             ("three-quarter", Box::new(|_| Camera::three_quarter())),
             (
                 "front",

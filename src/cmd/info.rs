@@ -28,7 +28,7 @@ pub struct InfoArgs {
 pub fn run(a: InfoArgs) -> Result<ExitCode> {
     let scene = load(&a.scene, a.quiet)?;
     if a.json {
-        out(&format!("{}", object_json(&scene.root, "scene")));
+        out(&object_json(&scene.root, "scene"));
     } else {
         out(&format!(
             "{}: {} faces, {} vertices",

@@ -43,24 +43,18 @@ pub fn run(a: QueryArgs) -> Result<ExitCode> {
     if let Some(p) = &a.include {
         let p = P3::from(parse_vec3(p, "include")?);
         let r = include(&scene.root, &M4::identity(), &p);
-        out(&format!(
-            "{}",
-            if r == Inclusion::In { "IN" } else { "OUT" }
-        ));
+        out(if r == Inclusion::In { "IN" } else { "OUT" });
         return Ok(ExitCode::SUCCESS);
     }
     let view = View::new(&scene, a.camera.camera(&scene)?);
     if let Some(p) = &a.visp {
         let p = P3::from(parse_vec3(p, "visp")?);
         let r = visp(&view, view.tree.root(), &p, None);
-        out(&format!(
-            "{}",
-            if r == PointVisibility::Visible {
-                "VISIBLE"
-            } else {
-                "HIDDEN"
-            }
-        ));
+        out(if r == PointVisibility::Visible {
+            "VISIBLE"
+        } else {
+            "HIDDEN"
+        });
     }
     if let Some(ab) = &a.visobj {
         let find = |p: &str| {
@@ -70,14 +64,11 @@ pub fn run(a: QueryArgs) -> Result<ExitCode> {
         };
         let (oa, ob) = (find(&ab[0])?, find(&ab[1])?);
         let r = visobj(&view, oa.node, ob.faces.clone());
-        out(&format!(
-            "{}",
-            match r {
-                Verdict::Visible => "VISIBLE",
-                Verdict::Hidden => "HIDDEN",
-                Verdict::Mixed => "MIXED",
-            }
-        ));
+        out(match r {
+            Verdict::Visible => "VISIBLE",
+            Verdict::Hidden => "HIDDEN",
+            Verdict::Mixed => "MIXED",
+        });
     }
     Ok(ExitCode::SUCCESS)
 }

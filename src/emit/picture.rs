@@ -219,17 +219,7 @@ fn world_normal(view: &View, f: usize) -> V3 {
 
 /// Newell normal of a polygon.
 fn piece_normal(p: &[crate::geom::P3]) -> V3 {
-    let n = p.len();
-    let mut s = V3::zeros();
-    for i in 0..n {
-        let (a, b) = (&p[i], &p[(i + 1) % n]);
-        s += V3::new(
-            (a.y - b.y) * (a.z + b.z),
-            (a.z - b.z) * (a.x + b.x),
-            (a.x - b.x) * (a.y + b.y),
-        );
-    }
-    s
+    crate::scene::cleanup::FaceShape::of(p).normal
 }
 
 #[cfg(test)]

@@ -40,7 +40,8 @@ fn frame(dir: &V3, up: &V3) -> Result<(V3, V3, V3)> {
     let w = -dir / d;
     let u = up.cross(&w);
     let ul = u.norm();
-    if !(ul > 1e-12 * up.norm()) {
+    // Written so that a NaN length also fails.
+    if ul.is_nan() || ul <= 1e-12 * up.norm() {
         return Err(Error::Usage(format!(
             "up vector {:?} is parallel to the view direction",
             up.as_slice()

@@ -13,9 +13,10 @@ pub enum Inclusion {
 }
 
 /// INCLUDE(A, P) for world point `p` and object `a` placed by `xf` (its parent's frame to world).
-/// 1. inside INBOX: IN; 2. outside CBOX: OUT; 3. a leaf: the generalized winding number of
-/// its faces around P (IN when |w| > 1/2; exact in sign away from the surface, and for open
-/// meshes the natural extension); 4./5. subobjects: IN if any is.
+///
+/// Steps as in the paper: inside INBOX, IN; outside CBOX, OUT; a leaf, the generalized
+/// winding number w of its faces around P (IN when |w| > 1/2: exact in sign away from the
+/// surface, and for open meshes the natural extension); subobjects, IN if any is.
 pub fn include(a: &Object, xf: &M4, p: &P3) -> Inclusion {
     let local = match xf.try_inverse() {
         Some(inv) => inv.transform_point(p),

@@ -140,7 +140,7 @@ pub fn union_area_exact(parts: &[&MultiPolygon]) -> f64 {
     use i_overlay::i_float::float::rect::FloatRect;
     let pts = parts.iter().flat_map(|m| m.iter().flatten().flatten());
     let b = kepler::geom::poly2::bounds(pts);
-    if !(b[0] <= b[2]) {
+    if b[0].is_nan() || b[0] > b[2] {
         return 0.0;
     }
     let adapter = FloatPointAdapter::<[f64; 2], i64>::new_conservative(
