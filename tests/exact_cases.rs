@@ -299,3 +299,34 @@ fn perspective_eye_in_a_face_plane_sees_it_edge_on() {
         assert_eq!(vis.faces[f as usize].area, 0.0, "face {f} leaks");
     }
 }
+
+#[test]
+fn vtp_in_texture_coordinates() {
+    use kepler::visibility::texture::vtp_in_texture;
+    // A horizontal square [0,2]^2 at z = 3 (texture frame: x = (1,0,0), y = (0,1,0), origin
+    // (0,0,3)) under a square [1,3]x[0,2] at z = 5. From above the hidden part is [1,2]x[0,2];
+    // looking along (0.2,-0.1,-1) the upper square's shadow on z = 3 shifts by (0.4,-0.2), the
+    // hidden part is [1.4,2]x[0,1.8] and the visible area 4 - 1.08 = 2.92.
+    let s = scene(vec![
+        ("top", square(1., 0., 2., 5.)),
+        ("base", square(0., 0., 2., 3.)),
+    ]);
+    for (cam, want) in [
+        (top(), 2.0),
+        (
+            Camera::orthographic(V3::new(0.2, -0.1, -1.0), V3::y()).unwrap(),
+            2.92,
+        ),
+    ] {
+        let (view, vis) = run(&s, cam);
+        let t = vtp_in_texture(&view, &vis, 1).unwrap();
+        let area: f64 = t.iter().map(|p| kepler::geom::poly2::polygon_area(p)).sum();
+        close(area, want, 1e-12);
+        for p in t.iter().flatten().flatten() {
+            assert!(
+                p[0] > -1e-12 && p[0] < 2.0 + 1e-12 && p[1] > -1e-12 && p[1] < 2.0 + 1e-12,
+                "{p:?}"
+            );
+        }
+    }
+}

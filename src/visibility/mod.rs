@@ -6,6 +6,7 @@ pub mod include;
 pub mod occlusion;
 pub mod pass;
 pub mod stats;
+pub mod texture;
 pub mod visfac;
 pub mod visobj;
 pub mod visp;
