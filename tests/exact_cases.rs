@@ -320,7 +320,7 @@ fn vtp_in_texture_coordinates() {
     ] {
         let (view, vis) = run(&s, cam);
         let t = vtp_in_texture(&view, &vis, 1).unwrap();
-        let area: f64 = t.iter().map(|p| kepler::geom::poly2::polygon_area(p)).sum();
+        let area: f64 = t.iter().map(kepler::geom::poly2::polygon_area).sum();
         close(area, want, 1e-12);
         for p in t.iter().flatten().flatten() {
             assert!(
