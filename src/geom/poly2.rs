@@ -100,6 +100,14 @@ pub fn locate(m: &MultiPolygon, p: Pt2) -> Side {
     }
 }
 
+/// The empty rectangle [xmin, ymin, xmax, ymax]: the identity of rectangle union.
+pub const EMPTY_RECT: [f64; 4] = [
+    f64::INFINITY,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    f64::NEG_INFINITY,
+];
+
 /// Bounding rectangle [xmin, ymin, xmax, ymax] of points.
 pub fn bounds<'a>(pts: impl IntoIterator<Item = &'a Pt2>) -> [f64; 4] {
     let mut b = [

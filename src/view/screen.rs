@@ -325,12 +325,7 @@ fn describe(p: &[[f64; 3]], start: u32, leaf: u32, may_cull: bool) -> ScreenFace
         start,
         len: p.len() as u32,
         leaf,
-        rect: [
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ],
+        rect: crate::geom::poly2::EMPTY_RECT,
         zmin: f64::INFINITY,
         zmax: f64::NEG_INFINITY,
         refs: [0, 0, 0],

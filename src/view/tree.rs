@@ -254,12 +254,7 @@ impl Builder<'_> {
 
 fn empty_node() -> Node {
     Node {
-        rect: [
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ],
+        rect: crate::geom::poly2::EMPTY_RECT,
         zmin: f64::INFINITY,
         zmax: f64::NEG_INFINITY,
         kind: NodeKind::Leaf(0..0),

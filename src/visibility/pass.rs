@@ -97,12 +97,7 @@ fn merge_pieces(
         0 => Vec::new(),
         1 => parts[0].clone(),
         _ => {
-            let empty = [
-                f64::INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::NEG_INFINITY,
-            ];
+            let empty = crate::geom::poly2::EMPTY_RECT;
             let rect = r.fold(empty, |acc, p| {
                 crate::view::tree::union_rect(&acc, &sf.faces[p as usize].rect)
             });
@@ -258,12 +253,7 @@ fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
 
 /// Screen rectangle and greatest depth of all drawable pieces in a range (None if none).
 fn subtree_bounds(view: &View, faces: std::ops::Range<u32>) -> Option<([f64; 4], f64)> {
-    let mut rect = [
-        f64::INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::NEG_INFINITY,
-    ];
+    let mut rect = crate::geom::poly2::EMPTY_RECT;
     let mut zmax = f64::NEG_INFINITY;
     for f in faces {
         let sf = &view.screen.faces[f as usize];
