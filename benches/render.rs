@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use kepler::emit::to_json;
-use kepler::geom::{P3, V3};
+use kepler::geom::V3;
 use kepler::view::{Camera, View};
 use kepler::visibility::{solve, PassOptions};
 
@@ -62,15 +62,12 @@ fn main() {
                     let b = s.cbox();
                     let c = b.center();
                     let r = (b.hi - b.lo).norm();
-                    Camera::from_spec(
-                        &kepler::scene::CameraSpec::Perspective {
-                            eye: c + V3::new(0.6, 0.4, 1.0) * r,
-                            target: c,
-                            up: V3::y(),
-                            fov_deg: 40.0,
-                        },
-                        &b,
-                    )
+                    Camera::from_spec(&kepler::scene::CameraSpec::Perspective {
+                        eye: c + V3::new(0.6, 0.4, 1.0) * r,
+                        target: c,
+                        up: V3::y(),
+                        fov_deg: 40.0,
+                    })
                     .unwrap()
                 }),
             ),
@@ -107,7 +104,6 @@ fn main() {
                 ms(d),
                 ms(e)
             );
-            let _ = P3::origin();
         }
     }
 }

@@ -81,7 +81,7 @@ impl CameraArgs {
                     fov_deg: self.fov,
                 }
             };
-            return Ok(Camera::from_spec(&spec, &cbox)?);
+            return Ok(Camera::from_spec(&spec)?);
         }
         if self.target.is_some() {
             bail!("--target needs --eye");
@@ -108,7 +108,7 @@ impl CameraArgs {
                     },
                     (s, None) => s,
                 };
-                Ok(Camera::from_spec(&spec, &cbox)?)
+                Ok(Camera::from_spec(&spec)?)
             }
             None => Ok(Camera::three_quarter()),
         }

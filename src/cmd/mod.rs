@@ -52,18 +52,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
 /// Loads a scene and runs the prepare stage (INBOXes), printing warnings to standard error.
 pub fn load(path: &Path, quiet: bool) -> Result<Scene> {
     let mut scene = load_only(path, quiet)?;
-    prepare(&mut scene);
+    kepler::prepare::prepare(&mut scene);
     Ok(scene)
-}
-
-/// The prepare stage: view-independent bounds (INBOXes) for every object lacking them.
-/// A scene of one leaf object is left alone: an object's inbox prunes only other objects, so
-/// there is nothing for it to do ("model no more than a scene needs").
-pub fn prepare(scene: &mut Scene) {
-    if scene.leaves().len() < 2 {
-        return;
-    }
-    kepler::prepare::compute_inboxes(&mut scene.root);
 }
 
 /// Loads a scene without preparing it, printing its warnings to standard error.

@@ -11,7 +11,7 @@ use kepler::scene::Scene;
 use kepler::view::View;
 use kepler::visibility::{solve, PassOptions};
 
-use super::{load_only, prepare, write, CameraArgs};
+use super::{load_only, write, CameraArgs};
 
 /// Arguments of `kepler render`.
 #[derive(Args, Debug)]
@@ -127,7 +127,7 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
     let mut scene = load_only(&a.scene, a.quiet)?;
     times.push(("load", t.elapsed()));
     let t = Instant::now();
-    prepare(&mut scene);
+    kepler::prepare::prepare(&mut scene);
     times.push(("prepare", t.elapsed()));
     let t = Instant::now();
     let camera = a.camera.camera(&scene)?;

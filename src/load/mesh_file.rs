@@ -47,14 +47,17 @@ enum Format {
     Ply,
 }
 
-/// The format named by `path`'s extension (case-insensitive), or a usage error naming the file.
-fn format_of(path: &Path) -> Result<Format> {
-    let ext = path
-        .extension()
+/// `path`'s extension in lower case ("" when it has none).
+pub(crate) fn extension(path: &Path) -> String {
+    path.extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
-        .to_ascii_lowercase();
-    match ext.as_str() {
+        .to_ascii_lowercase()
+}
+
+/// The format named by `path`'s extension (case-insensitive), or a usage error naming the file.
+fn format_of(path: &Path) -> Result<Format> {
+    match extension(path).as_str() {
         "obj" => Ok(Format::Obj),
         "stl" => Ok(Format::Stl),
         "ply" => Ok(Format::Ply),

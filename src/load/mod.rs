@@ -25,12 +25,7 @@ use crate::scene::{Object, Scene};
 /// The root object has the name "" (object paths leave it out). Repairs made on the way are
 /// appended to `warnings`.
 pub fn load_scene(path: &Path, warnings: &mut Warnings) -> Result<Scene> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    match ext.as_str() {
+    match mesh_file::extension(path).as_str() {
         "kdl" => load_scene_file(path, warnings),
         "obj" | "stl" | "ply" => mesh_scene(path, warnings),
         _ => Err(Error::Usage(format!(

@@ -1,7 +1,7 @@
 //! Cameras: the 4x4 matrix M taking world points to the paper's standard view (viewer at z = +inf).
 
 use crate::error::{Error, Result};
-use crate::geom::{Box3, M4, P3, V3};
+use crate::geom::{M4, P3, V3};
 use crate::scene::CameraSpec;
 
 /// Kind of projection.
@@ -98,8 +98,8 @@ impl Camera {
         })
     }
 
-    /// The camera a scene file states, with the near plane set from the scene's size.
-    pub fn from_spec(spec: &CameraSpec, scene_box: &Box3) -> Result<Camera> {
+    /// The camera a scene file states (perspective: near plane from the eye-target distance).
+    pub fn from_spec(spec: &CameraSpec) -> Result<Camera> {
         match *spec {
             CameraSpec::Orthographic { dir, up } => Camera::orthographic(dir, up),
             CameraSpec::Perspective {
@@ -107,13 +107,7 @@ impl Camera {
                 target,
                 up,
                 fov_deg,
-            } => Camera::perspective(
-                eye,
-                target,
-                up,
-                fov_deg,
-                default_near(&eye, &target, scene_box),
-            ),
+            } => Camera::perspective(eye, target, up, fov_deg, default_near(&eye, &target)),
         }
     }
 
@@ -152,11 +146,9 @@ impl Camera {
     }
 }
 
-/// Near plane for a perspective view: 1/1000 of the distance to the target, but never beyond
-/// the nearest part of the scene box along the axis.
-fn default_near(eye: &P3, target: &P3, b: &Box3) -> f64 {
+/// Near plane for a perspective view: 1/1000 of the distance from the eye to the target.
+fn default_near(eye: &P3, target: &P3) -> f64 {
     let dist = (target - eye).norm();
-    let _ = b;
     (dist * 1e-3).max(1e-9)
 }
 

@@ -202,9 +202,7 @@ impl Builder<'_> {
         let mut n = empty_node();
         for &k in &kids {
             let c = &self.tree.nodes[k as usize];
-            n.rect = union_rect(&n.rect, &c.rect);
-            n.zmin = n.zmin.min(c.zmin);
-            n.zmax = n.zmax.max(c.zmax);
+            n.grow(&c.rect, c.zmin, c.zmax);
         }
         let start = self.tree.children.len() as u32;
         self.tree.children.extend(kids);
@@ -218,9 +216,7 @@ impl Builder<'_> {
             let mut n = empty_node();
             for &f in &ids {
                 let sf = &self.sf.faces[f as usize];
-                n.rect = union_rect(&n.rect, &sf.rect);
-                n.zmin = n.zmin.min(sf.zmin);
-                n.zmax = n.zmax.max(sf.zmax);
+                n.grow(&sf.rect, sf.zmin, sf.zmax);
             }
             let start = self.tree.faces.len() as u32;
             self.tree.faces.extend(ids);
@@ -249,6 +245,15 @@ impl Builder<'_> {
         let l = self.bvh(ids);
         let r = self.bvh(right);
         self.inner(vec![l, r])
+    }
+}
+
+impl Node {
+    /// Grows the bounds to hold a rectangle and depth range.
+    fn grow(&mut self, rect: &[f64; 4], zmin: f64, zmax: f64) {
+        self.rect = union_rect(&self.rect, rect);
+        self.zmin = self.zmin.min(zmin);
+        self.zmax = self.zmax.max(zmax);
     }
 }
 

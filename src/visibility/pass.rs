@@ -34,6 +34,19 @@ pub struct FaceVisibility {
     pub projected_area: f64,
 }
 
+impl FaceVisibility {
+    /// The result for a visible region: canonicalised, with its area measured.
+    fn new(mut visible: MultiPolygon, projected_area: f64) -> Self {
+        canonicalize(&mut visible);
+        let area = multipolygon_area(&visible);
+        FaceVisibility {
+            visible,
+            area,
+            projected_area,
+        }
+    }
+}
+
 /// The visible-polygon set of a view.
 #[derive(Debug, Clone)]
 pub struct Visibility {
@@ -93,7 +106,7 @@ fn merge_pieces(
         .filter(|p| !p.0.visible.is_empty())
         .map(|p| p.0.visible.clone())
         .collect();
-    let mut visible = match parts.len() {
+    let visible = match parts.len() {
         0 => Vec::new(),
         1 => parts[0].clone(),
         _ => {
@@ -104,13 +117,7 @@ fn merge_pieces(
             super::clip::union(&parts, &rect)
         }
     };
-    canonicalize(&mut visible);
-    let area = multipolygon_area(&visible);
-    FaceVisibility {
-        visible,
-        area,
-        projected_area,
-    }
+    FaceVisibility::new(visible, projected_area)
 }
 
 fn without_inboxes(view: &View) -> View {
@@ -157,21 +164,12 @@ fn solve_face(
         _ => {}
     }
     let ring = view.screen.ring_ccw(f);
-    let mut visible = match visfac(view, root, f, scratch, &mut c) {
+    let visible = match visfac(view, root, f, scratch, &mut c) {
         Vtp::Whole => vec![vec![ring]],
         Vtp::Empty => Vec::new(),
         Vtp::Part(m) => m,
     };
-    canonicalize(&mut visible);
-    let area = multipolygon_area(&visible);
-    (
-        FaceVisibility {
-            visible,
-            area,
-            projected_area,
-        },
-        c,
-    )
+    (FaceVisibility::new(visible, projected_area), c)
 }
 
 /// `ring_area(ring_ccw(f))` without building the ring (same arithmetic, same bits).
