@@ -17,7 +17,7 @@ fn two_overlapping_squares() {
     let (_, vis) = run(&s, top());
     assert_eq!(areas(&vis), vec![4.0, 3.0]);
     // B's VTP is the L-shaped hexagon: corners exact.
-    let b = &vis.faces[1].visible;
+    let b = &vis.face(1).visible;
     assert_eq!(b.len(), 1);
     let mut pts = b[0][0].clone();
     pts.sort_by(|p, q| p.partial_cmp(q).unwrap());
@@ -48,10 +48,10 @@ fn crossing_planes_hide_each_other_on_their_own_side() {
     let (_, vis) = run(&scene(vec![("a", a), ("b", b)]), top());
     // Each keeps exactly the half where it is on top: A for x > 0, B for x < 0.
     assert_eq!(areas(&vis), vec![1.0, 1.0]);
-    for p in &vis.faces[0].visible[0][0] {
+    for p in &vis.face(0).visible[0][0] {
         assert!(p[0] >= 0.0, "{p:?}");
     }
-    for p in &vis.faces[1].visible[0][0] {
+    for p in &vis.face(1).visible[0][0] {
         assert!(p[0] <= 0.0, "{p:?}");
     }
 }
@@ -99,7 +99,7 @@ fn three_cyclically_overlapping_bars() {
     // Each bar (length 6, width w) loses exactly one rhombus, the crossing of two strips of
     // width w at 60 degrees: area w^2 / sin 60.
     let expected = 6.0 * w - w * w / (s3 / 2.0);
-    for f in &vis.faces {
+    for f in vis.by_id() {
         close(f.area, expected, 1e-12);
     }
 }
@@ -141,9 +141,9 @@ fn l_shaped_solid_seen_into_its_corner() {
                 .all(|p| p.x == 1.0 && p.y >= 1.0)
         })
         .unwrap();
-    close(vis.faces[inner].area, 0.575 / 1.34f64.sqrt(), 1e-12);
+    close(vis.face(inner).area, 0.575 / 1.34f64.sqrt(), 1e-12);
     // Front faces together cover the silhouette exactly once.
-    let parts: Vec<_> = vis.faces.iter().map(|f| &f.visible).collect();
+    let parts: Vec<_> = vis.by_id().into_iter().map(|f| &f.visible).collect();
     close(total_area(&parts), union_area_exact(&parts), 1e-14);
     close(total_area(&parts), union_area(&parts), 1e-9);
 }
@@ -182,7 +182,7 @@ fn coplanar_faces_earlier_is_in_front() {
     // Also from below, and from a skew direction: the rule does not depend on the view.
     for dir in [V3::new(0., 0., 1.), V3::new(0.3, -0.2, -1.0)] {
         let (_, vis) = run(&s, Camera::orthographic(dir, V3::y()).unwrap());
-        close(vis.faces[1].area / vis.faces[0].area, 0.75, 1e-12);
+        close(vis.face(1).area / vis.face(0).area, 0.75, 1e-12);
     }
 }
 
@@ -196,7 +196,7 @@ fn shared_edge_fold_hides_exactly() {
     );
     let (_, vis) = run(&scene(vec![("fold", over)]), top());
     assert_eq!(areas(&vis), vec![0.0, 2.0]);
-    assert!(vis.faces[0].visible.is_empty());
+    assert!(vis.face(0).visible.is_empty());
     let under = mesh(
         &[[0., 0., 0.], [2., 0., 0.], [0., 2., 0.], [0., 0., -1.]],
         &[&[0, 1, 2], &[1, 2, 3]],
@@ -261,8 +261,8 @@ fn perspective_sees_near_box_in_front() {
     let cam = Camera::perspective(P3::new(0., 0., 3.), P3::origin(), V3::y(), 90.0, 0.01).unwrap();
     let (_, vis) = run(&s, cam);
     // Screen x = x / d (f = 1): back at d = 3 spans [-2/3, 2/3]; front at d = 2 spans [-1/4, 1/4].
-    close(vis.faces[1].area, 0.25, 1e-14);
-    close(vis.faces[0].area, 16.0 / 9.0 - 0.25, 1e-14);
+    close(vis.face(1).area, 0.25, 1e-14);
+    close(vis.face(0).area, 16.0 / 9.0 - 0.25, 1e-14);
 }
 
 #[test]
@@ -296,7 +296,7 @@ fn perspective_eye_in_a_face_plane_sees_it_edge_on() {
     // Every face of the box is behind the wall.
     let box_faces = view.tree.object("box").unwrap().faces.clone();
     for f in box_faces {
-        assert_eq!(vis.faces[f as usize].area, 0.0, "face {f} leaks");
+        assert_eq!(vis.face(f as usize).area, 0.0, "face {f} leaks");
     }
 }
 

@@ -369,22 +369,31 @@ fn scene_behind_wall() -> Scene {
     Scene::new(Object::group("", objs), "test".into())
 }
 
+/// Inboxes on (culled view, VISFAC2's complete-hide test) against inboxes off (every face
+/// projected and walked): the visible-polygon sets must be equal, face by face.
 fn assert_same_visibility(mut scene: Scene, camera: Camera, expect_pruning: bool) {
     compute_inboxes(&mut scene.root);
-    let view = View::new(&scene, camera);
-    let with = solve(&view, PassOptions { use_inbox: true });
-    let without = solve(&view, PassOptions { use_inbox: false });
-    assert_eq!(with.faces.len(), without.faces.len());
-    for (f, (a, b)) in with.faces.iter().zip(&without.faces).enumerate() {
-        assert_eq!(
-            a.visible, b.visible,
-            "face {f} differs: {:?} {:?}",
-            view.screen.faces[f].facing, view.screen.leaves
-        );
+    let culled = View::culled(&scene, camera);
+    let full = View::new(&scene, camera);
+    let with = solve(&culled, PassOptions { use_inbox: true });
+    let without = solve(&full, PassOptions { use_inbox: false });
+    assert_eq!(with.face_count(), without.face_count());
+    for (f, (a, b)) in with.by_id().into_iter().zip(without.by_id()).enumerate() {
+        assert_eq!(a.visible, b.visible, "face {f} differs");
+        assert_eq!(a.area, b.area, "face {f} differs");
     }
+    // The JSON a regression suite keeps is the same bytes.
+    assert_eq!(
+        kepler::emit::to_json(&culled, &with, None),
+        kepler::emit::to_json(&full, &without, None)
+    );
     if expect_pruning {
         let c = with.counters;
-        assert!(c.subtrees_hidden + c.emptied_by_inbox > 0, "{c:?}");
+        assert!(
+            c.subtrees_hidden > 0 && c.emptied_by_inbox + c.subtrees_hidden > 0,
+            "{c:?}"
+        );
+        assert!(with.solved_count() < with.face_count());
     }
 }
 
@@ -399,4 +408,59 @@ fn inboxes_do_not_change_visibility() {
     assert_same_visibility(scene_behind_wall(), persp, false);
     let side = Camera::orthographic(V3::new(1., 0.4, 0.2), V3::z()).unwrap();
     assert_same_visibility(scene_behind_wall(), side, false);
+}
+
+/// Random scenes: groups of boxes and polyhedra (some instanced) at random depths under a few
+/// random slabs, seen from random orthographic and perspective cameras. Culling must never
+/// change a visible polygon, and across the set it must actually cull.
+#[test]
+fn culling_random_scenes_changes_nothing() {
+    let mut rng = Rng(0x5eed_cafe);
+    let ico = Arc::new(Object::from_mesh(
+        "ico",
+        prim(primitives::by_name("icosahedron").unwrap()),
+    ));
+    let mut culled = 0;
+    for _ in 0..12 {
+        let mut objs = Vec::new();
+        for w in 0..rng.range(1.0, 3.99) as usize {
+            let (x, y, z) = (rng.range(-6., 0.), rng.range(-6., 0.), rng.range(2., 6.));
+            let (sx, sy) = (rng.range(4., 10.), rng.range(4., 10.));
+            objs.push(Object::from_mesh(
+                format!("slab{w}"),
+                cuboid([x, y, z], [x + sx, y + sy, z + rng.range(0.2, 1.)]),
+            ));
+        }
+        for g in 0..rng.range(2.0, 5.99) as usize {
+            let parts = (0..rng.range(1.0, 4.99) as usize)
+                .map(|k| {
+                    let (x, y, z) = (rng.range(-5., 5.), rng.range(-5., 5.), rng.range(-4., 1.5));
+                    if rng.next() < 0.4 {
+                        Object::instance(format!("i{k}"), ico.clone(), translate(x, y, z))
+                    } else {
+                        let s = rng.range(0.3, 2.);
+                        Object::from_mesh(format!("b{k}"), cuboid([x, y, z], [x + s, y + s, z + s]))
+                    }
+                })
+                .collect();
+            objs.push(Object::group(format!("g{g}"), parts));
+        }
+        let scene = Scene::new(Object::group("", objs), "random".into());
+        let dir = V3::new(rng.range(-0.4, 0.4), rng.range(-0.4, 0.4), -1.);
+        let camera = if rng.next() < 0.5 {
+            Camera::orthographic(dir, V3::y()).unwrap()
+        } else {
+            let eye = P3::new(rng.range(-3., 3.), rng.range(-3., 3.), rng.range(15., 30.));
+            Camera::perspective(eye, P3::origin(), V3::y(), 50., 0.1).unwrap()
+        };
+        let mut prepared = scene.clone();
+        compute_inboxes(&mut prepared.root);
+        culled += (View::culled(&prepared, camera).culled.subtrees > 0) as usize;
+        assert_same_visibility(scene, camera, false);
+    }
+    eprintln!("{culled} of 12 random scenes culled a subtree");
+    assert!(
+        culled >= 3,
+        "only {culled} random scenes exercised the cull"
+    );
 }

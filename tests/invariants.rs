@@ -74,7 +74,7 @@ fn cameras(rng: &mut Rng, centre: P3) -> Vec<Camera> {
 
 /// Checks disjointness and coverage to `tol` of the projected scene area.
 fn check_partition(view: &View, vis: &Visibility, tol: f64) {
-    let vtps: Vec<_> = vis.faces.iter().map(|f| &f.visible).collect();
+    let vtps: Vec<_> = vis.by_id().into_iter().map(|f| &f.visible).collect();
     let projected: Vec<Vec<Vec<Vec<Pt2>>>> = (0..view.screen.faces.len())
         .filter(|&f| matches!(view.screen.faces[f].facing, Facing::Front | Facing::Back))
         .map(|f| vec![vec![view.screen.ring_ccw(f)]])
@@ -121,10 +121,10 @@ fn check_visp(view: &View, vis: &Visibility, rng: &mut Rng, per_face: usize) -> 
             let p = w[0] + (w[k] - w[0]) * a + (w[k + 1] - w[0]) * b;
             let s = view.camera.project(&p);
             let q = [s[0], s[1]];
-            if near_boundary(&vis.faces[id].visible, q) || self_overlap(view, id, q) {
+            if near_boundary(&vis.face(id).visible, q) || self_overlap(view, id, q) {
                 continue;
             }
-            let in_vtp = match locate(&vis.faces[id].visible, q) {
+            let in_vtp = match locate(&vis.face(id).visible, q) {
                 Side::Inside => true,
                 Side::Outside => false,
                 Side::Boundary => continue,
@@ -213,17 +213,17 @@ fn offset_and_scaled_coordinates_give_scaled_answers() {
         let (_, a) = run(&base, cam);
         let (_, b) = run(&shifted, cam);
         let (_, c) = run(&shrunk, cam);
-        let total: f64 = a.faces.iter().map(|f| f.area).sum();
-        for i in 0..a.faces.len() {
+        let total: f64 = a.by_id().into_iter().map(|f| f.area).sum();
+        for i in 0..a.face_count() {
             // Offsetting by 1e6 leaves ~1e-10 of absolute precision in the coordinates.
             assert!(
-                (a.faces[i].area - b.faces[i].area).abs() <= 1e-9 * total,
+                (a.face(i).area - b.face(i).area).abs() <= 1e-9 * total,
                 "face {i}: {} vs {}",
-                a.faces[i].area,
-                b.faces[i].area
+                a.face(i).area,
+                b.face(i).area
             );
             assert!(
-                (a.faces[i].area * 1e-12 - c.faces[i].area).abs() <= 1e-9 * total * 1e-12,
+                (a.face(i).area * 1e-12 - c.face(i).area).abs() <= 1e-9 * total * 1e-12,
                 "face {i}"
             );
         }
@@ -244,7 +244,7 @@ fn output_is_identical_whatever_the_thread_count() {
         .build()
         .unwrap()
         .install(|| run(&s, cam).1);
-    assert_eq!(one.faces, many.faces);
+    assert_eq!(one.by_id(), many.by_id());
     assert_eq!(one.counters, many.counters);
 }
 

@@ -61,7 +61,7 @@ pub fn run(a: CheckArgs) -> Result<ExitCode> {
         anyhow::bail!("--tol {}: expected a finite number >= 0", a.tol);
     }
     let scene = load(&a.scene, a.quiet)?;
-    let view = View::new(&scene, a.camera.camera(&scene)?);
+    let view = View::culled(&scene, a.camera.camera(&scene)?);
     let vis = solve(&view, PassOptions::default());
     let json = to_json(&view, &vis, None);
     if a.update {
@@ -77,12 +77,12 @@ pub fn run(a: CheckArgs) -> Result<ExitCode> {
     if matrix != current_matrix(&view) {
         out("note: the camera differs from the golden's");
     }
-    let scene_area: f64 = vis.faces.iter().map(|f| f.area).sum();
+    let scene_area: f64 = vis.total_area();
     let ids: std::collections::BTreeSet<u64> =
         golden.keys().chain(current.keys()).copied().collect();
     let mut changed = 0;
     for id in ids {
-        let projected = vis.faces.get(id as usize).map_or(0.0, |f| f.projected_area);
+        let projected = vis.face(id as usize).projected_area;
         let line = match (golden.get(&id), current.get(&id)) {
             (Some(g), Some(c)) => {
                 let diff = xor_area(&g.visible, &c.visible);

@@ -8,7 +8,7 @@ use anyhow::Result;
 use clap::{Args, ValueEnum};
 use kepler::emit::{draw, to_json, Drawing, EdgeOptions, EdgeSet, LineOptions};
 use kepler::scene::Scene;
-use kepler::view::View;
+use kepler::view::{Cull, View};
 use kepler::visibility::{solve, PassOptions};
 
 use super::{load_only, write, CameraArgs};
@@ -129,9 +129,18 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
     let t = Instant::now();
     kepler::prepare::prepare(&mut scene);
     times.push(("prepare", t.elapsed()));
-    let t = Instant::now();
     let camera = a.camera.camera(&scene)?;
-    let view = View::new(&scene, camera);
+    let t = Instant::now();
+    // Hidden lines need every face's facing, so they keep every face in the view.
+    let cull = if a.no_inbox || a.hidden {
+        Cull::none(&scene)
+    } else {
+        Cull::new(&scene, &camera)
+    };
+    times.push(("cull", t.elapsed()));
+    let t = Instant::now();
+    let view = View::from_cull(&scene, camera, &cull);
+    drop(cull);
     times.push(("view", t.elapsed()));
     let t = Instant::now();
     let vis = solve(

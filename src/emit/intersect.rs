@@ -185,7 +185,10 @@ mod tests {
         let mut e = [segs[0][0], segs[0][1]];
         e.sort_by(|p, q| p.y.total_cmp(&q.y));
         assert_eq!(e, [P3::new(1., 0.5, 0.), P3::new(1., 2., 0.)]);
-        let w = WorldFaces { faces: vec![f, g] };
+        let w = WorldFaces {
+            faces: vec![f, g],
+            paths: Vec::new(),
+        };
         let all = intersection_edges(&w, |_| true);
         assert_eq!(all.len(), 1);
         assert_eq!(all[0].faces, vec![0, 1]);

@@ -52,7 +52,7 @@ fn list<T>(s: &mut String, items: &[T], mut each: impl FnMut(&mut String, &T)) {
 /// The JSON document for a view's visible-polygon set (faces with nothing visible left out),
 /// with `lines` when given.
 pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
-    let mut s = String::with_capacity(256 + vis.faces.len() * 128);
+    let mut s = String::with_capacity(256 + vis.solved_count() * 128);
     s.push_str("{\"format\":\"kepler-visible/1\",\n\"camera\":{\"projection\":");
     s.push_str(match view.camera.projection {
         Projection::Orthographic => "\"orthographic\"",
@@ -68,7 +68,7 @@ pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
     }
     s.push_str("]},\n\"faces\":[");
     let mut first = true;
-    for (id, f) in vis.faces.iter().enumerate() {
+    for (id, f) in vis.iter() {
         if f.visible.is_empty() {
             continue;
         }

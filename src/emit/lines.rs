@@ -48,6 +48,8 @@ pub struct Drawing {
     pub visible: Vec<Stroke>,
     /// Hidden polylines (empty unless asked for).
     pub hidden: Vec<Stroke>,
+    /// Object path of every leaf (strokes name their leaf by index here).
+    pub leaf_paths: Vec<String>,
 }
 
 impl Drawing {
@@ -66,9 +68,11 @@ pub fn draw(scene: &Scene, view: &View, vis: &Visibility, opts: &LineOptions) ->
     let world = WorldFaces::build(scene);
     let mut edges = mesh_edges(&world, view, &opts.edges);
     edges.extend(intersection_edges(&world, |f| {
-        opts.hidden || view.screen.faces.get(f).is_some_and(|s| s.is_occluder())
+        opts.hidden || view.screen.face_is_occluder(f)
     }));
-    split_edges(view, vis, &edges, opts.hidden)
+    let mut drawing = split_edges(view, vis, &edges, opts.hidden);
+    drawing.leaf_paths = world.paths;
+    drawing
 }
 
 /// The screen image of the world segment a → b, clipped to the near plane (perspective);
@@ -102,8 +106,7 @@ pub fn project_segment(camera: &Camera, a: &P3, b: &P3) -> Option<[Pt2; 2]> {
 pub fn visible_intervals(a: Pt2, b: Pt2, faces: &[u32], vis: &Visibility) -> Vec<Interval> {
     let lists: Vec<Vec<Interval>> = faces
         .iter()
-        .filter_map(|&f| vis.faces.get(f as usize))
-        .map(|fv| intervals_in(a, b, &fv.visible))
+        .map(|&f| intervals_in(a, b, &vis.face(f as usize).visible))
         .collect();
     union(&lists)
 }
@@ -145,6 +148,7 @@ pub fn split_edges(view: &View, vis: &Visibility, edges: &[Edge], hidden: bool) 
     Drawing {
         visible: strokes(vis_groups),
         hidden: strokes(hid_groups),
+        leaf_paths: Vec::new(),
     }
 }
 

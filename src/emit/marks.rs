@@ -23,9 +23,7 @@ pub fn face_marks(scene: &Scene, view: &View, vis: &Visibility) -> Vec<Stroke> {
     for (li, leaf) in scene.leaves().iter().enumerate() {
         for (k, face) in leaf.mesh.faces.iter().enumerate() {
             let Some(tex) = &face.texture else { continue };
-            let Some(fv) = vis.faces.get(leaf.first_face + k) else {
-                continue;
-            };
+            let fv = vis.face(leaf.first_face + k);
             if fv.visible.is_empty() {
                 continue;
             }

@@ -125,11 +125,10 @@ pub fn picture(
     let layers: Vec<Layer> = by_leaf
         .into_iter()
         .map(|(leaf, pens)| Layer {
-            name: view
-                .screen
-                .leaves
+            name: drawing
+                .leaf_paths
                 .get(leaf as usize)
-                .map(|l| l.path.clone())
+                .cloned()
                 .unwrap_or_default(),
             pens: pens.into_iter().collect(),
         })
@@ -189,9 +188,7 @@ fn fills(view: &View, vis: &Visibility) -> Vec<Fill> {
     let (u, v) = (row(0), row(1));
     let w = u.cross(&v);
     let light = (u * -0.4 + v * 0.6 + w).normalize();
-    vis.faces
-        .iter()
-        .enumerate()
+    vis.iter()
         .filter(|(_, fv)| !fv.visible.is_empty())
         .map(|(f, fv)| {
             let n = world_normal(view, f);

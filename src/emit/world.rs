@@ -7,7 +7,7 @@ use crate::scene::Scene;
 /// One face in world space.
 #[derive(Debug, Clone)]
 pub struct WorldFace {
-    /// Index of the leaf object (as in [`crate::view::ScreenFaces::leaves`]).
+    /// Index of the leaf object in [`Scene::leaves`] order.
     pub leaf: u32,
     /// The face's vertex indices in its leaf mesh.
     pub vertices: Vec<u32>,
@@ -24,13 +24,16 @@ pub struct WorldFace {
 pub struct WorldFaces {
     /// Faces by global id.
     pub faces: Vec<WorldFace>,
+    /// Object path of every leaf, in [`Scene::leaves`] order.
+    pub paths: Vec<String>,
 }
 
 impl WorldFaces {
     /// The world polygons of every face of `scene`, in global face order.
     pub fn build(scene: &Scene) -> WorldFaces {
         let mut faces = Vec::with_capacity(scene.face_count());
-        for (li, leaf) in scene.leaves().iter().enumerate() {
+        let leaves = scene.leaves();
+        for (li, leaf) in leaves.iter().enumerate() {
             let world: Vec<P3> = (0..leaf.mesh.vertices.len() as u32)
                 .map(|k| leaf.world_vertex(k))
                 .collect();
@@ -45,7 +48,8 @@ impl WorldFaces {
                 });
             }
         }
-        WorldFaces { faces }
+        let paths = leaves.into_iter().map(|l| l.path).collect();
+        WorldFaces { faces, paths }
     }
 }
 

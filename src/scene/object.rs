@@ -66,8 +66,12 @@ pub struct Object {
     pub cbox: Box3,
     /// Inscribed box, in the same frame, where known.
     pub inbox: Option<Box3>,
-    /// Subobjects, or vertices and faces, or an instance.
+    /// Subobjects, or vertices and faces, or an instance. Edits may replace a prototype by
+    /// a prepared copy but must not change the number of faces below.
     pub content: Content,
+    /// Faces in the subtree, instances expanded (kept so that culling can skip a subtree in
+    /// constant time).
+    faces: usize,
 }
 
 impl Object {
@@ -78,6 +82,7 @@ impl Object {
             name: name.into(),
             cbox,
             inbox: None,
+            faces: mesh.faces.len(),
             content: Content::Mesh(mesh),
         }
     }
@@ -89,6 +94,7 @@ impl Object {
             name: name.into(),
             cbox,
             inbox: None,
+            faces: subs.iter().map(|s| s.faces).sum(),
             content: Content::Subobjects(subs),
         }
     }
@@ -105,6 +111,7 @@ impl Object {
             name: name.into(),
             cbox,
             inbox: None,
+            faces: prototype.faces,
             content: Content::Instance(Instance {
                 prototype,
                 transform,
@@ -149,11 +156,7 @@ impl Object {
 
     /// Number of faces in the whole subtree, instances expanded.
     pub fn face_count(&self) -> usize {
-        match &self.content {
-            Content::Mesh(m) => m.faces.len(),
-            Content::Subobjects(s) => s.iter().map(Object::face_count).sum(),
-            Content::Instance(i) => i.prototype.face_count(),
-        }
+        self.faces
     }
 
     /// Number of vertices in the whole subtree, instances expanded.

@@ -1,10 +1,12 @@
 //! The view stage: a camera turns the scene into screen-space faces and a view tree.
 
 pub mod camera;
+pub mod cull;
 pub mod screen;
 pub mod tree;
 
 pub use camera::{Camera, Projection};
+pub use cull::Cull;
 pub use screen::{Facing, ScreenFace, ScreenFaces};
 pub use tree::{ObjectNode, ViewTree};
 
@@ -19,17 +21,46 @@ pub struct View {
     pub screen: ScreenFaces,
     /// The object tree with screen bounds.
     pub tree: ViewTree,
+    /// What culling hid before projection: subtrees, their faces, and objects tested.
+    pub culled: CullSummary,
+}
+
+/// What the cull did, for the counters.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct CullSummary {
+    /// Subtrees found HIDDEN as a whole.
+    pub subtrees: u64,
+    /// Faces in them.
+    pub faces: u64,
+    /// Objects whose CBOX was tested.
+    pub tested: u64,
 }
 
 impl View {
-    /// Projects `scene` with `camera`.
+    /// Projects every face of `scene` with `camera`.
     pub fn new(scene: &Scene, camera: Camera) -> View {
-        let screen = ScreenFaces::build(scene, &camera);
-        let tree = ViewTree::build(scene, &camera, &screen);
+        Self::from_cull(scene, camera, &Cull::none(scene))
+    }
+
+    /// Culls `scene` with its inboxes, then projects what is left.
+    pub fn culled(scene: &Scene, camera: Camera) -> View {
+        Self::from_cull(scene, camera, &Cull::new(scene, &camera))
+    }
+
+    /// Projects the faces a cull of `scene` kept: hidden subtrees are left out of the screen
+    /// faces and the tree, and their faces' VTPs are empty.
+    pub fn from_cull(scene: &Scene, camera: Camera, cull: &Cull) -> View {
+        let screen = ScreenFaces::from_cull(cull, &camera);
+        let tree = ViewTree::build(scene, &camera, &screen, &cull.hidden);
         View {
             camera,
             screen,
             tree,
+            culled: CullSummary {
+                subtrees: cull.hidden.len() as u64,
+                faces: cull.hidden_faces(),
+                tested: cull.objects_tested,
+            },
         }
     }
 }

@@ -1,8 +1,11 @@
-//! Screen-space faces: every face of the scene projected into the standard view, in global face order.
+//! Screen-space faces: every face of the scene (outside hidden subtrees) projected into the
+//! standard view, in global face order.
 
 use crate::geom::poly2::{orient2d, ring_area, Pt2};
 use crate::geom::P3;
 use crate::scene::{Leaf, Scene};
+
+use super::cull::Cull;
 
 use super::camera::{Camera, Projection};
 
@@ -83,22 +86,31 @@ pub struct ScreenFaces {
     pub det_sign: f64,
     /// The camera that made them.
     pub camera: Option<Camera>,
-    /// Leaf objects in global order.
+    /// The projected leaf objects in global order (leaves of hidden subtrees are absent).
     pub leaves: Vec<LeafInfo>,
 }
 
 impl ScreenFaces {
     /// Projects every face of `scene` with `camera`.
     pub fn build(scene: &Scene, camera: &Camera) -> ScreenFaces {
+        Self::from_cull(&Cull::none(scene), camera)
+    }
+
+    /// Projects the faces of the leaves a cull kept; faces of hidden subtrees get no pieces.
+    pub fn from_cull(cull: &Cull, camera: &Camera) -> ScreenFaces {
         let mut out = ScreenFaces {
             det_sign: camera.matrix.determinant().signum(),
             camera: Some(*camera),
             ..Default::default()
         };
         out.pieces.push(0);
-        for (li, leaf) in scene.leaves().iter().enumerate() {
+        for (li, leaf) in cull.leaves.iter().enumerate() {
+            out.pieces
+                .resize(leaf.first_face + 1, out.faces.len() as u32);
             out.add_leaf(li as u32, leaf, camera);
         }
+        out.pieces
+            .resize(cull.face_count as usize + 1, out.faces.len() as u32);
         out
     }
 
@@ -146,6 +158,13 @@ impl ScreenFaces {
         } else {
             Facing::EdgeOn
         }
+    }
+
+    /// True when some piece of face `id` can hide something (projected, not culled, not
+    /// edge-on).
+    pub fn face_is_occluder(&self, id: usize) -> bool {
+        let r = self.piece_range(id as u32..id as u32 + 1);
+        r.into_iter().any(|p| self.faces[p as usize].is_occluder())
     }
 
     /// The world points of all pieces of face `id` (the face's own corners when it is one piece).

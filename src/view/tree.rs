@@ -6,11 +6,13 @@
 
 use std::ops::Range;
 
-use crate::geom::poly2::{orient2d, Pt2};
+use crate::geom::hull2::convex_hull;
+use crate::geom::poly2::Pt2;
 use crate::geom::{Box3, M4};
 use crate::scene::{Content, Object, Scene};
 
 use super::camera::{Camera, Projection};
+use super::cull::HiddenObject;
 use super::screen::ScreenFaces;
 
 /// Faces per BVH leaf inside a large mesh.
@@ -85,13 +87,20 @@ impl ViewTree {
         self.nodes.len() as u32 - 1
     }
 
-    /// Builds the tree of `scene` over its screen faces.
-    pub fn build(scene: &Scene, camera: &Camera, sf: &ScreenFaces) -> ViewTree {
+    /// Builds the tree of `scene` over its screen faces; `hidden` objects (in global face
+    /// order) become empty nodes.
+    pub fn build(
+        scene: &Scene,
+        camera: &Camera,
+        sf: &ScreenFaces,
+        hidden: &[HiddenObject],
+    ) -> ViewTree {
         let mut b = Builder {
             tree: ViewTree::default(),
             sf,
             camera,
             next_face: 0,
+            hidden,
         };
         b.object(&scene.root, &M4::identity(), "", None);
         b.tree
@@ -108,12 +117,23 @@ struct Builder<'a> {
     sf: &'a ScreenFaces,
     camera: &'a Camera,
     next_face: u32,
+    /// Hidden objects not yet met, in global face order.
+    hidden: &'a [HiddenObject<'a>],
 }
 
 impl Builder<'_> {
     /// Builds the node of `obj` placed by `xf`; `inbox` is an inbox in `xf`'s source frame.
     fn object(&mut self, obj: &Object, xf: &M4, path: &str, slot: Option<usize>) -> u32 {
         let first = self.next_face;
+        if let Some(n) = self.hidden_here(obj) {
+            self.next_face += n;
+            let node = self.push(empty_node());
+            if let Some(s) = slot {
+                self.tree.objects[s].node = node;
+                self.tree.objects[s].faces = first..self.next_face;
+            }
+            return node;
+        }
         let inbox = obj.inbox;
         let node = match &obj.content {
             Content::Mesh(m) => {
@@ -162,6 +182,16 @@ impl Builder<'_> {
             self.tree.objects[s].faces = first..self.next_face;
         }
         node
+    }
+
+    /// The face count of `obj` when it is the next hidden object (then consumed).
+    fn hidden_here(&mut self, obj: &Object) -> Option<u32> {
+        let h = self.hidden.first()?;
+        if h.first_face != self.next_face || !std::ptr::eq(h.object, obj) {
+            return None;
+        }
+        self.hidden = &self.hidden[1..];
+        Some(h.face_count)
     }
 
     fn attach_inbox(&mut self, node: u32, b: &Box3, xf: &M4) {
@@ -275,51 +305,4 @@ pub fn union_rect(a: &[f64; 4], b: &[f64; 4]) -> [f64; 4] {
         a[2].max(b[2]),
         a[3].max(b[3]),
     ]
-}
-
-/// Convex hull (Andrew's monotone chain, exact turns), counter-clockwise, no collinear points.
-pub fn convex_hull(mut pts: Vec<Pt2>) -> Vec<Pt2> {
-    pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-    pts.dedup();
-    if pts.len() < 3 {
-        return pts;
-    }
-    let mut hull: Vec<Pt2> = Vec::with_capacity(pts.len() * 2);
-    for pass in 0..2 {
-        let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &Pt2>> = if pass == 0 {
-            Box::new(pts.iter())
-        } else {
-            Box::new(pts.iter().rev())
-        };
-        for &p in iter {
-            while hull.len() >= start + 2
-                && orient2d(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
-            {
-                hull.pop();
-            }
-            hull.push(p);
-        }
-        hull.pop();
-    }
-    hull
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn hull_of_square_with_inner_and_collinear_points() {
-        let h = convex_hull(vec![
-            [0., 0.],
-            [1., 0.],
-            [2., 0.],
-            [2., 2.],
-            [0., 2.],
-            [1., 1.],
-            [0., 1.],
-        ]);
-        assert_eq!(h, vec![[0., 0.], [2., 0.], [2., 2.], [0., 2.]]);
-    }
 }

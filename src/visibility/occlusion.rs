@@ -2,6 +2,7 @@
 //! of F's plane. Sides are decided exactly (robust orient3d) on world coordinates, so
 //! coplanar faces, shared edges and shared vertices are recognised without tolerances.
 
+use crate::geom::hull2::has_turn;
 use crate::geom::poly2::{orient2d, Pt2};
 use crate::geom::P3;
 use crate::view::{Facing, Projection, ScreenFaces};
@@ -147,25 +148,6 @@ fn edge_separates(a: &[Pt2], b: &[Pt2]) -> bool {
     })
 }
 
-/// True when some three consecutive points of the ring make a proper turn (exact): the
-/// ring encloses area.
-pub fn has_turn(r: &[Pt2]) -> bool {
-    let n = r.len();
-    (0..n).any(|i| orient2d(r[i], r[(i + 1) % n], r[(i + 2) % n]) != 0.0)
-}
-
-/// True when convex counter-clockwise `outer` (with area) contains every point of `inner` (closed).
-pub fn covers_convex(outer: &[Pt2], inner: &[Pt2]) -> bool {
-    if !has_turn(outer) {
-        return false;
-    }
-    let n = outer.len();
-    (0..n).all(|i| {
-        let (p, q) = (outer[i], outer[(i + 1) % n]);
-        p == q || inner.iter().all(|&r| orient2d(p, q, r) >= 0.0)
-    })
-}
-
 /// True when the rectangles share interior area.
 #[inline]
 pub fn rects_overlap(a: &[f64; 4], b: &[f64; 4]) -> bool {
@@ -183,19 +165,5 @@ mod tests {
         assert!(separated_convex(&f, &g));
         let h = [[0.2, 0.2], [2., 0.2], [0.2, 2.]];
         assert!(!separated_convex(&f, &h));
-    }
-
-    #[test]
-    fn degenerate_ring_covers_nothing() {
-        let p = [1.0, 1.0];
-        assert!(!covers_convex(&[p, p, p], &[[0., 0.], [1., 0.], [0., 1.]]));
-        assert!(!covers_convex(&[[0., 0.], [1., 1.], [2., 2.]], &[[1., 1.]]));
-    }
-
-    #[test]
-    fn cover_test_is_closed() {
-        let big = [[0., 0.], [2., 0.], [2., 2.], [0., 2.]];
-        assert!(covers_convex(&big, &[[0., 0.], [2., 2.], [1., 0.5]]));
-        assert!(!covers_convex(&big, &[[0., 0.], [2.1, 2.]]));
     }
 }

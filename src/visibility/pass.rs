@@ -1,12 +1,11 @@
-//! The whole-scene pass: every face's VTP, in parallel over faces, with whole subtrees found
-//! HIDDEN by inboxes skipped before any of their faces is touched.
+//! The whole-scene pass: every face's VTP, in parallel over faces. Subtrees the view stage
+//! culled (HIDDEN by inboxes) have no pieces, so the pass never touches their faces.
 
 use rayon::prelude::*;
 
 use crate::geom::poly2::{canonicalize, multipolygon_area, MultiPolygon};
 use crate::view::{Facing, View};
 
-use super::occlusion::{covers_convex, rects_overlap};
 use super::stats::Counters;
 use super::visfac::{visfac, Scratch, Vtp};
 
@@ -47,22 +46,72 @@ impl FaceVisibility {
     }
 }
 
-/// The visible-polygon set of a view.
+/// Nothing visible: the VTP of a face in a hidden subtree.
+static HIDDEN: FaceVisibility = FaceVisibility {
+    visible: Vec::new(),
+    area: 0.0,
+    projected_area: 0.0,
+};
+
+/// The visible-polygon set of a view: the faces the pass solved (a warped face's planar
+/// pieces merged), by ascending global id; faces of culled subtrees are absent (empty).
 #[derive(Debug, Clone)]
 pub struct Visibility {
-    /// One entry per face, by global face id (a warped face's planar pieces merged).
-    pub faces: Vec<FaceVisibility>,
+    ids: Vec<u32>,
+    faces: Vec<FaceVisibility>,
+    face_count: usize,
     /// What the pass did.
     pub counters: Counters,
 }
 
+impl Visibility {
+    /// Face `id`'s visibility; empty (with no projected area) for a face of a culled subtree.
+    pub fn face(&self, id: usize) -> &FaceVisibility {
+        if self.ids.len() == self.face_count {
+            return self.faces.get(id).unwrap_or(&HIDDEN);
+        }
+        match self.ids.binary_search(&(id as u32)) {
+            Ok(k) => &self.faces[k],
+            Err(_) => &HIDDEN,
+        }
+    }
+
+    /// The solved faces with their global ids, ascending.
+    pub fn iter(&self) -> impl Iterator<Item = (usize, &FaceVisibility)> + '_ {
+        self.ids.iter().map(|&i| i as usize).zip(self.faces.iter())
+    }
+
+    /// Every face's visibility by global id, solved or not.
+    pub fn by_id(&self) -> Vec<&FaceVisibility> {
+        (0..self.face_count).map(|id| self.face(id)).collect()
+    }
+
+    /// Number of faces in the scene (solved or not).
+    pub fn face_count(&self) -> usize {
+        self.face_count
+    }
+
+    /// Number of faces the pass solved.
+    pub fn solved_count(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// Total visible area.
+    pub fn total_area(&self) -> f64 {
+        self.faces.iter().map(|f| f.area).sum()
+    }
+}
+
+/// Below this many pieces the pass runs on the calling thread.
+const SEQUENTIAL_BELOW: usize = 64;
+
 /// Computes every face's VTP against the whole scene.
 pub fn solve(view: &View, opts: PassOptions) -> Visibility {
-    let mut counters = Counters::default();
-    let hidden = if opts.use_inbox {
-        hidden_subtrees(view, &mut counters)
-    } else {
-        vec![false; view.screen.faces.len()]
+    let mut counters = Counters {
+        subtrees_tested: view.culled.tested,
+        subtrees_hidden: view.culled.subtrees,
+        faces_in_hidden_subtrees: view.culled.faces,
+        ..Counters::default()
     };
     let view_used: std::borrow::Cow<View> = if opts.use_inbox {
         std::borrow::Cow::Borrowed(view)
@@ -71,23 +120,43 @@ pub fn solve(view: &View, opts: PassOptions) -> Visibility {
     };
     let root = view_used.tree.root();
     let sf = &view.screen;
-    let results: Vec<(FaceVisibility, Counters)> = (0..sf.faces.len())
-        .into_par_iter()
-        .map_init(Scratch::default, |scratch, f| {
-            solve_face(&view_used, root, f, hidden[f], scratch)
-        })
-        .collect();
+    // Only projected leaves have pieces: the pass's work is theirs alone. A few pieces are
+    // solved on this thread: waking the pool would cost more than the work.
+    let solve = |scratch: &mut Scratch, f| solve_face(&view_used, root, f, scratch);
+    let results: Vec<(FaceVisibility, Counters)> = if sf.faces.len() < SEQUENTIAL_BELOW {
+        let mut scratch = Scratch::default();
+        (0..sf.faces.len())
+            .map(|f| solve(&mut scratch, f))
+            .collect()
+    } else {
+        (0..sf.faces.len())
+            .into_par_iter()
+            .map_init(Scratch::default, solve)
+            .collect()
+    };
     for (_, c) in &results {
         counters += *c;
     }
-    let faces = (0..sf.face_count() as u32)
-        .into_par_iter()
-        .map(|id| {
-            let r = sf.piece_range(id..id + 1);
-            merge_pieces(&results[r.start as usize..r.end as usize], sf, r)
-        })
+    let ids: Vec<u32> = sf
+        .leaves
+        .iter()
+        .flat_map(|l| l.first_face..l.first_face + l.face_count)
         .collect();
-    Visibility { faces, counters }
+    let merge = |&id: &u32| {
+        let r = sf.piece_range(id..id + 1);
+        merge_pieces(&results[r.start as usize..r.end as usize], sf, r)
+    };
+    let faces = if ids.len() < SEQUENTIAL_BELOW {
+        ids.iter().map(merge).collect()
+    } else {
+        ids.par_iter().map(merge).collect()
+    };
+    Visibility {
+        ids,
+        faces,
+        face_count: sf.face_count(),
+        counters,
+    }
 }
 
 /// One face's visibility from its pieces' (a planar face is one piece; the pieces of a warped
@@ -133,7 +202,6 @@ fn solve_face(
     view: &View,
     root: u32,
     f: usize,
-    hidden: bool,
     scratch: &mut Scratch,
 ) -> (FaceVisibility, Counters) {
     let mut c = Counters::default();
@@ -155,10 +223,6 @@ fn solve_face(
         }
         _ if sf.culled => {
             c.faces_culled += 1;
-            return (empty(projected_area), c);
-        }
-        _ if hidden => {
-            c.faces_in_hidden_subtrees += 1;
             return (empty(projected_area), c);
         }
         _ => {}
@@ -191,74 +255,4 @@ fn ccw_area(view: &View, f: usize) -> f64 {
         s += (a[0] - o[0]) * (b[1] - o[1]) - (b[0] - o[0]) * (a[1] - o[1]);
     }
     0.5 * s
-}
-
-/// Most inboxes tried per object (the largest first): pruning is optional, so a cap only
-/// trades pruning for time, never correctness, and keeps the scan linear in the objects.
-const MAX_INBOX_TESTS: usize = 64;
-
-/// Marks the faces of every named object whose screen bounds lie behind and inside the
-/// projected INBOX of another object: HIDDEN as a whole, without touching its faces.
-fn hidden_subtrees(view: &View, counters: &mut Counters) -> Vec<bool> {
-    let tree = &view.tree;
-    let mut hidden = vec![false; view.screen.faces.len()];
-    // Inboxes by decreasing rectangle area: one that covers a rectangle has at least its
-    // area, so the scan stops at the first smaller one (same answers as a full scan).
-    let area = |r: &[f64; 4]| (r[2] - r[0]).max(0.0) * (r[3] - r[1]).max(0.0);
-    let mut order: Vec<(f64, usize)> = tree
-        .inboxes
-        .iter()
-        .enumerate()
-        .map(|(k, ib)| (area(&ib.rect), k))
-        .collect();
-    order.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
-    for obj in &tree.objects {
-        let pieces = view.screen.piece_range(obj.faces.clone());
-        if pieces.is_empty() || hidden[pieces.start as usize] {
-            continue;
-        }
-        let bounds = match subtree_bounds(view, pieces.clone()) {
-            Some(b) => b,
-            None => continue,
-        };
-        let corners = [
-            [bounds.0[0], bounds.0[1]],
-            [bounds.0[2], bounds.0[1]],
-            [bounds.0[2], bounds.0[3]],
-            [bounds.0[0], bounds.0[3]],
-        ];
-        let need = area(&bounds.0);
-        let by = order
-            .iter()
-            .take_while(|(a, _)| *a >= need)
-            .take(MAX_INBOX_TESTS)
-            .find(|&&(_, k)| {
-                let ib = &tree.inboxes[k];
-                ib.node != obj.node
-                    && bounds.1 < ib.zmin
-                    && rects_overlap(&ib.rect, &bounds.0)
-                    && covers_convex(&ib.hull, &corners)
-            });
-        if by.is_some() {
-            counters.subtrees_hidden += 1;
-            for f in pieces {
-                hidden[f as usize] = true;
-            }
-        }
-    }
-    hidden
-}
-
-/// Screen rectangle and greatest depth of all drawable pieces in a range (None if none).
-fn subtree_bounds(view: &View, faces: std::ops::Range<u32>) -> Option<([f64; 4], f64)> {
-    let mut rect = crate::geom::poly2::EMPTY_RECT;
-    let mut zmax = f64::NEG_INFINITY;
-    for f in faces {
-        let sf = &view.screen.faces[f as usize];
-        if matches!(sf.facing, Facing::Front | Facing::Back) {
-            rect = crate::view::tree::union_rect(&rect, &sf.rect);
-            zmax = zmax.max(sf.zmax);
-        }
-    }
-    (zmax > f64::NEG_INFINITY).then_some((rect, zmax))
 }

@@ -13,6 +13,8 @@ pub struct Counters {
     pub faces_culled: u64,
     /// Faces inside a subtree found HIDDEN as a whole before any face work.
     pub faces_in_hidden_subtrees: u64,
+    /// Subtrees whose CBOX the cull tested against inboxes (before projecting faces).
+    pub subtrees_tested: u64,
     /// Subtrees found HIDDEN as a whole by an inbox before any face work.
     pub subtrees_hidden: u64,
     /// Tree nodes skipped because their CBOX cannot hide the face.
@@ -37,6 +39,7 @@ impl AddAssign for Counters {
         self.faces_edge_on += o.faces_edge_on;
         self.faces_culled += o.faces_culled;
         self.faces_in_hidden_subtrees += o.faces_in_hidden_subtrees;
+        self.subtrees_tested += o.subtrees_tested;
         self.subtrees_hidden += o.subtrees_hidden;
         self.skipped_by_cbox += o.skipped_by_cbox;
         self.emptied_by_inbox += o.emptied_by_inbox;
@@ -57,6 +60,10 @@ impl Counters {
             (
                 "faces culled (back faces of closed solids)",
                 self.faces_culled,
+            ),
+            (
+                "subtrees box-tested before projection",
+                self.subtrees_tested,
             ),
             ("subtrees hidden by inboxes", self.subtrees_hidden),
             ("faces in hidden subtrees", self.faces_in_hidden_subtrees),

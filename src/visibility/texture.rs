@@ -44,8 +44,7 @@ pub fn vtp_in_texture(view: &View, vis: &Visibility, id: usize) -> Option<MultiP
             .map(|q| screen_to_face(view, id, *q).map(|p| frame.to_texture(&p)))
             .collect()
     };
-    vis.faces
-        .get(id)?
+    vis.face(id)
         .visible
         .iter()
         .map(|poly| poly.iter().map(map_ring).collect::<Option<Vec<_>>>())

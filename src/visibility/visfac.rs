@@ -5,14 +5,13 @@
 //! at the leaves each face's occluding region is collected, a single face covering all of F
 //! empties the VTP at once, and the rest are subtracted from F in one batched boolean call.
 
+use crate::geom::hull2::covers_convex;
 use crate::geom::poly2::{MultiPolygon, Pt2, Ring};
 use crate::view::tree::{NodeKind, ScreenInbox};
 use crate::view::View;
 
 use super::clip::{clip_to_rect, subtract};
-use super::occlusion::{
-    covers_convex, occluder_region, rects_overlap, separated_convex, Occlusion, Target,
-};
+use super::occlusion::{occluder_region, rects_overlap, separated_convex, Occlusion, Target};
 use super::stats::Counters;
 
 /// The paper's VISFAC answer: what an object does to a face.

@@ -5,7 +5,7 @@ use crate::geom::P3;
 use crate::view::tree::NodeKind;
 use crate::view::View;
 
-use super::occlusion::covers_convex;
+use crate::geom::hull2::covers_convex;
 
 /// The paper's VISP answer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

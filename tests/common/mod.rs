@@ -84,7 +84,7 @@ pub fn run(scene: &Scene, camera: Camera) -> (View, Visibility) {
 
 /// Areas of every face's VTP.
 pub fn areas(vis: &Visibility) -> Vec<f64> {
-    vis.faces.iter().map(|f| f.area).collect()
+    vis.by_id().into_iter().map(|f| f.area).collect()
 }
 
 /// Asserts |a - b| <= tol * max(1, |b|).

@@ -1,0 +1,240 @@
+//! HIDDEN subtrees found from boxes alone, before any face is projected: an object whose
+//! projected CBOX lies behind and inside the projected INBOX of another object (paper 001,
+//! VISOBJ with inboxes), so the work that follows tracks the visible scene, not the whole.
+//!
+//! The walk goes down the object tree from the root. At each group it projects the INBOXes
+//! of the children (the occluders of that level), then tests every child's CBOX against the
+//! occluders of its own level and of every level above; a hidden child is recorded with its
+//! face range and never entered. Faces of hidden subtrees are never projected and never take
+//! part in the pass: their VTPs are empty, exactly as the full computation would find them.
+//!
+//! Why it is exact: an inbox lies inside the solid of its object; every point behind it along
+//! a ray is behind that solid's front surface. A CBOX whose every corner projects inside the
+//! inbox's screen hull, with every corner's screen depth below the least depth of the inbox's
+//! corners, is therefore hidden everywhere. Projections of boxes
+//! are convex, so testing corners is enough (perspective: only when every corner of both boxes
+//! is in front of the near plane).
+
+use crate::geom::hull2::{convex_hull, covers_convex};
+use crate::geom::poly2::{bounds, Pt2};
+use crate::geom::{Box3, M4};
+use crate::scene::{Content, Leaf, Object, Scene};
+
+use super::camera::{Camera, Projection};
+
+/// Most occluders tried per level for one object (the largest first): pruning is optional,
+/// so a cap only trades pruning for time, never correctness.
+const MAX_TESTS_PER_LEVEL: usize = 64;
+
+/// An object found HIDDEN as a whole, with its place in the global face order.
+#[derive(Debug, Clone, Copy)]
+pub struct HiddenObject<'a> {
+    /// The object (a shared prototype's part appears once per placement, told apart by
+    /// `first_face`).
+    pub object: &'a Object,
+    /// Its first global face id.
+    pub first_face: u32,
+    /// Its number of faces (instances expanded).
+    pub face_count: u32,
+}
+
+/// The result of culling a scene for one camera.
+#[derive(Debug, Clone, Default)]
+pub struct Cull<'a> {
+    /// The leaves outside every hidden subtree, in global face order.
+    pub leaves: Vec<Leaf<'a>>,
+    /// Hidden objects, in global face order (disjoint: a hidden object's parts are not listed).
+    pub hidden: Vec<HiddenObject<'a>>,
+    /// Number of faces in the scene.
+    pub face_count: u32,
+    /// Objects whose CBOX was tested against occluders.
+    pub objects_tested: u64,
+}
+
+impl<'a> Cull<'a> {
+    /// No culling: every leaf of the scene.
+    pub fn none(scene: &'a Scene) -> Cull<'a> {
+        Cull {
+            leaves: scene.leaves(),
+            hidden: Vec::new(),
+            face_count: scene.face_count() as u32,
+            objects_tested: 0,
+        }
+    }
+
+    /// Culls `scene` for `camera` with the inboxes the prepare stage computed.
+    pub fn new(scene: &'a Scene, camera: &Camera) -> Cull<'a> {
+        let mut w = Walker {
+            camera,
+            levels: Vec::new(),
+            path: Vec::new(),
+            out: Cull::default(),
+        };
+        let n = w.object(&scene.root, &M4::identity(), 0);
+        w.out.face_count = n;
+        w.out
+    }
+
+    /// Faces in hidden subtrees.
+    pub fn hidden_faces(&self) -> u64 {
+        self.hidden.iter().map(|h| h.face_count as u64).sum()
+    }
+
+    /// True when face `id` lies in a hidden subtree.
+    pub fn is_hidden(&self, id: u32) -> bool {
+        let k = self
+            .hidden
+            .partition_point(|h| h.first_face + h.face_count <= id);
+        self.hidden.get(k).is_some_and(|h| h.first_face <= id)
+    }
+}
+
+/// A projected INBOX: a convex screen hull in front of everything behind its least depth.
+struct Occluder {
+    hull: Vec<Pt2>,
+    rect: [f64; 4],
+    area: f64,
+    zmin: f64,
+    /// Index of its object among the level's children.
+    owner: usize,
+}
+
+/// A projected CBOX.
+struct Projected {
+    corners: [Pt2; 8],
+    rect: [f64; 4],
+    zmin: f64,
+    zmax: f64,
+}
+
+struct Walker<'a, 'c> {
+    camera: &'c Camera,
+    /// Occluders of every group on the path from the root, largest first in each.
+    levels: Vec<Vec<Occluder>>,
+    path: Vec<&'a str>,
+    out: Cull<'a>,
+}
+
+impl<'a> Walker<'a, '_> {
+    /// Visits `obj` placed by `xf` whose first face is `first`; returns its face count.
+    fn object(&mut self, obj: &'a Object, xf: &M4, first: u32) -> u32 {
+        match &obj.content {
+            Content::Mesh(m) => {
+                self.out.leaves.push(Leaf {
+                    path: self.path.join("/"),
+                    mesh: m,
+                    transform: *xf,
+                    first_face: first as usize,
+                });
+                m.faces.len() as u32
+            }
+            Content::Instance(i) => self.object(&i.prototype, &(xf * i.transform), first),
+            Content::Subobjects(subs) => self.group(subs, xf, first),
+        }
+    }
+
+    fn group(&mut self, subs: &'a [Object], xf: &M4, first: u32) -> u32 {
+        let mut level: Vec<Occluder> = subs
+            .iter()
+            .enumerate()
+            .filter_map(|(k, s)| self.occluder(s, xf, k))
+            .collect();
+        level.sort_by(|a, b| b.area.total_cmp(&a.area).then(a.owner.cmp(&b.owner)));
+        self.levels.push(level);
+        let mut f = first;
+        for (k, s) in subs.iter().enumerate() {
+            self.path.push(&s.name);
+            if self.is_hidden(s, xf, k) {
+                let n = s.face_count() as u32;
+                self.out.hidden.push(HiddenObject {
+                    object: s,
+                    first_face: f,
+                    face_count: n,
+                });
+                f += n;
+            } else {
+                f += self.object(s, xf, f);
+            }
+            self.path.pop();
+        }
+        self.levels.pop();
+        f - first
+    }
+
+    /// The projected inbox of `s` (its own, or its prototype's placed), if it has one wholly
+    /// in front of the near plane.
+    fn occluder(&self, s: &Object, xf: &M4, owner: usize) -> Option<Occluder> {
+        let (b, m) = match (&s.inbox, &s.content) {
+            (Some(b), _) => (*b, *xf),
+            (None, Content::Instance(i)) => (i.prototype.inbox?, xf * i.transform),
+            _ => return None,
+        };
+        if !b.has_interior() {
+            return None;
+        }
+        let p = self.project(&b, &m)?;
+        let hull = convex_hull(p.corners.to_vec());
+        if hull.len() < 3 {
+            return None;
+        }
+        let rect = bounds(hull.iter());
+        Some(Occluder {
+            area: rect_area(&rect),
+            hull,
+            rect,
+            zmin: p.zmin,
+            owner,
+        })
+    }
+
+    /// True when the CBOX of child `k` lies behind and inside an occluder of some level.
+    fn is_hidden(&mut self, s: &Object, xf: &M4, k: usize) -> bool {
+        if s.cbox.is_empty() {
+            return false;
+        }
+        let Some(p) = self.project(&s.cbox, xf) else {
+            return false;
+        };
+        self.out.objects_tested += 1;
+        let need = rect_area(&p.rect);
+        let innermost = self.levels.len() - 1;
+        self.levels.iter().enumerate().any(|(li, level)| {
+            level
+                .iter()
+                .take_while(|o| o.area >= need)
+                .filter(|o| !(li == innermost && o.owner == k))
+                .take(MAX_TESTS_PER_LEVEL)
+                .any(|o| {
+                    p.zmax < o.zmin
+                        && contains_rect(&o.rect, &p.rect)
+                        && covers_convex(&o.hull, &p.corners)
+                })
+        })
+    }
+
+    /// The 8 corners of `b` placed by `m`, projected, with their bounds; None when a corner is
+    /// not in front of the near plane (perspective).
+    fn project(&self, b: &Box3, m: &M4) -> Option<Projected> {
+        let cam = self.camera;
+        let world = b.corners().map(|c| m.transform_point(&c));
+        if cam.projection == Projection::Perspective && !world.iter().all(|c| cam.in_front(c)) {
+            return None;
+        }
+        let s = world.map(|c| cam.project(&c));
+        let corners = s.map(|q| [q[0], q[1]]);
+        Some(Projected {
+            rect: bounds(corners.iter()),
+            zmin: s.iter().map(|q| q[2]).fold(f64::INFINITY, f64::min),
+            zmax: s.iter().map(|q| q[2]).fold(f64::NEG_INFINITY, f64::max),
+            corners,
+        })
+    }
+}
+
+fn rect_area(r: &[f64; 4]) -> f64 {
+    (r[2] - r[0]).max(0.0) * (r[3] - r[1]).max(0.0)
+}
+
+fn contains_rect(outer: &[f64; 4], inner: &[f64; 4]) -> bool {
+    outer[0] <= inner[0] && outer[1] <= inner[1] && inner[2] <= outer[2] && inner[3] <= outer[3]
+}
