@@ -187,7 +187,8 @@ fn main() {
             let m = medians(n, layout, use_inbox, runs);
             let visible = run(n, layout, use_inbox).1;
             // The visibility stage: the box cull (VISOBJ on CBOXes and INBOXes) and the pass.
-            let visibility = m[2] + m[4];
+            // Without inboxes the "cull" only lists the leaves: that is view work.
+            let visibility = if use_inbox { m[2] + m[4] } else { m[4] };
             let _ = writeln!(
                 csv,
                 "{n},{faces},{layout:?},{use_inbox},{:.3},{:.3},{:.3},{:.3},{:.3},{visibility:.3},{visible}",
