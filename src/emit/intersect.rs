@@ -1,10 +1,13 @@
 //! Intersection curves: where two faces interpenetrate, the segments of their planes'
 //! intersection line that lie inside both faces.
 //!
-//! Candidate pairs come from a sweep over the faces' world boxes along x; side-of-plane
+//! Candidate pairs come from a uniform grid over the faces' world boxes; side-of-plane
 //! decisions use the exact `robust::orient3d`. A vertex exactly on the other plane counts as
 //! on its positive side (symbolic perturbation), so crossings always pair up.
 
+use rayon::prelude::*;
+
+use crate::geom::box_pairs::overlapping_pairs;
 use crate::geom::{P3, V3};
 
 use super::edges::{Edge, EdgeKind};
@@ -12,40 +15,32 @@ use super::world::{WorldFace, WorldFaces};
 
 /// Every intersection segment between pairs of faces that cross (both faces with vertices
 /// strictly on both sides of the other's plane); `keep(f)` filters faces worth testing.
-pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(usize) -> bool) -> Vec<Edge> {
+pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(usize) -> bool + Sync) -> Vec<Edge> {
     let faces = &world.faces;
-    let mut order: Vec<usize> = (0..faces.len())
+    let ids: Vec<usize> = (0..faces.len())
         .filter(|&f| keep(f) && faces[f].points.len() >= 3)
         .collect();
-    order.sort_by(|&p, &q| faces[p].bbox[0][0].total_cmp(&faces[q].bbox[0][0]));
-    let mut out = Vec::new();
-    for (i, &f) in order.iter().enumerate() {
-        let bf = &faces[f].bbox;
-        for &g in &order[i + 1..] {
-            let bg = &faces[g].bbox;
-            if bg[0][0] > bf[1][0] {
-                break;
-            }
-            if !boxes_overlap(bf, bg) || adjacent(&faces[f], &faces[g]) {
-                continue;
-            }
-            let (lo, hi) = (f.min(g), f.max(g));
-            for seg in cross(&faces[lo], &faces[hi]) {
-                out.push(Edge {
-                    leaf: faces[lo].leaf,
-                    ends: seg,
-                    faces: vec![lo as u32, hi as u32],
-                    kind: EdgeKind::Intersection,
-                });
-            }
-        }
-    }
-    out.sort_by(|p, q| p.faces.cmp(&q.faces));
-    out
-}
-
-fn boxes_overlap(a: &[[f64; 3]; 2], b: &[[f64; 3]; 2]) -> bool {
-    (0..3).all(|k| a[0][k] <= b[1][k] && b[0][k] <= a[1][k])
+    let boxes: Vec<_> = ids.iter().map(|&f| faces[f].bbox).collect();
+    // Pairs come ascending in (position, position), so in (face, face): the output order is
+    // fixed whatever the thread count.
+    overlapping_pairs(&boxes)
+        .par_iter()
+        .flat_map_iter(|&(i, j)| {
+            let (lo, hi) = (ids[i as usize], ids[j as usize]);
+            let (f, g) = (&faces[lo], &faces[hi]);
+            let segs = if adjacent(f, g) {
+                Vec::new()
+            } else {
+                cross(f, g)
+            };
+            segs.into_iter().map(move |seg| Edge {
+                leaf: f.leaf,
+                ends: seg,
+                faces: vec![lo as u32, hi as u32],
+                kind: EdgeKind::Intersection,
+            })
+        })
+        .collect()
 }
 
 /// Faces of one leaf that share a vertex (neighbours meet, they do not cross).

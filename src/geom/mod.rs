@@ -1,6 +1,7 @@
 //! Geometric types and exact predicates shared by every stage.
 
 pub mod box3;
+pub mod box_pairs;
 pub mod hull2;
 pub mod poly2;
 pub mod polymesh;

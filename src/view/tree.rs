@@ -13,7 +13,7 @@ use crate::scene::{Content, Object, Scene};
 
 use super::camera::{Camera, Projection};
 use super::cull::HiddenObject;
-use super::screen::ScreenFaces;
+use super::screen::{ScreenFace, ScreenFaces};
 
 /// Faces per BVH leaf inside a large mesh.
 const LEAF_FACES: usize = 4;
@@ -25,6 +25,28 @@ pub enum NodeKind {
     Inner(Range<u32>),
     /// Faces: a range of [`ViewTree::faces`] (global face ids).
     Leaf(Range<u32>),
+}
+
+/// What the walk tests first of a candidate occluder: its screen rectangle, nearest depth and
+/// face id.
+#[derive(Debug, Clone, Copy)]
+pub struct FaceBound {
+    /// Screen rectangle.
+    pub rect: [f64; 4],
+    /// Greatest screen depth.
+    pub zmax: f64,
+    /// Global face id.
+    pub id: u32,
+}
+
+impl FaceBound {
+    fn of(sf: &ScreenFace) -> FaceBound {
+        FaceBound {
+            rect: sf.rect,
+            zmax: sf.zmax,
+            id: sf.id,
+        }
+    }
 }
 
 /// A node: a subtree with its screen bounds (the CBOX in the standard view).
@@ -75,6 +97,9 @@ pub struct ViewTree {
     pub children: Vec<u32>,
     /// Face lists of the leaves.
     pub faces: Vec<u32>,
+    /// The screen bounds of `faces`, in the same order: the walk's first test reads these
+    /// contiguously instead of the screen faces scattered in global order.
+    pub face_bounds: Vec<FaceBound>,
     /// Screen inboxes.
     pub inboxes: Vec<ScreenInbox>,
     /// Named objects in depth-first order.
@@ -249,14 +274,23 @@ impl Builder<'_> {
                 n.grow(&sf.rect, sf.zmin, sf.zmax);
             }
             let start = self.tree.faces.len() as u32;
+            self.tree.face_bounds.extend(
+                ids.iter()
+                    .map(|&f| FaceBound::of(&self.sf.faces[f as usize])),
+            );
             self.tree.faces.extend(ids);
             n.kind = NodeKind::Leaf(start..self.tree.faces.len() as u32);
             return self.push(n);
         }
         let faces = &self.sf.faces;
+        // Axis 0 and 1 are screen x and y, axis 2 is depth: splitting by depth too separates
+        // the front and back layers of a mesh, so the depth test prunes whole nodes.
         let centre = |f: u32, axis: usize| {
-            let r = &faces[f as usize].rect;
-            r[axis] + r[axis + 2]
+            let sf = &faces[f as usize];
+            match axis {
+                2 => sf.zmin + sf.zmax,
+                _ => sf.rect[axis] + sf.rect[axis + 2],
+            }
         };
         let span = |axis: usize| {
             let (lo, hi) = ids
@@ -266,7 +300,9 @@ impl Builder<'_> {
                 });
             hi - lo
         };
-        let axis = if span(0) >= span(1) { 0 } else { 1 };
+        let axis = (0..3)
+            .max_by(|&a, &b| span(a).total_cmp(&span(b)).then(b.cmp(&a)))
+            .unwrap_or(0);
         let mid = ids.len() / 2;
         ids.select_nth_unstable_by(mid, |&a, &b| {
             centre(a, axis).total_cmp(&centre(b, axis)).then(a.cmp(&b))

@@ -112,7 +112,14 @@ fn visfac2(view: &View, a: u32, t: &Target, scratch: &mut Scratch, stats: &mut C
                     .extend(tree.children[r.start as usize..r.end as usize].iter().rev());
             }
             NodeKind::Leaf(r) => {
-                for &g in &tree.faces[r.start as usize..r.end as usize] {
+                let range = r.start as usize..r.end as usize;
+                for (&g, b) in tree.faces[range.clone()]
+                    .iter()
+                    .zip(&tree.face_bounds[range])
+                {
+                    if b.id == t.face || !rects_overlap(&b.rect, &t.rect) || b.zmax < t.zmin {
+                        continue;
+                    }
                     if let Walk::Emptied = examine(view, g as usize, t, scratch, stats) {
                         return Walk::Emptied;
                     }
@@ -123,12 +130,9 @@ fn visfac2(view: &View, a: u32, t: &Target, scratch: &mut Scratch, stats: &mut C
     Walk::Open
 }
 
-/// One candidate occluder at a leaf.
+/// One candidate occluder at a leaf (its bounds already overlap F's, in front of F's back).
 fn examine(view: &View, g: usize, t: &Target, scratch: &mut Scratch, stats: &mut Counters) -> Walk {
     let sg = &view.screen.faces[g];
-    if sg.id == t.face || !rects_overlap(&sg.rect, &t.rect) || sg.zmax < t.zmin {
-        return Walk::Open;
-    }
     stats.faces_examined += 1;
     // Convex regions (every triangle, every convex face cut by a plane) get exact quick tests;
     // separation of G's whole projection (cheaper than classifying its vertices) comes first.
