@@ -151,6 +151,9 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
     );
     times.push(("visibility", t.elapsed()));
     let t = Instant::now();
+    // Emitting needs the screen faces, not the tree: free it before the drawing's own memory.
+    let mut view = view;
+    view.tree = Default::default();
     emit(&a, &scene, &view, &vis)?;
     times.push(("emit", t.elapsed()));
     if a.stats {

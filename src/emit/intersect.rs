@@ -5,9 +5,7 @@
 //! decisions use the exact `robust::orient3d`. A vertex exactly on the other plane counts as
 //! on its positive side (symbolic perturbation), so crossings always pair up.
 
-use rayon::prelude::*;
-
-use crate::geom::box_pairs::overlapping_pairs;
+use crate::geom::box_pairs::filter_map_pairs;
 use crate::geom::{P3, V3};
 
 use super::edges::{Edge, EdgeKind};
@@ -21,26 +19,28 @@ pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(usize) -> bool + Syn
         .filter(|&f| keep(f) && faces[f].points.len() >= 3)
         .collect();
     let boxes: Vec<_> = ids.iter().map(|&f| faces[f].bbox).collect();
-    // Pairs come ascending in (position, position), so in (face, face): the output order is
+    // Results come in ascending (position, position) pair order, so in (face, face) order:
     // fixed whatever the thread count.
-    overlapping_pairs(&boxes)
-        .par_iter()
-        .flat_map_iter(|&(i, j)| {
-            let (lo, hi) = (ids[i as usize], ids[j as usize]);
-            let (f, g) = (&faces[lo], &faces[hi]);
-            let segs = if adjacent(f, g) {
-                Vec::new()
-            } else {
-                cross(f, g)
-            };
-            segs.into_iter().map(move |seg| Edge {
-                leaf: f.leaf,
-                ends: seg,
-                faces: vec![lo as u32, hi as u32],
-                kind: EdgeKind::Intersection,
-            })
+    let found = filter_map_pairs(&boxes, |i, j| {
+        let (lo, hi) = (ids[i as usize], ids[j as usize]);
+        let (f, g) = (&faces[lo], &faces[hi]);
+        let segs = if adjacent(f, g) {
+            Vec::new()
+        } else {
+            cross(f, g)
+        };
+        (!segs.is_empty()).then(|| {
+            segs.into_iter()
+                .map(|seg| Edge {
+                    leaf: f.leaf,
+                    ends: seg,
+                    faces: vec![lo as u32, hi as u32],
+                    kind: EdgeKind::Intersection,
+                })
+                .collect::<Vec<_>>()
         })
-        .collect()
+    });
+    found.into_iter().flatten().collect()
 }
 
 /// Faces of one leaf that share a vertex (neighbours meet, they do not cross).

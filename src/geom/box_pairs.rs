@@ -16,6 +16,15 @@ const MAX_CELLS_PER_BOX: f64 = 8.0;
 /// Indices `(i, j)`, `i < j`, of every pair of overlapping boxes among `boxes`, ascending.
 /// Boxes with a NaN or an empty extent are ignored.
 pub fn overlapping_pairs(boxes: &[Bounds3]) -> Vec<(u32, u32)> {
+    filter_map_pairs(boxes, |i, j| Some((i, j)))
+}
+
+/// `f(i, j)` of every pair of overlapping boxes (`i < j`), the `Some` results in ascending
+/// pair order, without keeping the pairs themselves (a mesh has many, few of which matter).
+pub fn filter_map_pairs<T: Send>(
+    boxes: &[Bounds3],
+    f: impl Fn(u32, u32) -> Option<T> + Sync,
+) -> Vec<T> {
     let ids: Vec<u32> = (0..boxes.len() as u32)
         .filter(|&i| valid(&boxes[i as usize]))
         .collect();
@@ -35,7 +44,8 @@ pub fn overlapping_pairs(boxes: &[Bounds3]) -> Vec<(u32, u32)> {
     }
     entries.par_sort_unstable();
     let runs = runs(&entries);
-    let mut pairs: Vec<(u32, u32)> = runs
+    let f = &f;
+    let mut found: Vec<((u32, u32), T)> = runs
         .par_iter()
         .flat_map_iter(|r| {
             let cell = &entries[r.clone()];
@@ -46,14 +56,17 @@ pub fn overlapping_pairs(boxes: &[Bounds3]) -> Vec<(u32, u32)> {
                     let (i, j) = (cell[a].1, cell[b].1);
                     let (bi, bj) = (&boxes[i as usize], &boxes[j as usize]);
                     let corner = std::array::from_fn(|k| bi[0][k].max(bj[0][k]));
-                    (overlap(bi, bj) && grid.key(grid.cell(&corner)) == key)
-                        .then_some((i.min(j), i.max(j)))
+                    if !overlap(bi, bj) || grid.key(grid.cell(&corner)) != key {
+                        return None;
+                    }
+                    let p = (i.min(j), i.max(j));
+                    f(p.0, p.1).map(|t| (p, t))
                 })
             })
         })
         .collect();
-    pairs.par_sort_unstable();
-    pairs
+    found.par_sort_unstable_by_key(|x| x.0);
+    found.into_iter().map(|x| x.1).collect()
 }
 
 /// True when the closed boxes share a point.
@@ -88,7 +101,8 @@ struct Grid {
 }
 
 impl Grid {
-    /// A grid whose cell is about the mean box size, coarsened until the boxes enter about
+    /// A grid whose cell is twice the mean box size (most boxes then enter one to four
+    /// cells), coarsened until the boxes enter about
     /// `MAX_CELLS_PER_BOX` cells each on average.
     fn fit(boxes: &[Bounds3], ids: &[u32]) -> Option<Grid> {
         let first = boxes[*ids.first()? as usize];
@@ -105,7 +119,11 @@ impl Grid {
         }
         mean /= ids.len() as f64;
         let span = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
-        let mut cell = if mean > 0.0 { mean } else { span.max(1.0) };
+        let mut cell = if mean > 0.0 {
+            2.0 * mean
+        } else {
+            span.max(1.0)
+        };
         cell = cell.max(span / 4096.0).max(f64::MIN_POSITIVE);
         loop {
             let g = Grid {

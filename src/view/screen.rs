@@ -103,6 +103,18 @@ impl ScreenFaces {
             camera: Some(*camera),
             ..Default::default()
         };
+        // Exact sizes for planar faces (the usual case): no doubling on the way.
+        let faces: usize = cull.leaves.iter().map(|l| l.mesh.faces.len()).sum();
+        let corners: usize = cull
+            .leaves
+            .iter()
+            .flat_map(|l| &l.mesh.faces)
+            .map(|f| f.vertices.len())
+            .sum();
+        out.faces.reserve(faces);
+        out.points.reserve(corners);
+        out.world.reserve(corners);
+        out.pieces.reserve(cull.face_count as usize + 1);
         out.pieces.push(0);
         for (li, leaf) in cull.leaves.iter().enumerate() {
             out.pieces
