@@ -4,8 +4,6 @@
 //! border (one face beside it, or more than two), crease (dihedral angle above a threshold),
 //! plain (any other polygon edge); intersection curves come from [`super::intersect`].
 
-use std::collections::HashMap;
-
 use crate::geom::{P3, V3};
 use crate::view::{Facing, View};
 
@@ -89,11 +87,15 @@ pub struct Edge {
     pub kind: EdgeKind,
 }
 
-/// An undirected edge of one leaf while collecting: its faces and their traversal directions.
-struct Adjacent {
+/// One traversal of an undirected edge by a face: the edge's key (least vertex first), the
+/// traversal's place in the leaf's face order, the face and whether it goes from a to b.
+#[derive(Clone, Copy)]
+struct HalfEdge {
     a: u32,
     b: u32,
-    faces: Vec<(u32, bool)>,
+    seq: u32,
+    face: u32,
+    fwd: bool,
 }
 
 /// The mesh edges of every leaf (in order of first appearance), classified, filtered by `opts.set`.
@@ -106,15 +108,17 @@ pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Ed
         let end = (start..world.faces.len())
             .find(|&f| world.faces[f].leaf != leaf)
             .unwrap_or(world.faces.len());
-        for adj in leaf_edges(world, start, end) {
-            let kind = classify(&adj, world, view, cos_crease);
+        let half = half_edges(world, start, end);
+        for g in edge_groups(&half) {
+            let adj = &half[g];
+            let kind = classify(adj, world, view, cos_crease);
             if opts.set == EdgeSet::All || kind != EdgeKind::Plain {
-                let f0 = &world.faces[adj.faces[0].0 as usize];
+                let f0 = &world.faces[adj[0].face as usize];
                 let at = |k: u32| f0.points[f0.vertices.iter().position(|&v| v == k).unwrap_or(0)];
                 out.push(Edge {
                     leaf,
-                    ends: [at(adj.a), at(adj.b)],
-                    faces: adj.faces.iter().map(|f| f.0).collect(),
+                    ends: [at(adj[0].a), at(adj[0].b)],
+                    faces: adj.iter().map(|h| h.face).collect(),
                     kind,
                 });
             }
@@ -124,36 +128,47 @@ pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Ed
     out
 }
 
-/// Undirected edges of the faces `start..end` (one leaf), in order of first appearance.
-fn leaf_edges(world: &WorldFaces, start: usize, end: usize) -> Vec<Adjacent> {
-    let mut index: HashMap<(u32, u32), usize> = HashMap::new();
-    let mut edges: Vec<Adjacent> = Vec::new();
+/// Every traversal of an edge by the faces `start..end` (one leaf), grouped by edge, each
+/// group in face order.
+fn half_edges(world: &WorldFaces, start: usize, end: usize) -> Vec<HalfEdge> {
+    let mut half = Vec::new();
     for f in start..end {
         let v = &world.faces[f].vertices;
         for i in 0..v.len() {
             let (p, q) = (v[i], v[(i + 1) % v.len()]);
-            if p == q {
-                continue;
-            }
-            let key = (p.min(q), p.max(q));
-            let k = *index.entry(key).or_insert_with(|| {
-                edges.push(Adjacent {
-                    a: key.0,
-                    b: key.1,
-                    faces: Vec::new(),
+            if p != q {
+                half.push(HalfEdge {
+                    a: p.min(q),
+                    b: p.max(q),
+                    seq: half.len() as u32,
+                    face: f as u32,
+                    fwd: p < q,
                 });
-                edges.len() - 1
-            });
-            edges[k].faces.push((f as u32, p < q));
+            }
         }
     }
-    edges
+    half.sort_unstable_by_key(|h| (h.a, h.b, h.seq));
+    half
+}
+
+/// The index ranges of the edges in grouped half-edges, in order of first appearance.
+fn edge_groups(half: &[HalfEdge]) -> Vec<std::ops::Range<usize>> {
+    let mut groups = Vec::new();
+    let mut s = 0;
+    for i in 1..=half.len() {
+        if i == half.len() || (half[i].a, half[i].b) != (half[s].a, half[s].b) {
+            groups.push(s..i);
+            s = i;
+        }
+    }
+    groups.sort_unstable_by_key(|g| half[g.start].seq);
+    groups
 }
 
 /// Kind of a mesh edge in this view.
-fn classify(adj: &Adjacent, world: &WorldFaces, view: &View, cos_crease: f64) -> EdgeKind {
-    let [(f, f_fwd), (g, g_fwd)] = match adj.faces[..] {
-        [x, y] => [x, y],
+fn classify(adj: &[HalfEdge], world: &WorldFaces, view: &View, cos_crease: f64) -> EdgeKind {
+    let [(f, f_fwd), (g, g_fwd)] = match adj {
+        [x, y] => [(x.face, x.fwd), (y.face, y.fwd)],
         _ => return EdgeKind::Border,
     };
     let facing = |k: u32| view.screen.face_facing(k as usize);
