@@ -13,16 +13,20 @@
 //!   (c) edges of C across faces of S. Category (d), vertices of C inside S, comes from the
 //!   boundary evaluation of C (bounded by the parent's tribox) with each vertex that could
 //!   enlarge the tribox classified by the generalized winding number (closed solids only).
-//! - Error of a node: the largest distance from a vertex of its tribox to the solid's surface
-//!   (the Hausdorff distance from the tribox's vertices to the surface; the other direction
-//!   is 0, the triboxes of a cut hold the solid). A cut's error is its nodes' largest. It
-//!   measures vertices only: a point inside a large tribox face may be farther.
+//! - Error of a node: the largest distance to the solid over samples of its tribox's boundary
+//!   (vertices and a grid on every face; points inside a closed solid, judged by the nearest
+//!   triangle's side, are at distance 0): a sampled one-sided Hausdorff distance from the
+//!   tribox to the solid (the other direction is 0, the triboxes of a cut hold the solid).
+//!   A cut's error is its nodes' largest. Sampled, so an estimate, not a bound; the true
+//!   value over the union of a cut's triboxes can only shrink down the tree, the sampled one
+//!   may wobble.
 //! - The area criterion counts the boundary of the union of the two children's triboxes: the
 //!   sum of their areas less twice the overlap of their faces on the split plane. Summing
 //!   the two areas alone (caps included) never pays for a convex-ish shape: a cow or a bunny
 //!   would never be split.
 
 use crate::geom::{Box3, PolyMesh, P3, V3};
+use crate::scene::triangulate::ear_clip;
 use crate::scene::Mesh;
 use crate::visibility::include::winding_number;
 
@@ -64,7 +68,7 @@ pub struct Node {
     pub depth: usize,
     /// The split and the two children (indices into [`Hierarchy::nodes`]), if split.
     pub children: Option<(Split, [usize; 2])>,
-    /// Largest distance from a vertex of the tribox to the solid's surface.
+    /// Sampled largest distance from the tribox's boundary to the solid.
     pub error: f64,
     /// Faces of the solid in this cell (after clipping).
     pub polygons: usize,
@@ -142,7 +146,7 @@ impl Hierarchy {
             error: if cell.polygons.is_empty() {
                 0.0
             } else {
-                b.surface.error(&tribox)
+                b.surface.error(&tribox, b.solid.is_some())
             },
             polygons: cell.polygons.len(),
         });
@@ -414,9 +418,16 @@ enum IndexKind {
 
 impl SurfaceIndex {
     fn new(polygons: &[Vec<P3>]) -> SurfaceIndex {
+        // Ear clipping, not fans: faces may be non-convex.
         let mut tris: Vec<[P3; 3]> = polygons
             .iter()
-            .flat_map(|p| (1..p.len().saturating_sub(1)).map(move |i| [p[0], p[i], p[i + 1]]))
+            .flat_map(|p| {
+                let n = super::boundary::newell(p, &(0..p.len() as u32).collect::<Vec<_>>());
+                ear_clip(p, &n)
+                    .into_iter()
+                    .map(|[a, b, c]| [p[a], p[b], p[c]])
+                    .collect::<Vec<_>>()
+            })
             .collect();
         let mut idx = SurfaceIndex {
             tris: Vec::new(),
@@ -450,9 +461,11 @@ impl SurfaceIndex {
         id
     }
 
-    /// Distance from `p` to the nearest triangle.
-    fn distance(&self, p: &P3) -> f64 {
+    /// Distance from `p` to the solid: 0 inside (behind the nearest triangle, for closed
+    /// solids), else to the nearest triangle.
+    fn distance(&self, p: &P3, closed: bool) -> f64 {
         let mut best = f64::INFINITY;
+        let mut nearest: Option<(P3, usize)> = None;
         let mut stack = vec![0usize];
         while let Some(n) = stack.pop() {
             let (bx, kind) = &self.nodes[n];
@@ -472,27 +485,51 @@ impl SurfaceIndex {
                     }
                 }
                 IndexKind::Leaf(a, b) => {
-                    for t in &self.tris[a..b] {
-                        best = best
-                            .min((closest_on_triangle(p, &t[0], &t[1], &t[2]) - p).norm_squared());
+                    for (i, t) in self.tris[a..b].iter().enumerate() {
+                        let q = closest_on_triangle(p, &t[0], &t[1], &t[2]);
+                        let d = (q - p).norm_squared();
+                        if d < best {
+                            best = d;
+                            nearest = Some((q, a + i));
+                        }
                     }
                 }
+            }
+        }
+        if let (true, Some((q, i))) = (closed, nearest) {
+            let t = &self.tris[i];
+            if (t[1] - t[0]).cross(&(t[2] - t[0])).dot(&(p - q)) < 0.0 {
+                return 0.0;
             }
         }
         best.sqrt()
     }
 
-    /// Largest distance from a vertex of the tribox to the surface.
-    fn error(&self, t: &Tribox) -> f64 {
+    /// Largest distance to the solid over samples of the tribox's boundary: its vertices
+    /// and a grid of 15 points on each fan triangle of each face.
+    fn error(&self, t: &Tribox, closed: bool) -> f64 {
         if t.is_empty() || self.nodes.is_empty() {
             return 0.0;
         }
-        t.boundary()
-            .mesh()
+        let m = t.boundary().mesh();
+        let mut worst = m
             .vertices
             .iter()
-            .map(|v| self.distance(v))
-            .fold(0.0, f64::max)
+            .map(|v| self.distance(v, closed))
+            .fold(0.0, f64::max);
+        for f in &m.faces {
+            let p: Vec<P3> = f.iter().map(|&v| m.vertices[v as usize]).collect();
+            for i in 1..p.len() - 1 {
+                for a in 0..=4 {
+                    for b in 0..=4 - a {
+                        let (u, v) = (a as f64 / 4.0, b as f64 / 4.0);
+                        let q = p[0] + (p[i] - p[0]) * u + (p[i + 1] - p[0]) * v;
+                        worst = worst.max(self.distance(&q, closed));
+                    }
+                }
+            }
+        }
+        worst
     }
 }
 

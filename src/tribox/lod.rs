@@ -9,7 +9,8 @@
 //! ([`crate::emit::picture::pixels_per_unit`]). An object's projected size is the longer
 //! side of the screen rectangle of its vertices.
 //!
-//! Triboxes are taken in the frame of the object's parent (the frame of its CBOX), merged up
+//! An object is replaced only when its substitute has fewer faces than it (a box stays a
+//! box). Triboxes are taken in the frame of the object's parent (the frame of its CBOX), merged up
 //! the tree for groups; an instance gets its prototype's tribox transformed (conservative,
 //! computed once per prototype).
 
@@ -211,6 +212,9 @@ impl Substituter<'_> {
             }
         };
         let mesh = clean(&poly)?;
+        if mesh.faces.len() >= obj.face_count() {
+            return None; // the substitute would model more than the object (a box stays a box)
+        }
         self.stats.objects_replaced += 1;
         self.stats.triboxes += triboxes;
         Some(Object::from_mesh(obj.name.clone(), mesh))
