@@ -195,13 +195,13 @@ pub fn run(a: TriboxArgs) -> Result<ExitCode> {
             err = err.max(p.hierarchy.cut_error(&cut));
         }
         rows.push(format!(
-            "| {level} | {n} | {m} | {count} | {:.2} | {} | {:.4} | {} | {:.3} | {:.3} |",
+            "| {level} | {n} | {m} | {count} | {:.2} | {} | {} | {} | {} | {} |",
             n as f64 / m.max(1) as f64,
             g(err),
-            err / diag,
+            ratio(err, diag, 4),
             g(vol),
-            vol / cbox,
-            vol / hull
+            ratio(vol, cbox, 3),
+            ratio(vol, hull, 3)
         ));
         if let Some(dir) = &a.out {
             let stem = dir.join(format!("{name}-L{level}"));
@@ -217,7 +217,16 @@ pub fn run(a: TriboxArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Shortest readable number.
+/// a / b with `digits` decimals, "-" when b is 0 or unknown.
+fn ratio(a: f64, b: f64, digits: usize) -> String {
+    if b > 0.0 {
+        format!("{:.*}", digits, a / b)
+    } else {
+        "-".into()
+    }
+}
+
+/// A number with six decimals, "-" when unknown.
 fn g(x: f64) -> String {
     if x.is_nan() {
         "-".into()
