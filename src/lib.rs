@@ -9,6 +9,7 @@ pub mod load;
 pub mod prepare;
 pub mod primitives;
 pub mod scene;
+pub mod tribox;
 pub mod view;
 pub mod visibility;
 

@@ -6,6 +6,7 @@ mod flatten;
 mod info;
 mod query;
 mod render;
+mod tribox;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -36,6 +37,8 @@ enum Command {
     Info(info::InfoArgs),
     /// Re-render and compare the visible-polygon set with a golden file (exit 1 on changes).
     Check(check::CheckArgs),
+    /// Hierarchical tribox substitutes at each level (OBJ, SVG) and the paper's Table 1.
+    Tribox(tribox::TriboxArgs),
 }
 
 /// Runs a parsed command line.
@@ -46,6 +49,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Flatten(a) => flatten::run(a),
         Command::Info(a) => info::run(a),
         Command::Check(a) => check::run(a),
+        Command::Tribox(a) => tribox::run(a),
     }
 }
 

@@ -26,6 +26,10 @@ pub struct QueryArgs {
     /// VISOBJ: what object A does to object B (paths as in `kepler info`). Prints VISIBLE, HIDDEN or MIXED.
     #[arg(long, num_args = 2, value_names = ["A", "B"])]
     pub visobj: Option<Vec<String>>,
+    /// The pairs of objects whose triboxes meet, each INTERSECT (faces really meet, touching
+    /// included) or APART, then a summary.
+    #[arg(long)]
+    pub interfere: bool,
     #[command(flatten)]
     pub camera: CameraArgs,
     /// Do not print warnings.
@@ -36,9 +40,16 @@ pub struct QueryArgs {
 /// Runs `kepler query`.
 pub fn run(a: QueryArgs) -> Result<ExitCode> {
     let scene = load(&a.scene, a.quiet)?;
-    let asked = a.include.is_some() as u8 + a.visp.is_some() as u8 + a.visobj.is_some() as u8;
+    let asked = a.include.is_some() as u8
+        + a.visp.is_some() as u8
+        + a.visobj.is_some() as u8
+        + a.interfere as u8;
     if asked != 1 {
-        bail!("give exactly one of --include, --visp, --visobj");
+        bail!("give exactly one of --include, --visp, --visobj, --interfere");
+    }
+    if a.interfere {
+        out(&super::tribox::interfere_report(&scene));
+        return Ok(ExitCode::SUCCESS);
     }
     if let Some(p) = &a.include {
         let p = P3::from(parse_vec3(p, "include")?);

@@ -52,6 +52,8 @@ pub struct RenderArgs {
     /// Render without inboxes (for comparison).
     #[arg(long)]
     pub no_inbox: bool,
+    #[command(flatten)]
+    pub lod: super::tribox::LodArgs,
     /// Do not print warnings.
     #[arg(long, short)]
     pub quiet: bool,
@@ -126,10 +128,15 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
     let t = Instant::now();
     let mut scene = load_only(&a.scene, a.quiet)?;
     times.push(("load", t.elapsed()));
+    let camera = a.camera.camera(&scene)?;
+    let t = Instant::now();
+    let lod = a.lod.apply(&mut scene, &camera, a.size)?;
+    if lod.is_some() {
+        times.push(("lod", t.elapsed()));
+    }
     let t = Instant::now();
     kepler::prepare::prepare(&mut scene);
     times.push(("prepare", t.elapsed()));
-    let camera = a.camera.camera(&scene)?;
     let t = Instant::now();
     // Hidden lines need every face's facing, so they keep every face in the view.
     let cull = if a.no_inbox || a.hidden {
@@ -158,6 +165,7 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
     times.push(("emit", t.elapsed()));
     if a.stats {
         eprintln!("faces: {}", scene.face_count());
+        lod.iter().for_each(|l| eprintln!("{l}"));
         for (name, d) in &times {
             eprintln!("time {name:<11} {:>10.3} ms", d.as_secs_f64() * 1e3);
         }

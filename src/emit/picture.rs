@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 
 use crate::geom::poly2::{bounds, Pt2, Ring};
 use crate::geom::V3;
-use crate::view::View;
+use crate::view::{Camera, View};
 use crate::visibility::Visibility;
 
 use super::edges::EdgeKind;
@@ -137,7 +137,7 @@ pub fn picture(
         .iter()
         .flat_map(|l| l.pens.iter().flat_map(|p| p.1.iter().flatten()))
         .chain(fills.iter().flat_map(|f| f.rings.iter().flatten()));
-    let (frame, unit) = frame(field_of_view(view, bounds(pts)));
+    let (frame, unit) = frame(field_of_view(&view.camera, bounds(pts)));
     Picture {
         frame,
         unit,
@@ -152,8 +152,8 @@ const MAX_ASPECT: f64 = 1.6;
 /// Drawing bounds limited, for a perspective camera, to its field of view: the projection
 /// puts the edges of the vertical field of view at y = ±1, and a ground plane clipped near the
 /// eye would otherwise stretch the frame far beyond what the camera sees.
-fn field_of_view(view: &View, b: [f64; 4]) -> [f64; 4] {
-    if view.camera.projection != crate::view::Projection::Perspective {
+fn field_of_view(camera: &Camera, b: [f64; 4]) -> [f64; 4] {
+    if camera.projection != crate::view::Projection::Perspective {
         return b;
     }
     let fov = [-MAX_ASPECT, -1.0, MAX_ASPECT, 1.0];
@@ -168,6 +168,13 @@ fn field_of_view(view: &View, b: [f64; 4]) -> [f64; 4] {
     } else {
         b
     }
+}
+
+/// Pixels per screen unit of a picture `size` pixels along its longer side whose drawing
+/// has screen bounds `b` [xmin, ymin, xmax, ymax]: the mapping SVG and PNG use.
+pub fn pixels_per_unit(camera: &Camera, b: [f64; 4], size: u32) -> f64 {
+    let ([x0, y0, x1, y1], _) = frame(field_of_view(camera, b));
+    f64::from(size.max(1)) / (x1 - x0).max(y1 - y0)
 }
 
 /// The framed rectangle (5% margin) and unit of drawing bounds.

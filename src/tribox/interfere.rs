@@ -1,0 +1,263 @@
+//! Interference of objects: the pairs whose triboxes meet (the 18-comparison test), and of
+//! those the pairs whose faces really intersect, decided exactly with `robust::orient3d`.
+//!
+//! Faces are closed sets: objects that touch (a shared vertex, an edge on a face) intersect.
+
+use crate::geom::poly2::orient2d;
+use crate::geom::{P3, V3};
+use crate::scene::triangulate::ear_clip;
+use crate::scene::Scene;
+
+use super::bounds::Tribox;
+
+/// The answer for one scene.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Interference {
+    /// Object paths (the leaves, instances expanded), in global face order.
+    pub objects: Vec<String>,
+    /// Pairs of objects in all.
+    pub pairs: usize,
+    /// Pairs whose CBOXes meet (for comparison).
+    pub cbox_meet: usize,
+    /// Pairs whose triboxes meet, each with whether their faces intersect.
+    pub tribox_meet: Vec<(usize, usize, bool)>,
+    /// Exact triangle-triangle tests made.
+    pub triangle_tests: u64,
+}
+
+/// A world triangle of an object with its tribox.
+struct Tri {
+    p: [P3; 3],
+    t: Tribox,
+}
+
+/// Interference of every pair of leaf objects of `scene`.
+pub fn interfere(scene: &Scene) -> Interference {
+    let leaves = scene.leaves();
+    let tris: Vec<Vec<Tri>> = leaves
+        .iter()
+        .map(|l| {
+            let mut out = Vec::new();
+            for f in &l.mesh.faces {
+                let pts: Vec<P3> = f.vertices.iter().map(|&v| l.world_vertex(v)).collect();
+                let n = newell(&pts);
+                for [a, b, c] in ear_clip(&pts, &n) {
+                    let p = [pts[a], pts[b], pts[c]];
+                    if (p[1] - p[0]).cross(&(p[2] - p[0])) != V3::zeros() {
+                        out.push(Tri {
+                            p,
+                            t: Tribox::from_points(p.iter()),
+                        });
+                    }
+                }
+            }
+            out
+        })
+        .collect();
+    let boxes: Vec<Tribox> = tris
+        .iter()
+        .map(|ts| ts.iter().fold(Tribox::empty(), |a, t| a.merge(&t.t)))
+        .collect();
+    let mut r = Interference {
+        objects: leaves.iter().map(|l| l.path.clone()).collect(),
+        ..Interference::default()
+    };
+    for i in 0..leaves.len() {
+        for j in i + 1..leaves.len() {
+            r.pairs += 1;
+            let (a, b) = (&boxes[i], &boxes[j]);
+            if (0..3).all(|k| a.lo[k] <= b.hi[k] && b.lo[k] <= a.hi[k]) {
+                r.cbox_meet += 1;
+            }
+            if a.interferes(b) {
+                let hit = faces_intersect(&tris[i], &tris[j], a, b, &mut r.triangle_tests);
+                r.tribox_meet.push((i, j, hit));
+            }
+        }
+    }
+    r
+}
+
+/// True when some triangle of `a` meets some triangle of `b`.
+fn faces_intersect(a: &[Tri], b: &[Tri], ta: &Tribox, tb: &Tribox, tests: &mut u64) -> bool {
+    // Only triangles meeting the other object's tribox can meet its triangles.
+    let near = |ts: &[Tri], other: &Tribox| -> Vec<usize> {
+        let mut v: Vec<usize> = (0..ts.len())
+            .filter(|&i| ts[i].t.interferes(other))
+            .collect();
+        v.sort_by(|&x, &y| ts[x].t.lo[0].total_cmp(&ts[y].t.lo[0]));
+        v
+    };
+    let (na, nb) = (near(a, tb), near(b, ta));
+    // Sweep along x over both sorted lists.
+    let mut start = 0;
+    for &i in &na {
+        let ti = &a[i];
+        while start < nb.len() && b[nb[start]].t.hi[0] < ti.t.lo[0] {
+            start += 1;
+        }
+        for &j in &nb[start..] {
+            let tj = &b[j];
+            if tj.t.lo[0] > ti.t.hi[0] {
+                break;
+            }
+            if ti.t.interferes(&tj.t) {
+                *tests += 1;
+                if triangles_intersect(&ti.p, &tj.p) {
+                    return true;
+                }
+            }
+        }
+    }
+    false
+}
+
+fn newell(p: &[P3]) -> V3 {
+    let mut n = V3::zeros();
+    for i in 0..p.len() {
+        n += p[i].coords.cross(&p[(i + 1) % p.len()].coords);
+    }
+    n
+}
+
+fn o3(a: &P3, b: &P3, c: &P3, d: &P3) -> f64 {
+    let c3 = |p: &P3| robust::Coord3D {
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    };
+    robust::orient3d(c3(a), c3(b), c3(c), c3(d))
+}
+
+/// Exact closed intersection test of two non-degenerate triangles: they meet exactly when an
+/// edge of one meets the other (non-coplanar), or in the plane's 2D test (coplanar).
+pub fn triangles_intersect(t: &[P3; 3], u: &[P3; 3]) -> bool {
+    let su = t.map(|p| o3(&u[0], &u[1], &u[2], &p));
+    if su.iter().all(|&s| s > 0.0) || su.iter().all(|&s| s < 0.0) {
+        return false;
+    }
+    let st = u.map(|p| o3(&t[0], &t[1], &t[2], &p));
+    if st.iter().all(|&s| s > 0.0) || st.iter().all(|&s| s < 0.0) {
+        return false;
+    }
+    if su.iter().all(|&s| s == 0.0) {
+        let (x, y) = plane_axes(u);
+        let a = t.map(|p| [p[x], p[y]]);
+        let b = u.map(|p| [p[x], p[y]]);
+        return triangles_2d(&a, &b);
+    }
+    (0..3).any(|i| segment_meets_triangle(&t[i], &t[(i + 1) % 3], u))
+        || (0..3).any(|i| segment_meets_triangle(&u[i], &u[(i + 1) % 3], t))
+}
+
+/// The two coordinates kept when projecting a triangle's plane along its dominant axis.
+fn plane_axes(t: &[P3; 3]) -> (usize, usize) {
+    let n = (t[1] - t[0]).cross(&(t[2] - t[0])).abs();
+    if n.x >= n.y && n.x >= n.z {
+        (1, 2)
+    } else if n.y >= n.z {
+        (2, 0)
+    } else {
+        (0, 1)
+    }
+}
+
+/// Closed segment pq against closed triangle t.
+fn segment_meets_triangle(p: &P3, q: &P3, t: &[P3; 3]) -> bool {
+    let (sp, sq) = (o3(&t[0], &t[1], &t[2], p), o3(&t[0], &t[1], &t[2], q));
+    if (sp > 0.0 && sq > 0.0) || (sp < 0.0 && sq < 0.0) {
+        return false;
+    }
+    if sp == 0.0 && sq == 0.0 {
+        let (x, y) = plane_axes(t);
+        let tri = t.map(|v| [v[x], v[y]]);
+        let (a, b) = ([p[x], p[y]], [q[x], q[y]]);
+        return point_in_triangle_2d(a, &tri)
+            || (0..3).any(|i| segments_2d(a, b, tri[i], tri[(i + 1) % 3]));
+    }
+    let s = [
+        o3(p, q, &t[0], &t[1]),
+        o3(p, q, &t[1], &t[2]),
+        o3(p, q, &t[2], &t[0]),
+    ];
+    s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0)
+}
+
+fn point_in_triangle_2d(p: [f64; 2], t: &[[f64; 2]; 3]) -> bool {
+    let s = [
+        orient2d(t[0], t[1], p),
+        orient2d(t[1], t[2], p),
+        orient2d(t[2], t[0], p),
+    ];
+    s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0)
+}
+
+/// Closed segments ab and cd meet.
+fn segments_2d(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+    let (d1, d2) = (orient2d(c, d, a), orient2d(c, d, b));
+    let (d3, d4) = (orient2d(a, b, c), orient2d(a, b, d));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    let on = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
+        r[0] >= p[0].min(q[0])
+            && r[0] <= p[0].max(q[0])
+            && r[1] >= p[1].min(q[1])
+            && r[1] <= p[1].max(q[1])
+    };
+    (d1 == 0.0 && on(c, d, a))
+        || (d2 == 0.0 && on(c, d, b))
+        || (d3 == 0.0 && on(a, b, c))
+        || (d4 == 0.0 && on(a, b, d))
+}
+
+fn triangles_2d(a: &[[f64; 2]; 3], b: &[[f64; 2]; 3]) -> bool {
+    (0..3).any(|i| (0..3).any(|j| segments_2d(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3])))
+        || point_in_triangle_2d(a[0], b)
+        || point_in_triangle_2d(b[0], a)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(x: f64, y: f64, z: f64) -> P3 {
+        P3::new(x, y, z)
+    }
+
+    #[test]
+    fn crossing_touching_and_apart_triangles() {
+        let t = [p(0., 0., 0.), p(2., 0., 0.), p(0., 2., 0.)];
+        // Pierces t.
+        assert!(triangles_intersect(
+            &t,
+            &[p(0.5, 0.5, -1.), p(0.5, 0.5, 1.), p(3., 3., 0.5)]
+        ));
+        // Above t.
+        assert!(!triangles_intersect(
+            &t,
+            &[p(0.5, 0.5, 1.), p(0.6, 0.5, 1.), p(0.5, 0.6, 2.)]
+        ));
+        // Touches t at a vertex on its edge.
+        assert!(triangles_intersect(
+            &t,
+            &[p(1., 0., 0.), p(1., -1., 1.), p(1., -1., -1.)]
+        ));
+        // Coplanar, overlapping and apart.
+        assert!(triangles_intersect(
+            &t,
+            &[p(0.5, 0.5, 0.), p(5., 0.5, 0.), p(0.5, 5., 0.)]
+        ));
+        assert!(!triangles_intersect(
+            &t,
+            &[p(3., 3., 0.), p(5., 3., 0.), p(3., 5., 0.)]
+        ));
+        // Its plane crosses t's plane beside t.
+        assert!(!triangles_intersect(
+            &t,
+            &[p(3., 0., -1.), p(3., 0., 1.), p(3., 3., 0.)]
+        ));
+    }
+}
