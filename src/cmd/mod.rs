@@ -1,9 +1,11 @@
 //! Command-line interface: argument definitions and dispatch to the subcommands.
 
+mod bench;
 mod camera_args;
 mod check;
 mod flatten;
 mod info;
+mod progress;
 mod query;
 mod render;
 
@@ -36,6 +38,9 @@ enum Command {
     Info(info::InfoArgs),
     /// Re-render and compare the visible-polygon set with a golden file (exit 1 on changes).
     Check(check::CheckArgs),
+    /// Benchmark suite: stage times, memory, time against accuracy, size and hidden
+    /// complexity, as CSV and SVG charts in out/bench/.
+    Bench(bench::BenchArgs),
 }
 
 /// Runs a parsed command line.
@@ -46,6 +51,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Flatten(a) => flatten::run(a),
         Command::Info(a) => info::run(a),
         Command::Check(a) => check::run(a),
+        Command::Bench(a) => bench::run(a),
     }
 }
 

@@ -1,6 +1,8 @@
 //! The whole-scene pass: every face's VTP, in parallel over faces, with whole subtrees found
 //! HIDDEN by inboxes skipped before any of their faces is touched.
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use rayon::prelude::*;
 
 use crate::geom::poly2::{canonicalize, multipolygon_area, MultiPolygon};
@@ -58,6 +60,12 @@ pub struct Visibility {
 
 /// Computes every face's VTP against the whole scene.
 pub fn solve(view: &View, opts: PassOptions) -> Visibility {
+    solve_counted(view, opts, None)
+}
+
+/// [`solve`], adding 1 to `done` as each of the `view.screen.faces.len()` face pieces is
+/// finished (for a progress bar; one relaxed atomic add per piece, the result is the same).
+pub fn solve_counted(view: &View, opts: PassOptions, done: Option<&AtomicUsize>) -> Visibility {
     let mut counters = Counters::default();
     let hidden = if opts.use_inbox {
         hidden_subtrees(view, &mut counters)
@@ -74,7 +82,11 @@ pub fn solve(view: &View, opts: PassOptions) -> Visibility {
     let results: Vec<(FaceVisibility, Counters)> = (0..sf.faces.len())
         .into_par_iter()
         .map_init(Scratch::default, |scratch, f| {
-            solve_face(&view_used, root, f, hidden[f], scratch)
+            let r = solve_face(&view_used, root, f, hidden[f], scratch);
+            if let Some(d) = done {
+                d.fetch_add(1, Ordering::Relaxed);
+            }
+            r
         })
         .collect();
     for (_, c) in &results {
