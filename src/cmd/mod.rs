@@ -1,9 +1,11 @@
 //! Command-line interface: argument definitions and dispatch to the subcommands.
 
+mod bench;
 mod camera_args;
 mod check;
 mod flatten;
 mod info;
+mod progress;
 mod query;
 mod render;
 mod tribox;
@@ -39,6 +41,9 @@ enum Command {
     Check(check::CheckArgs),
     /// Hierarchical tribox substitutes at each level (OBJ, SVG) and the paper's Table 1.
     Tribox(tribox::TriboxArgs),
+    /// Benchmark suite: stage times, memory, time against accuracy, size and hidden
+    /// complexity, as CSV and SVG charts in out/bench/.
+    Bench(bench::BenchArgs),
 }
 
 /// Runs a parsed command line.
@@ -50,6 +55,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Info(a) => info::run(a),
         Command::Check(a) => check::run(a),
         Command::Tribox(a) => tribox::run(a),
+        Command::Bench(a) => bench::run(a),
     }
 }
 

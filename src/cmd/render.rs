@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::AtomicUsize;
 use std::time::{Duration, Instant};
 
 use anyhow::Result;
@@ -9,9 +10,14 @@ use clap::{Args, ValueEnum};
 use kepler::emit::{draw, to_json, Drawing, EdgeOptions, EdgeSet, LineOptions};
 use kepler::scene::Scene;
 use kepler::view::{Cull, View};
-use kepler::visibility::{solve, PassOptions};
+use kepler::visibility::{solve_counted, PassOptions};
 
+use super::progress::follow;
 use super::{load_only, write, CameraArgs};
+
+/// A render that has taken this long shows a progress bar (on a terminal) for the visibility
+/// stage.
+const PROGRESS_AFTER: Duration = Duration::from_millis(500);
 
 /// Arguments of `kepler render`.
 #[derive(Args, Debug)]
@@ -124,6 +130,7 @@ fn emit(
 /// Runs `kepler render`.
 pub fn run(a: RenderArgs) -> Result<ExitCode> {
     a.line_options()?;
+    let start = Instant::now();
     let mut times: Vec<(&str, Duration)> = Vec::new();
     let t = Instant::now();
     let mut scene = load_only(&a.scene, a.quiet)?;
@@ -150,12 +157,15 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
     drop(cull);
     times.push(("view", t.elapsed()));
     let t = Instant::now();
-    let vis = solve(
-        &view,
-        PassOptions {
-            use_inbox: !a.no_inbox,
-        },
-    );
+    let opts = PassOptions {
+        use_inbox: !a.no_inbox,
+    };
+    let done = AtomicUsize::new(0);
+    let delay = PROGRESS_AFTER.saturating_sub(start.elapsed());
+    let pieces = view.screen.faces.len();
+    let vis = follow("visibility", pieces, delay, &done, || {
+        solve_counted(&view, opts, Some(&done))
+    });
     times.push(("visibility", t.elapsed()));
     let t = Instant::now();
     // Emitting needs the screen faces, not the tree: free it before the drawing's own memory.

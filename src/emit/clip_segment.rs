@@ -66,21 +66,16 @@ fn splits(a: Pt2, b: Pt2, c: Pt2, d: Pt2, sb: &[f64; 4], eps: f64, ts: &mut Vec<
             ts.push(t);
         }
     };
-    if oc == 0.0 || od == 0.0 {
-        if oc == 0.0 {
-            push(param(a, b, c));
-        }
-        if od == 0.0 {
-            push(param(a, b, d));
-        }
-        return;
+    // A ring vertex on the segment's line, or within eps of it (grid-snapped boundaries),
+    // splits it there: a boundary running along the segment may end at that vertex, whichever
+    // side of the line rounding put it on.
+    if oc == 0.0 || dist_to_line(a, b, c) <= eps {
+        push(param(a, b, c));
     }
-    if (oc > 0.0) == (od > 0.0) {
-        // Nearly collinear ring edges (grid-snapped boundaries) still split where they end.
-        if dist_to_line(a, b, c) <= eps && dist_to_line(a, b, d) <= eps {
-            push(param(a, b, c));
-            push(param(a, b, d));
-        }
+    if od == 0.0 || dist_to_line(a, b, d) <= eps {
+        push(param(a, b, d));
+    }
+    if oc == 0.0 || od == 0.0 || (oc > 0.0) == (od > 0.0) {
         return;
     }
     let (oa, ob) = (orient2d(c, d, a), orient2d(c, d, b));
@@ -153,6 +148,28 @@ pub fn complement(ivs: &[Interval]) -> Vec<Interval> {
         out.push([t, 1.0]);
     }
     out
+}
+
+#[cfg(test)]
+mod boundary_split_tests {
+    use super::*;
+
+    #[test]
+    fn collinear_boundary_ending_at_a_vertex_just_off_the_line() {
+        // A VTP triangle one of whose edges runs along the segment from its end b back to
+        // t ≈ 0.393, where its vertex lies a few ulps off the segment's line on the same
+        // side as the triangle's third vertex: the segment touches the region only from there.
+        let m = vec![vec![vec![
+            [-0.27933405980619985, 2.7301521038740955],
+            [-0.12479158486377023, 2.2570026291621175],
+            [0.29767498954861393, 2.5297895212104207],
+        ]]];
+        let a = [-0.6516453089783969, 2.8594347269495772];
+        let b = [0.29767498954861393, 2.5297895212104207];
+        let iv = intervals_in(a, b, &m);
+        assert_eq!(iv.len(), 1);
+        assert!((iv[0][0] - 0.393).abs() < 2e-3 && iv[0][1] == 1.0, "{iv:?}");
+    }
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 
 pub mod cleanup;
 pub mod flatten;
+pub mod generate;
 pub mod object;
 pub mod texture;
 pub mod topology;

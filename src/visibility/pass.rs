@@ -1,6 +1,8 @@
 //! The whole-scene pass: every face's VTP, in parallel over faces. Subtrees the view stage
 //! culled (HIDDEN by inboxes) have no pieces, so the pass never touches their faces.
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use rayon::prelude::*;
 
 use crate::geom::poly2::{canonicalize, multipolygon_area, MultiPolygon};
@@ -107,6 +109,12 @@ const SEQUENTIAL_BELOW: usize = 64;
 
 /// Computes every face's VTP against the whole scene.
 pub fn solve(view: &View, opts: PassOptions) -> Visibility {
+    solve_counted(view, opts, None)
+}
+
+/// [`solve`], adding 1 to `done` as each of the `view.screen.faces.len()` face pieces is
+/// finished (for a progress bar; one relaxed atomic add per piece, the result is the same).
+pub fn solve_counted(view: &View, opts: PassOptions, done: Option<&AtomicUsize>) -> Visibility {
     let mut counters = Counters {
         subtrees_tested: view.culled.tested,
         subtrees_hidden: view.culled.subtrees,
@@ -122,7 +130,13 @@ pub fn solve(view: &View, opts: PassOptions) -> Visibility {
     let sf = &view.screen;
     // Only projected leaves have pieces: the pass's work is theirs alone. A few pieces are
     // solved on this thread: waking the pool would cost more than the work.
-    let solve = |scratch: &mut Scratch, f| solve_face(&view_used, root, f, scratch);
+    let solve = |scratch: &mut Scratch, f| {
+        let r = solve_face(&view_used, root, f, scratch);
+        if let Some(d) = done {
+            d.fetch_add(1, Ordering::Relaxed);
+        }
+        r
+    };
     let results: Vec<(FaceVisibility, Counters)> = if sf.faces.len() < SEQUENTIAL_BELOW {
         let mut scratch = Scratch::default();
         (0..sf.faces.len())
