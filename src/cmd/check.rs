@@ -197,7 +197,8 @@ fn multipolygon(v: Option<&Value>) -> Option<MultiPolygon> {
 
 /// Area of the symmetric difference of two multipolygons (even-odd rings), on one fixed i64
 /// grid over both.
-fn xor_area(a: &MultiPolygon, b: &MultiPolygon) -> f64 {
+/// Area of the symmetric difference of two multipolygons (exact to the i64 grid).
+pub(crate) fn xor_area(a: &MultiPolygon, b: &MultiPolygon) -> f64 {
     let pts = a.iter().chain(b.iter()).flatten().flatten();
     let r = bounds(pts);
     let Ok(rect) = FloatRect::new(r[0], r[2], r[1], r[3]) else {

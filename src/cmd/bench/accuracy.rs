@@ -10,6 +10,7 @@
 //! of the symmetric difference between its sampled visible pieces and kepler's exact visible
 //! intervals, relative to the exact visible length.
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -20,10 +21,13 @@ use kepler::emit::intersect::intersection_edges;
 use kepler::emit::lines::visible_intervals;
 use kepler::emit::world::WorldFaces;
 use kepler::emit::{draw, LineOptions};
+use kepler::geom::poly2::{multipolygon_area, MultiPolygon};
 use kepler::scene::Scene;
+use kepler::tribox::lod::{substitute, LodOptions};
 use kepler::view::{Camera, View};
 use kepler::visibility::{solve, PassOptions, Visibility};
 
+use super::super::check::xor_area;
 use super::coverage::Coverage;
 use super::rays;
 use super::suite::ms_since;
@@ -41,7 +45,13 @@ pub enum Method {
     ZBuffer(u32),
     /// Ray sampling every 1/k of the picture's longer side, for this k.
     Rays(u32),
+    /// kepler with `--lod PX` (objects under PX pixels of a [`LOD_SIZE`] picture drawn as
+    /// their triboxes), for this PX.
+    Lod(u32),
 }
+
+/// Picture size the `--lod` points assume.
+pub const LOD_SIZE: u32 = 1024;
 
 impl Method {
     /// Name in tables and CSV.
@@ -51,6 +61,7 @@ impl Method {
             Method::ExactLines => "kepler-exact-lines",
             Method::ZBuffer(_) => "zbuffer",
             Method::Rays(_) => "rays",
+            Method::Lod(_) => "kepler-lod",
         }
     }
 
@@ -60,13 +71,14 @@ impl Method {
             Method::Exact | Method::ExactLines => 0,
             Method::ZBuffer(px) => px,
             Method::Rays(k) => k,
+            Method::Lod(px) => px,
         }
     }
 
     /// What its error measures: visible `area` or visible line `length`.
     pub fn metric(self) -> &'static str {
         match self {
-            Method::Exact | Method::ZBuffer(_) => "area",
+            Method::Exact | Method::ZBuffer(_) | Method::Lod(_) => "area",
             Method::ExactLines | Method::Rays(_) => "length",
         }
     }
@@ -306,11 +318,21 @@ pub enum Output {
     Pixels(IdBuffer),
     /// Sampled visible intervals per edge.
     Lines(Vec<Vec<Interval>>),
+    /// The exact visible polygons of a substituted scene, and its view.
+    Substituted(Box<(View, Visibility)>),
 }
 
 /// Runs a method once: (milliseconds, output).
 pub fn run(scene: &Scene, camera: Camera, m: Method) -> (f64, Output) {
     let t = Instant::now();
+    if let Method::Lod(px) = m {
+        // As `render --lod` does it: substitute, prepare the substitutes, cull, project, solve.
+        let (mut lod, _) = substitute(scene, &camera, &LodOptions::new(px as f64, LOD_SIZE));
+        kepler::prepare::prepare(&mut lod);
+        let view = View::culled(&lod, camera);
+        let vis = solve(&view, PassOptions::default());
+        return (ms_since(t), Output::Substituted(Box::new((view, vis))));
+    }
     let view = View::new(scene, camera);
     let out = match m {
         Method::Exact => {
@@ -328,6 +350,7 @@ pub fn run(scene: &Scene, camera: Camera, m: Method) -> (f64, Output) {
             let step = (r[2] - r[0]).max(r[3] - r[1]) / k as f64;
             Output::Lines(rays::sample(&view, &edges(scene, &view), step))
         }
+        Method::Lod(_) => unreachable!("handled above"),
     };
     (ms_since(t), out)
 }
@@ -342,6 +365,48 @@ pub fn error(r: &Reference, out: &Output) -> Error {
         },
         Output::Pixels(buf) => area_error(r, buf),
         Output::Lines(l) => line_error(r, l),
+        Output::Substituted(s) => substitute_error(r, &s.0, &s.1),
+    }
+}
+
+/// The area error of a substituted scene, object by object: a substitute's faces are not the
+/// original's, so what is compared is the visible region of each drawn object (the union of
+/// its faces' VTPs; an original leaf belongs to the substitute at its own path or the nearest
+/// enclosing one), summed |exact Δ substituted| over Σ|V_f|.
+pub fn substitute_error(r: &Reference, view: &View, vis: &Visibility) -> Error {
+    let drawn: BTreeSet<&str> = view.screen.leaves.iter().map(|l| l.path.as_str()).collect();
+    let key = |path: &str| -> String {
+        let mut p = path;
+        while !drawn.contains(p) {
+            match p.rfind('/') {
+                Some(i) => p = &p[..i],
+                None => return path.to_string(),
+            }
+        }
+        p.to_string()
+    };
+    let mut regions: BTreeMap<String, [MultiPolygon; 2]> = BTreeMap::new();
+    for (k, (v, vw)) in [(&r.vis, &r.view), (vis, view)].into_iter().enumerate() {
+        for (id, fv) in v.iter().filter(|f| !f.1.visible.is_empty()) {
+            let path = key(&vw.screen.leaf_of_face(id).path);
+            regions.entry(path).or_default()[k].extend(fv.visible.iter().cloned());
+        }
+    }
+    let diffs: Vec<(f64, f64)> = regions
+        .values()
+        .map(|[a, b]| (xor_area(a, b), multipolygon_area(a)))
+        .collect();
+    let total: f64 = diffs.iter().map(|d| d.0).sum();
+    Error {
+        total,
+        relative: total / r.visible_area.max(f64::MIN_POSITIVE),
+        item_median: median(
+            diffs
+                .iter()
+                .filter(|d| d.1 > 0.0)
+                .map(|d| d.0 / d.1)
+                .collect(),
+        ),
     }
 }
 
@@ -444,5 +509,38 @@ mod tests {
             _ => unreachable!(),
         };
         assert!(lines(1000) <= lines(10));
+    }
+
+    #[test]
+    fn lod_error_is_zero_for_itself_and_grows_with_the_pixel_size() {
+        let ico = kepler::scene::cleanup::cleanup(
+            &kepler::primitives::by_name("icosahedron").unwrap(),
+            &kepler::scene::cleanup::Origin {
+                file: std::path::Path::new("t"),
+                face_pos: &[],
+            },
+            &mut Vec::new(),
+        )
+        .unwrap();
+        let at = |x: f64| nalgebra::Translation3::new(x, 0., 0.).to_homogeneous();
+        let proto = std::sync::Arc::new(Object::from_mesh("ico", ico));
+        let objs = (0..3)
+            .map(|k| Object::instance(format!("i{k}"), proto.clone(), at(3. * k as f64)))
+            .collect();
+        let mut scene = Scene::new(Object::group("", objs), "t".into());
+        kepler::prepare::prepare(&mut scene);
+        let cam = Camera::orthographic(V3::new(0.3, -0.2, -1.), V3::y()).unwrap();
+        let r = Reference::new(&scene, cam);
+        let err = |px| match run(&scene, cam, Method::Lod(px)).1 {
+            Output::Substituted(s) => substitute_error(&r, &s.0, &s.1).relative,
+            _ => unreachable!(),
+        };
+        // Nothing is under 1 pixel: nothing is substituted and nothing differs.
+        assert_eq!(err(1), 0.0);
+        // Everything is under 10000 pixels: each icosahedron is drawn as its tribox, which
+        // contains it, so the error is the triboxes' extra area: positive and small.
+        let big = err(10_000);
+        assert!(big > 0.0 && big < 0.5, "{big}");
+        assert_eq!(substitute_error(&r, &r.view, &r.vis).total, 0.0);
     }
 }

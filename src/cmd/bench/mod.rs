@@ -68,6 +68,8 @@ pub struct Plan {
     pub zbuffer: Vec<u32>,
     /// Ray-sampling steps (per picture side).
     pub rays: Vec<u32>,
+    /// `--lod` pixel sizes.
+    pub lod: Vec<u32>,
     /// Cases of the time-against-accuracy chart (by name, where present).
     pub accuracy: Vec<String>,
     /// Town sizes.
@@ -87,6 +89,7 @@ impl Plan {
                 models: suite::QUICK_MODELS.to_vec(),
                 zbuffer: vec![256, 1024, 4096],
                 rays: vec![64, 512],
+                lod: vec![16, 64],
                 accuracy: vec!["stanford-bunny".into(), "field-1k".into()],
                 town: vec![10, 30, 100],
                 max_faces: usize::MAX,
@@ -99,6 +102,7 @@ impl Plan {
                 models: suite::MODELS.to_vec(),
                 zbuffer: vec![256, 512, 1024, 2048, 4096, 8192],
                 rays: vec![64, 256, 1024, 4096],
+                lod: vec![8, 16, 32, 64, 128],
                 accuracy: vec!["stanford-bunny".into(), "field-10k".into()],
                 town: town::TOWN_NS.to_vec(),
                 max_faces: usize::MAX,
@@ -257,7 +261,9 @@ pub struct AccuracyRow {
 
 /// Counts the jobs of a plan, for the progress bar.
 fn job_count(p: &Plan, cases: usize, subjects: usize) -> usize {
-    cases * p.views.len() + subjects * (2 + p.zbuffer.len() + p.rays.len()) + 2 * p.town.len()
+    cases * p.views.len()
+        + subjects * (2 + p.zbuffer.len() + p.rays.len() + p.lod.len())
+        + 2 * p.town.len()
 }
 
 /// Runs `kepler bench`.
@@ -372,6 +378,7 @@ fn time_accuracy(
     let mut methods = vec![Method::Exact, Method::ExactLines];
     methods.extend(plan.zbuffer.iter().map(|&px| Method::ZBuffer(px)));
     methods.extend(plan.rays.iter().map(|&k| Method::Rays(k)));
+    methods.extend(plan.lod.iter().map(|&px| Method::Lod(px)));
     let mut out = Vec::new();
     for m in methods {
         let label = format!("{} {} {}", case.name, m.name(), m.param());

@@ -280,6 +280,13 @@ pub fn accuracy_chart(acc: &[&AccuracyRow]) -> Chart {
         &|m| format!("step 1/{}", m.param()),
     );
     add(
+        pick(&|m| matches!(m, Method::Lod(_))),
+        "kepler --lod (area error by object)",
+        "#2ca02c",
+        Style::LineMarkers,
+        &|m| format!("lod {} px", m.param()),
+    );
+    add(
         pick(&|m| m == Method::Exact),
         "kepler exact polygons",
         "#1f77b4",
@@ -297,6 +304,7 @@ pub fn accuracy_chart(acc: &[&AccuracyRow]) -> Chart {
     let check = acc.iter().find_map(|r| r.check);
     let mut notes = vec![
         "area error: sum over faces of |P_f sym.diff. V_f| / sum of |V_f| (V_f exact visible region, P_f its pixels)".to_string(),
+        "lod error: sum over drawn objects of |exact region sym.diff. substitute's region| / sum of |V_f|".to_string(),
         "line error: sum over edges of |sampled sym.diff. exact visible pieces| / exact visible length".to_string(),
         format!(
             "kepler's own error is 0 (f64-exact); drawn at {}{}",
@@ -462,6 +470,7 @@ fn accuracy_table(s: &mut String, acc: &[AccuracyRow]) {
         let param = match r.method {
             Method::ZBuffer(px) => format!("{px} px"),
             Method::Rays(k) => format!("step 1/{k}"),
+            Method::Lod(px) => format!("{px} px of {}", super::accuracy::LOD_SIZE),
             _ => String::new(),
         };
         let err = match r.check {
