@@ -17,6 +17,8 @@ use super::screen::{ScreenFace, ScreenFaces};
 
 /// Faces per BVH leaf inside a large mesh.
 const LEAF_FACES: usize = 4;
+/// Most children of a group's node before the group gets a hierarchy of its own.
+const MAX_CHILDREN: usize = 8;
 
 /// What a node holds.
 #[derive(Debug, Clone)]
@@ -188,7 +190,7 @@ impl Builder<'_> {
                         self.object(s, xf, &p, Some(slot))
                     })
                     .collect();
-                self.inner(kids)
+                self.group(kids)
             }
             Content::Instance(i) => {
                 let m = xf * i.transform;
@@ -249,6 +251,44 @@ impl Builder<'_> {
     fn push(&mut self, node: Node) -> u32 {
         self.tree.nodes.push(node);
         self.tree.nodes.len() as u32 - 1
+    }
+
+    /// A node over the nodes of an object's subobjects. A wide group (a town of a thousand
+    /// buildings under one root) gets a median-split hierarchy over its children's screen
+    /// bounds, so that a walk does not scan every child: the group's node is its root.
+    fn group(&mut self, mut kids: Vec<u32>) -> u32 {
+        if kids.len() <= MAX_CHILDREN {
+            return self.inner(kids);
+        }
+        let nodes = &self.tree.nodes;
+        let centre = |k: u32, axis: usize| {
+            let n = &nodes[k as usize];
+            match axis {
+                2 => n.zmin + n.zmax,
+                _ => n.rect[axis] + n.rect[axis + 2],
+            }
+        };
+        let span = |axis: usize| {
+            let (lo, hi) = kids
+                .iter()
+                .map(|&k| centre(k, axis))
+                .filter(|c| c.is_finite())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+                    (lo.min(c), hi.max(c))
+                });
+            hi - lo
+        };
+        let axis = (0..3)
+            .max_by(|&a, &b| span(a).total_cmp(&span(b)).then(b.cmp(&a)))
+            .unwrap_or(0);
+        let mid = kids.len() / 2;
+        kids.select_nth_unstable_by(mid, |&a, &b| {
+            centre(a, axis).total_cmp(&centre(b, axis)).then(a.cmp(&b))
+        });
+        let right = kids.split_off(mid);
+        let l = self.group(kids);
+        let r = self.group(right);
+        self.inner(vec![l, r])
     }
 
     fn inner(&mut self, mut kids: Vec<u32>) -> u32 {
