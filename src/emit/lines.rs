@@ -78,9 +78,14 @@ pub fn draw(scene: &Scene, view: &View, vis: &Visibility, opts: &LineOptions) ->
 /// The screen image of the world segment a → b, clipped to the near plane (perspective);
 /// None when nothing of it is in front.
 pub fn project_segment(camera: &Camera, a: &P3, b: &P3) -> Option<[Pt2; 2]> {
+    project_segment_depth(camera, a, b).map(|[p, q]| [[p[0], p[1]], [q[0], q[1]]])
+}
+
+/// [`project_segment`] with the screen depth of each end: (x, y, z).
+pub fn project_segment_depth(camera: &Camera, a: &P3, b: &P3) -> Option<[[f64; 3]; 2]> {
     let (mut ha, mut hb) = (camera.clip_coords(a), camera.clip_coords(b));
     if camera.projection == Projection::Orthographic {
-        return Some([[ha[0], ha[1]], [hb[0], hb[1]]]);
+        return Some([[ha[0], ha[1], ha[2]], [hb[0], hb[1], hb[2]]]);
     }
     let near = camera.near;
     let (da, db) = (ha[3] - near, hb[3] - near);
@@ -98,7 +103,7 @@ pub fn project_segment(camera: &Camera, a: &P3, b: &P3) -> Option<[Pt2; 2]> {
     } else if db < 0.0 {
         hb = cut(ha, hb, da, db);
     }
-    let s = |h: [f64; 4]| [h[0] / h[3], h[1] / h[3]];
+    let s = |h: [f64; 4]| [h[0] / h[3], h[1] / h[3], h[2] / h[3]];
     Some([s(ha), s(hb)])
 }
 

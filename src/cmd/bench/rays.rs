@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use kepler::emit::clip_segment::Interval;
 use kepler::emit::edges::Edge;
 use kepler::geom::P3;
-use kepler::view::{Camera, Projection, View};
+use kepler::view::{Camera, View};
 
 use super::zbuffer::{plane, scene_rect};
 
@@ -163,31 +163,9 @@ fn inside(r: &[[f64; 2]], p: [f64; 2]) -> bool {
 }
 
 /// The screen segment (x, y, depth) of the world segment a → b, cut at the near plane
-/// (perspective) exactly as `kepler::emit::lines::project_segment` cuts it; None when nothing
-/// of it is in front.
+/// (perspective) exactly as the drawing cuts it; None when nothing of it is in front.
 pub fn segment(camera: &Camera, a: &P3, b: &P3) -> Option<[[f64; 3]; 2]> {
-    let (mut ha, mut hb) = (camera.clip_coords(a), camera.clip_coords(b));
-    if camera.projection == Projection::Orthographic {
-        return Some([[ha[0], ha[1], ha[2]], [hb[0], hb[1], hb[2]]]);
-    }
-    let near = camera.near;
-    let (da, db) = (ha[3] - near, hb[3] - near);
-    if da < 0.0 && db < 0.0 {
-        return None;
-    }
-    let cut = |p: [f64; 4], q: [f64; 4], dp: f64, dq: f64| {
-        let t = dp / (dp - dq);
-        let mut h: [f64; 4] = std::array::from_fn(|k| p[k] + t * (q[k] - p[k]));
-        h[3] = near;
-        h
-    };
-    if da < 0.0 {
-        ha = cut(ha, hb, da, db);
-    } else if db < 0.0 {
-        hb = cut(ha, hb, da, db);
-    }
-    let s = |h: [f64; 4]| [h[0] / h[3], h[1] / h[3], h[2] / h[3]];
-    Some([s(ha), s(hb)])
+    kepler::emit::lines::project_segment_depth(camera, a, b)
 }
 
 /// The visible intervals of one screen segment sampled every `step`: it is cut into
