@@ -248,24 +248,6 @@ fn output_is_identical_whatever_the_thread_count() {
     assert_eq!(one.counters, many.counters);
 }
 
-/// The shared models directory, or None (tests then skip with a message).
-fn models() -> Option<std::path::PathBuf> {
-    let dir = std::env::var_os("KEPLER_MODELS")
-        .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| {
-            std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/models"))
-        });
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "skipping: no models at {} (set KEPLER_MODELS)",
-            dir.display()
-        );
-        None
-    }
-}
-
 #[test]
 fn shared_meshes_from_several_views() {
     let Some(dir) = models() else { return };

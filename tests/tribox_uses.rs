@@ -260,23 +260,6 @@ fn interference_matches_exact_tests() {
     assert_eq!(r.pairs, 10);
 }
 
-fn models() -> Option<std::path::PathBuf> {
-    let dir = std::env::var_os("KEPLER_MODELS")
-        .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| {
-            std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/models"))
-        });
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "skipping: no models at {} (set KEPLER_MODELS)",
-            dir.display()
-        );
-        None
-    }
-}
-
 #[test]
 fn shared_meshes_tribox_between_hull_and_cbox() {
     let Some(dir) = models() else { return };

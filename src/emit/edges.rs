@@ -210,21 +210,9 @@ mod tests {
     use super::*;
     use crate::geom::PolyMesh;
     use crate::scene::cleanup::{cleanup, Origin};
+    use crate::scene::testing::unit_cube_scene;
     use crate::scene::{Object, Scene};
     use crate::view::Camera;
-
-    fn cube_scene() -> Scene {
-        let raw = crate::primitives::cuboid(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
-        let origin = Origin {
-            file: std::path::Path::new("t"),
-            face_pos: &[],
-        };
-        let mesh = cleanup(&raw, &origin, &mut Vec::new()).unwrap();
-        Scene::new(
-            Object::group("", vec![Object::from_mesh("cube", mesh)]),
-            "t".into(),
-        )
-    }
 
     fn count(edges: &[Edge], kind: EdgeKind) -> usize {
         edges.iter().filter(|e| e.kind == kind).count()
@@ -232,7 +220,7 @@ mod tests {
 
     #[test]
     fn cube_three_quarter_has_six_silhouette_edges() {
-        let scene = cube_scene();
+        let scene = unit_cube_scene();
         let view = View::new(&scene, Camera::three_quarter());
         let world = WorldFaces::build(&scene);
         let opts = EdgeOptions {

@@ -181,26 +181,12 @@ pub fn total_length(strokes: &[Stroke]) -> f64 {
 mod tests {
     use super::*;
     use crate::geom::V3;
-    use crate::scene::cleanup::{cleanup, Origin};
-    use crate::scene::Object;
+    use crate::scene::testing::unit_cube_scene;
     use crate::visibility::{solve, PassOptions};
-
-    fn cube_scene() -> Scene {
-        let raw = crate::primitives::cuboid(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
-        let origin = Origin {
-            file: std::path::Path::new("t"),
-            face_pos: &[],
-        };
-        let mesh = cleanup(&raw, &origin, &mut Vec::new()).unwrap();
-        Scene::new(
-            Object::group("", vec![Object::from_mesh("cube", mesh)]),
-            "t".into(),
-        )
-    }
 
     #[test]
     fn cube_from_front_is_a_square_outline() {
-        let scene = cube_scene();
+        let scene = unit_cube_scene();
         let cam = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
         let view = View::new(&scene, cam);
         let vis = solve(&view, PassOptions::default());

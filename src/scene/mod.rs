@@ -114,6 +114,29 @@ impl Scene {
     }
 }
 
+/// Small scenes shared by the unit tests of several stages.
+#[cfg(test)]
+pub(crate) mod testing {
+    use super::{Object, Scene};
+    use crate::geom::P3;
+    use crate::scene::cleanup::{cleanup, Origin};
+
+    /// The unit cube [0, 1]^3 as a closed leaf named "cube".
+    pub fn unit_cube() -> Object {
+        let raw = crate::primitives::cuboid(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
+        let origin = Origin {
+            file: std::path::Path::new("t"),
+            face_pos: &[],
+        };
+        Object::from_mesh("cube", cleanup(&raw, &origin, &mut Vec::new()).unwrap())
+    }
+
+    /// A scene of the unit cube alone.
+    pub fn unit_cube_scene() -> Scene {
+        Scene::new(Object::group("", vec![unit_cube()]), "t".into())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use std::sync::Arc;

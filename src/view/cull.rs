@@ -79,14 +79,6 @@ impl<'a> Cull<'a> {
     pub fn hidden_faces(&self) -> u64 {
         self.hidden.iter().map(|h| h.face_count as u64).sum()
     }
-
-    /// True when face `id` lies in a hidden subtree.
-    pub fn is_hidden(&self, id: u32) -> bool {
-        let k = self
-            .hidden
-            .partition_point(|h| h.first_face + h.face_count <= id);
-        self.hidden.get(k).is_some_and(|h| h.first_face <= id)
-    }
 }
 
 /// A projected INBOX: a convex screen hull in front of everything behind its least depth.

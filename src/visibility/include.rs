@@ -78,26 +78,11 @@ fn solid_angle(a: &V3, b: &V3, c: &V3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::primitives;
-    use crate::scene::cleanup::{cleanup, Origin};
-
-    fn cube() -> Object {
-        let raw = primitives::cuboid(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
-        let m = cleanup(
-            &raw,
-            &Origin {
-                file: std::path::Path::new("c"),
-                face_pos: &[],
-            },
-            &mut Vec::new(),
-        )
-        .unwrap();
-        Object::from_mesh("cube", m)
-    }
+    use crate::scene::testing::unit_cube;
 
     #[test]
     fn cube_inside_outside() {
-        let c = cube();
+        let c = unit_cube();
         let id = M4::identity();
         assert_eq!(include(&c, &id, &P3::new(0.5, 0.5, 0.5)), Inclusion::In);
         assert_eq!(include(&c, &id, &P3::new(0.99, 0.01, 0.5)), Inclusion::In);
@@ -108,7 +93,7 @@ mod tests {
 
     #[test]
     fn instance_transform_is_applied() {
-        let proto = std::sync::Arc::new(cube());
+        let proto = std::sync::Arc::new(unit_cube());
         let t = nalgebra::Translation3::new(5., 0., 0.).to_homogeneous();
         let inst = Object::instance("i", proto, t);
         assert_eq!(

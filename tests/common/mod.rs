@@ -162,3 +162,21 @@ pub fn union_area_exact(parts: &[&MultiPolygon]) -> f64 {
     let u = ov.overlay(OverlayRule::Subject, FillRule::NonZero);
     multipolygon_area(&u)
 }
+
+/// The shared models directory, or None (tests then skip with a message).
+pub fn models() -> Option<std::path::PathBuf> {
+    let dir = std::env::var_os("KEPLER_MODELS")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| {
+            std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/models"))
+        });
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        eprintln!(
+            "skipping: no models at {} (set KEPLER_MODELS)",
+            dir.display()
+        );
+        None
+    }
+}

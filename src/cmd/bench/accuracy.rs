@@ -195,6 +195,23 @@ pub struct Error {
     pub item_median: f64,
 }
 
+impl Error {
+    /// The error of per-item (difference, reference size) pairs against a reference total.
+    fn of_items(items: &[(f64, f64)], reference: f64) -> Error {
+        let total: f64 = items.iter().map(|e| e.0).sum();
+        let rel = items
+            .iter()
+            .filter(|e| e.1 > 0.0)
+            .map(|e| e.0 / e.1)
+            .collect();
+        Error {
+            total,
+            relative: total / reference.max(f64::MIN_POSITIVE),
+            item_median: median(rel),
+        }
+    }
+}
+
 /// The z-buffer's area error against the exact visible regions.
 pub fn area_error(r: &Reference, buf: &IdBuffer) -> Error {
     let g = buf.grid;
@@ -213,17 +230,7 @@ pub fn area_error(r: &Reference, buf: &IdBuffer) -> Error {
             ((p + fv.area - 2.0 * inside).max(0.0), fv.area)
         })
         .collect();
-    let total: f64 = per_face.iter().map(|e| e.0).sum();
-    let rel = per_face
-        .iter()
-        .filter(|e| e.1 > 0.0)
-        .map(|e| e.0 / e.1)
-        .collect();
-    Error {
-        total,
-        relative: total / r.visible_area.max(f64::MIN_POSITIVE),
-        item_median: median(rel),
-    }
+    Error::of_items(&per_face, r.visible_area)
 }
 
 /// Exact area (pixel units) of a face's visible region inside the pixels labelled with it.
@@ -266,17 +273,7 @@ pub fn line_error(r: &Reference, sampled: &[Vec<Interval>]) -> Error {
             (interval_sym_diff(e, s) * l, measure(e) * l)
         })
         .collect();
-    let total: f64 = per_edge.iter().map(|e| e.0).sum();
-    let rel = per_edge
-        .iter()
-        .filter(|e| e.1 > 0.0)
-        .map(|e| e.0 / e.1)
-        .collect();
-    Error {
-        total,
-        relative: total / r.visible_length.max(f64::MIN_POSITIVE),
-        item_median: median(rel),
-    }
+    Error::of_items(&per_edge, r.visible_length)
 }
 
 /// An independent check of kepler's exact areas: |Σ_f |V_f| − |∪_f P_f|| / |∪_f P_f|, the
@@ -396,18 +393,7 @@ pub fn substitute_error(r: &Reference, view: &View, vis: &Visibility) -> Error {
         .values()
         .map(|[a, b]| (xor_area(a, b), multipolygon_area(a)))
         .collect();
-    let total: f64 = diffs.iter().map(|d| d.0).sum();
-    Error {
-        total,
-        relative: total / r.visible_area.max(f64::MIN_POSITIVE),
-        item_median: median(
-            diffs
-                .iter()
-                .filter(|d| d.1 > 0.0)
-                .map(|d| d.0 / d.1)
-                .collect(),
-        ),
-    }
+    Error::of_items(&diffs, r.visible_area)
 }
 
 #[cfg(test)]
