@@ -3,10 +3,10 @@
 
 use std::time::Instant;
 
-use kepler::prepare::mesh_inbox;
-use kepler::scene::Object;
+use kepler_hsr::prepare::mesh_inbox;
+use kepler_hsr::scene::Object;
 
-fn first_mesh(o: &Object) -> Option<&kepler::scene::Mesh> {
+fn first_mesh(o: &Object) -> Option<&kepler_hsr::scene::Mesh> {
     o.mesh()
         .or_else(|| o.subobjects().iter().find_map(first_mesh))
 }
@@ -30,7 +30,7 @@ fn main() {
             println!("{name}: absent, skipped");
             continue;
         }
-        let scene = match kepler::load::load_scene(&path, &mut Vec::new()) {
+        let scene = match kepler_hsr::load::load_scene(&path, &mut Vec::new()) {
             Ok(s) => s,
             Err(e) => {
                 println!("{name}: {e}");
@@ -44,7 +44,7 @@ fn main() {
         let t = Instant::now();
         let inbox = mesh_inbox(mesh);
         let ms = t.elapsed().as_secs_f64() * 1e3;
-        let cbox = kepler::geom::Box3::from_points(mesh.vertices.iter());
+        let cbox = kepler_hsr::geom::Box3::from_points(mesh.vertices.iter());
         match inbox {
             Some(b) => println!(
                 "{name}: {} faces, closed {}, inbox/cbox = {:.4} ({ms:.1} ms)",

@@ -9,7 +9,12 @@ pub enum Pos {
     /// The whole file.
     File,
     /// 1-based line and column in a text file.
-    Line { line: usize, col: usize },
+    Line {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column (characters).
+        col: usize,
+    },
     /// Byte offset in a binary file.
     Byte(u64),
 }

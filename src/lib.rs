@@ -1,6 +1,29 @@
-//! kepler: exact hidden-surface removal for polyhedral scenes, after W.R. Franklin's KEPLER (1981).
+//! kepler: exact hidden-surface removal for polyhedral scenes, after W.R. Franklin's KEPLER
+//! (1981). For a view it computes exactly which part of every face is visible — to the
+//! precision of f64 arithmetic, not to a pixel — and draws it as SVG line drawings, PNG
+//! pictures and canonical JSON visible-polygon sets.
 //!
-//! Data flows one way: load → prepare → view → visibility → emit.
+//! Data flows one way, one module per stage:
+//! [`load`] → [`prepare`] → [`view`] → [`visibility`] → [`emit`], and [`render()`] runs the
+//! stages after `prepare` as one call:
+//!
+//! ```
+//! use kepler_hsr::{load_scene, prepare, render, Camera, CameraRequest, Outputs, RenderOptions};
+//!
+//! let mut warnings = Vec::new();
+//! let mut scene = load_scene("scenes/assembly.kdl".as_ref(), &mut warnings)?;
+//! prepare(&mut scene); // INBOXes: optional, they only make it faster
+//! let camera = Camera::for_scene(&scene, &CameraRequest::default())?;
+//! let outputs = Outputs { svg: true, json: true, ..Outputs::default() };
+//! let rendered = render(&scene, &camera, &RenderOptions { outputs, ..Default::default() })?;
+//! println!("{} faces visible", rendered.visibility.iter().filter(|(_, f)| f.area > 0.0).count());
+//! std::fs::write(std::env::temp_dir().join("assembly.svg"), rendered.svg.unwrap())?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! The papers' names are kept: [`visibility::visfac`], [`visibility::visp`],
+//! [`visibility::visobj`], [`visibility::include`], CBOX and INBOX ([`scene::Object`]),
+//! [`tribox`].
 
 pub mod emit;
 pub mod error;
@@ -8,9 +31,25 @@ pub mod geom;
 pub mod load;
 pub mod prepare;
 pub mod primitives;
+pub mod render;
 pub mod scene;
 pub mod tribox;
 pub mod view;
 pub mod visibility;
 
+pub use emit::{Drawing, EdgeKind, EdgeOptions, EdgeSet, LineOptions};
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
+pub use load::load_scene;
+pub use prepare::prepare;
+pub use render::{
+    render, render_with, Outputs, PictureOptions, Progress, RenderOptions, RenderStats, Rendered,
+    Stage,
+};
+pub use scene::{FaceId, Object, Scene};
+pub use view::{Camera, CameraRequest, LodOptions, PieceId, Projection, View};
+pub use visibility::{FaceVisibility, Visibility};
+
+/// The README's code, compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

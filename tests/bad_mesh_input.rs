@@ -4,8 +4,8 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
-use kepler::load::{load_mesh, parse_mesh};
-use kepler::Error;
+use kepler_hsr::load::{load_mesh, parse_mesh};
+use kepler_hsr::Error;
 
 /// The fixture directory `sub` of this crate.
 fn fixtures(sub: &str) -> PathBuf {

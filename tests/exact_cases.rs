@@ -4,8 +4,9 @@
 mod common;
 
 use common::*;
-use kepler::geom::V3;
-use kepler::view::Camera;
+use kepler_hsr::geom::V3;
+use kepler_hsr::FaceId;
+use kepler_hsr::view::Camera;
 
 #[test]
 fn two_overlapping_squares() {
@@ -17,7 +18,7 @@ fn two_overlapping_squares() {
     let (_, vis) = run(&s, top());
     assert_eq!(areas(&vis), vec![4.0, 3.0]);
     // B's VTP is the L-shaped hexagon: corners exact.
-    let b = &vis.face(1).visible;
+    let b = &vis.face(FaceId(1)).visible;
     assert_eq!(b.len(), 1);
     let mut pts = b[0][0].clone();
     pts.sort_by(|p, q| p.partial_cmp(q).unwrap());
@@ -48,16 +49,16 @@ fn crossing_planes_hide_each_other_on_their_own_side() {
     let (_, vis) = run(&scene(vec![("a", a), ("b", b)]), top());
     // Each keeps exactly the half where it is on top: A for x > 0, B for x < 0.
     assert_eq!(areas(&vis), vec![1.0, 1.0]);
-    for p in &vis.face(0).visible[0][0] {
+    for p in &vis.face(FaceId(0)).visible[0][0] {
         assert!(p[0] >= 0.0, "{p:?}");
     }
-    for p in &vis.face(1).visible[0][0] {
+    for p in &vis.face(FaceId(1)).visible[0][0] {
         assert!(p[0] <= 0.0, "{p:?}");
     }
 }
 
 /// A flat bar from `p` to `q` of width `w`, rising linearly from z = 0 at `p` to z = 1 at `q`.
-fn bar(p: [f64; 2], q: [f64; 2], w: f64) -> kepler::scene::Mesh {
+fn bar(p: [f64; 2], q: [f64; 2], w: f64) -> kepler_hsr::scene::Mesh {
     let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
     let len = (dx * dx + dy * dy).sqrt();
     let (nx, ny) = (-dy / len * w / 2.0, dx / len * w / 2.0);
@@ -105,7 +106,7 @@ fn three_cyclically_overlapping_bars() {
 }
 
 /// The L-shaped prism: L = (0,0),(2,0),(2,1),(1,1),(1,2),(0,2) extruded over z in [0,1].
-fn l_solid() -> kepler::scene::Mesh {
+fn l_solid() -> kepler_hsr::scene::Mesh {
     let l = [[0., 0.], [2., 0.], [2., 1.], [1., 1.], [1., 2.], [0., 2.]];
     let mut pts = Vec::new();
     for z in [0., 1.] {
@@ -133,13 +134,16 @@ fn l_shaped_solid_seen_into_its_corner() {
     let s = scene(vec![("l", m)]);
     let cam = Camera::orthographic(V3::new(-1., 0.5, -0.3), V3::z()).unwrap();
     let (view, vis) = run(&s, cam);
-    let inner = (0..view.screen.faces.len())
-        .find(|&f| {
+    let inner = view
+        .screen
+        .piece_ids()
+        .find(|&p| {
             view.screen
-                .world_pts(f)
+                .world_pts(p)
                 .iter()
-                .all(|p| p.x == 1.0 && p.y >= 1.0)
+                .all(|w| w.x == 1.0 && w.y >= 1.0)
         })
+        .map(|p| view.screen.piece(p).face)
         .unwrap();
     close(vis.face(inner).area, 0.575 / 1.34f64.sqrt(), 1e-12);
     // Front faces together cover the silhouette exactly once.
@@ -182,7 +186,7 @@ fn coplanar_faces_earlier_is_in_front() {
     // Also from below, and from a skew direction: the rule does not depend on the view.
     for dir in [V3::new(0., 0., 1.), V3::new(0.3, -0.2, -1.0)] {
         let (_, vis) = run(&s, Camera::orthographic(dir, V3::y()).unwrap());
-        close(vis.face(1).area / vis.face(0).area, 0.75, 1e-12);
+        close(vis.face(FaceId(1)).area / vis.face(FaceId(0)).area, 0.75, 1e-12);
     }
 }
 
@@ -196,7 +200,7 @@ fn shared_edge_fold_hides_exactly() {
     );
     let (_, vis) = run(&scene(vec![("fold", over)]), top());
     assert_eq!(areas(&vis), vec![0.0, 2.0]);
-    assert!(vis.face(0).visible.is_empty());
+    assert!(vis.face(FaceId(0)).visible.is_empty());
     let under = mesh(
         &[[0., 0., 0.], [2., 0., 0.], [0., 2., 0.], [0., 0., -1.]],
         &[&[0, 1, 2], &[1, 2, 3]],
@@ -252,7 +256,7 @@ fn parallel_planes_nearer_hides_farther_from_both_sides() {
 
 #[test]
 fn perspective_sees_near_box_in_front() {
-    use kepler::geom::P3;
+    use kepler_hsr::geom::P3;
     // A unit square at z = 1 in front of a 4x4 square at z = 0, eye on the axis at z = 3.
     let s = scene(vec![
         ("back", square(-2., -2., 4., 0.)),
@@ -261,14 +265,14 @@ fn perspective_sees_near_box_in_front() {
     let cam = Camera::perspective(P3::new(0., 0., 3.), P3::origin(), V3::y(), 90.0, 0.01).unwrap();
     let (_, vis) = run(&s, cam);
     // Screen x = x / d (f = 1): back at d = 3 spans [-2/3, 2/3]; front at d = 2 spans [-1/4, 1/4].
-    close(vis.face(1).area, 0.25, 1e-14);
-    close(vis.face(0).area, 16.0 / 9.0 - 0.25, 1e-14);
+    close(vis.face(FaceId(1)).area, 0.25, 1e-14);
+    close(vis.face(FaceId(0)).area, 16.0 / 9.0 - 0.25, 1e-14);
 }
 
 #[test]
 fn perspective_eye_in_a_face_plane_sees_it_edge_on() {
-    use kepler::geom::P3;
-    use kepler::view::Facing;
+    use kepler_hsr::geom::P3;
+    use kepler_hsr::view::Facing;
     // A box whose top face lies in the plane z = 2, eye at height 2 looking across it, and a
     // wall in front of the box: the top face is exactly edge-on, nothing leaks past the wall.
     let s = scene(vec![
@@ -284,7 +288,8 @@ fn perspective_eye_in_a_face_plane_sees_it_edge_on() {
     )
     .unwrap();
     let (view, vis) = run(&s, cam);
-    let top = (0..view.screen.faces.len())
+    let top = (0..view.screen.face_count() as u32)
+        .map(FaceId)
         .find(|&f| {
             view.screen
                 .face_world_pts(f)
@@ -295,14 +300,14 @@ fn perspective_eye_in_a_face_plane_sees_it_edge_on() {
     assert_eq!(view.screen.face_facing(top), Facing::EdgeOn);
     // Every face of the box is behind the wall.
     let box_faces = view.tree.object("box").unwrap().faces.clone();
-    for f in box_faces {
-        assert_eq!(vis.face(f as usize).area, 0.0, "face {f} leaks");
+    for f in FaceId::each(&box_faces) {
+        assert_eq!(vis.face(f).area, 0.0, "face {f} leaks");
     }
 }
 
 #[test]
 fn vtp_in_texture_coordinates() {
-    use kepler::visibility::texture::vtp_in_texture;
+    use kepler_hsr::visibility::texture::vtp_in_texture;
     // A horizontal square [0,2]^2 at z = 3 (texture frame: x = (1,0,0), y = (0,1,0), origin
     // (0,0,3)) under a square [1,3]x[0,2] at z = 5. From above the hidden part is [1,2]x[0,2];
     // looking along (0.2,-0.1,-1) the upper square's shadow on z = 3 shifts by (0.4,-0.2), the
@@ -319,8 +324,8 @@ fn vtp_in_texture_coordinates() {
         ),
     ] {
         let (view, vis) = run(&s, cam);
-        let t = vtp_in_texture(&view, &vis, 1).unwrap();
-        let area: f64 = t.iter().map(kepler::geom::poly2::polygon_area).sum();
+        let t = vtp_in_texture(&view, &vis, FaceId(1)).unwrap();
+        let area: f64 = t.iter().map(kepler_hsr::geom::poly2::polygon_area).sum();
         close(area, want, 1e-12);
         for p in t.iter().flatten().flatten() {
             assert!(

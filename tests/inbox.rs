@@ -6,13 +6,12 @@ mod common;
 use std::sync::Arc;
 
 use common::{cuboid, mesh, prim, top, translate};
-use kepler::geom::{Box3, PolyMesh, M4, P3, V3};
-use kepler::prepare::{compute_inboxes, mesh_inbox};
-use kepler::primitives;
-use kepler::scene::{Mesh, Object, Scene};
-use kepler::view::{Camera, View};
-use kepler::visibility::include::winding_number;
-use kepler::visibility::{solve, PassOptions};
+use kepler_hsr::geom::{Box3, PolyMesh, M4, P3, V3};
+use kepler_hsr::prepare::{compute_inboxes, mesh_inbox};
+use kepler_hsr::primitives;
+use kepler_hsr::scene::{Mesh, Object, Scene};
+use kepler_hsr::view::{Camera, View};
+use kepler_hsr::visibility::{solve, PassOptions};
 
 /// A small deterministic generator (xorshift64*).
 struct Rng(u64);
@@ -47,7 +46,7 @@ fn assert_inside(m: &Mesh, b: &Box3, what: &str) {
         ));
     }
     for p in &pts {
-        let w = winding_number(m, p).abs();
+        let w = m.winding_number(p).abs();
         assert!(w > 0.5, "{what}: {p:?} of the inbox is outside (w = {w})");
     }
     // No edge of the mesh passes through the open box, and no box edge through a face.
@@ -335,11 +334,11 @@ fn instance_inboxes_follow_the_transform() {
     assert!((rb.size()[2] - 2.0).abs() < 1e-5);
     // The prototype is prepared once and stays shared.
     let p0 = match &g.subobjects()[0].content {
-        kepler::scene::Content::Instance(i) => i.prototype.clone(),
+        kepler_hsr::scene::Content::Instance(i) => i.prototype.clone(),
         _ => unreachable!(),
     };
     let p1 = match &g.subobjects()[1].content {
-        kepler::scene::Content::Instance(i) => i.prototype.clone(),
+        kepler_hsr::scene::Content::Instance(i) => i.prototype.clone(),
         _ => unreachable!(),
     };
     assert!(Arc::ptr_eq(&p0, &p1));
@@ -384,8 +383,8 @@ fn assert_same_visibility(mut scene: Scene, camera: Camera, expect_pruning: bool
     }
     // The JSON a regression suite keeps is the same bytes.
     assert_eq!(
-        kepler::emit::to_json(&culled, &with, None),
-        kepler::emit::to_json(&full, &without, None)
+        kepler_hsr::emit::to_json(&culled, &with, None),
+        kepler_hsr::emit::to_json(&full, &without, None)
     );
     if expect_pruning {
         let c = with.counters;

@@ -5,11 +5,13 @@
 mod common;
 
 use common::*;
-use kepler::geom::poly2::{locate, Pt2, Side};
-use kepler::geom::{P3, V3};
-use kepler::scene::{Mesh, Scene};
-use kepler::view::{Camera, Facing, View};
-use kepler::visibility::{visp, PointVisibility, Visibility};
+use kepler_hsr::geom::poly2::{locate, Pt2, Side};
+use kepler_hsr::geom::winding;
+use kepler_hsr::FaceId;
+use kepler_hsr::geom::{P3, V3};
+use kepler_hsr::scene::{Mesh, Scene};
+use kepler_hsr::view::{Camera, Facing, View};
+use kepler_hsr::visibility::{visp, PointVisibility, Visibility};
 
 /// xorshift64*: a tiny deterministic generator.
 struct Rng(u64);
@@ -39,13 +41,13 @@ fn random_triangles(rng: &mut Rng, n: usize, offset: f64, scale: f64) -> Scene {
 }
 
 fn random_solids(rng: &mut Rng, n: usize) -> Scene {
-    let names = kepler::primitives::names();
+    let names = kepler_hsr::primitives::names();
     let objs: Vec<(String, Mesh)> = (0..n)
         .map(|i| {
-            let raw = kepler::primitives::by_name(names[i % names.len()]).unwrap();
+            let raw = kepler_hsr::primitives::by_name(names[i % names.len()]).unwrap();
             let s = 0.2 + 0.3 * rng.f();
             let t = V3::new(rng.f() * 2.0, rng.f() * 2.0, rng.f() * 2.0);
-            let raw = kepler::geom::PolyMesh::new(
+            let raw = kepler_hsr::geom::PolyMesh::new(
                 raw.vertices
                     .iter()
                     .map(|v| P3::from(v.coords * s + t))
@@ -75,9 +77,11 @@ fn cameras(rng: &mut Rng, centre: P3) -> Vec<Camera> {
 /// Checks disjointness and coverage to `tol` of the projected scene area.
 fn check_partition(view: &View, vis: &Visibility, tol: f64) {
     let vtps: Vec<_> = vis.by_id().into_iter().map(|f| &f.visible).collect();
-    let projected: Vec<Vec<Vec<Vec<Pt2>>>> = (0..view.screen.faces.len())
-        .filter(|&f| matches!(view.screen.faces[f].facing, Facing::Front | Facing::Back))
-        .map(|f| vec![vec![view.screen.ring_ccw(f)]])
+    let projected: Vec<Vec<Vec<Vec<Pt2>>>> = view
+        .screen
+        .piece_ids()
+        .filter(|&p| matches!(view.screen.piece(p).facing, Facing::Front | Facing::Back))
+        .map(|p| vec![vec![view.screen.ring_ccw(p)]])
         .collect();
     let proj_refs: Vec<_> = projected.iter().collect();
     let scene_area = union_area_exact(&proj_refs);
@@ -97,20 +101,19 @@ fn check_partition(view: &View, vis: &Visibility, tol: f64) {
 fn check_visp(view: &View, vis: &Visibility, rng: &mut Rng, per_face: usize) -> usize {
     let root = view.tree.root();
     let mut checked = 0;
-    for f in 0..view.screen.faces.len() {
-        if !matches!(view.screen.faces[f].facing, Facing::Front | Facing::Back) {
+    for f in view.screen.piece_ids() {
+        if !matches!(view.screen.piece(f).facing, Facing::Front | Facing::Back) {
             continue;
         }
         // A sliver (seen nearly edge-on) has every point within rounding of its boundary:
         // skip it, as points near VTP edges are skipped below.
         let ring = view.screen.ring_ccw(f);
-        let r = view.screen.faces[f].rect;
-        let size = (r[2] - r[0]).max(r[3] - r[1]);
-        if kepler::geom::poly2::ring_area(&ring) <= 1e-9 * size * size {
+        let size = view.screen.piece(f).rect.longer_side();
+        if kepler_hsr::geom::poly2::ring_area(&ring) <= 1e-9 * size * size {
             continue;
         }
         let w = view.screen.world_pts(f).to_vec();
-        let id = view.screen.faces[f].id as usize;
+        let id = view.screen.piece(f).face;
         for _ in 0..per_face {
             // A random point of the (triangle fan of the) face.
             let k = 1 + (rng.f() * (w.len() - 2) as f64) as usize;
@@ -129,7 +132,7 @@ fn check_visp(view: &View, vis: &Visibility, rng: &mut Rng, per_face: usize) -> 
                 Side::Outside => false,
                 Side::Boundary => continue,
             };
-            let v = visp(view, root, &p, Some(id as u32));
+            let v = visp(view, root, &p, Some(id));
             assert_eq!(
                 v == PointVisibility::Visible,
                 in_vtp,
@@ -143,18 +146,18 @@ fn check_visp(view: &View, vis: &Visibility, rng: &mut Rng, per_face: usize) -> 
 
 /// True when `q` lies in the projection of two pieces of the same (warped, folded) face:
 /// the face-level VTP then rightly shows the face there even if this piece is hidden.
-fn self_overlap(view: &View, id: usize, q: Pt2) -> bool {
-    let r = view.screen.piece_range(id as u32..id as u32 + 1);
-    r.filter(|&p| matches!(kepler::geom::poly2::winding(&view.screen.ring_ccw(p as usize), q), Some(w) if w != 0)).count() > 1
+fn self_overlap(view: &View, id: FaceId, q: Pt2) -> bool {
+    view.screen
+        .pieces_of(id)
+        .filter(|&p| matches!(winding(&view.screen.ring_ccw(p), q), Some(w) if w != 0))
+        .count()
+        > 1
 }
 
 /// True within 1e-9 (relative to the ring's size) of an edge of the multipolygon.
-fn near_boundary(m: &kepler::geom::poly2::MultiPolygon, q: Pt2) -> bool {
+fn near_boundary(m: &kepler_hsr::geom::poly2::MultiPolygon, q: Pt2) -> bool {
     m.iter().flatten().any(|r| {
-        let size = {
-            let b = kepler::geom::poly2::bounds(r.iter());
-            (b[2] - b[0]).max(b[3] - b[1])
-        };
+        let size = kepler_hsr::geom::Rect::of_points(r.iter()).longer_side();
         (0..r.len()).any(|i| {
             let (a, b) = (r[i], r[(i + 1) % r.len()]);
             let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
@@ -214,7 +217,7 @@ fn offset_and_scaled_coordinates_give_scaled_answers() {
         let (_, b) = run(&shifted, cam);
         let (_, c) = run(&shrunk, cam);
         let total: f64 = a.by_id().into_iter().map(|f| f.area).sum();
-        for i in 0..a.face_count() {
+        for i in (0..a.face_count() as u32).map(FaceId) {
             // Offsetting by 1e6 leaves ~1e-10 of absolute precision in the coordinates.
             assert!(
                 (a.face(i).area - b.face(i).area).abs() <= 1e-9 * total,
@@ -266,7 +269,7 @@ fn shared_meshes_from_several_views() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let s = kepler::load::load_scene(&path, &mut Vec::new()).unwrap();
+        let s = kepler_hsr::load::load_scene(&path, &mut Vec::new()).unwrap();
         let b = s.cbox();
         let c = b.center();
         let r = (b.hi - b.lo).norm();

@@ -8,13 +8,13 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 
 use common::*;
-use kepler::emit::edges::{mesh_edges, EdgeKind, EdgeOptions, EdgeSet};
-use kepler::emit::intersect::intersection_edges;
-use kepler::emit::lines::{draw, project_segment, total_length, LineOptions};
-use kepler::emit::world::WorldFaces;
-use kepler::geom::{PolyMesh, P3, V3};
-use kepler::scene::Scene;
-use kepler::view::{Camera, View};
+use kepler_hsr::emit::edges::{mesh_edges, EdgeKind, EdgeOptions, EdgeSet};
+use kepler_hsr::emit::intersect::intersection_edges;
+use kepler_hsr::emit::lines::{draw, project_segment, total_length, LineOptions};
+use kepler_hsr::emit::world::WorldFaces;
+use kepler_hsr::geom::{PolyMesh, P3, V3};
+use kepler_hsr::scene::Scene;
+use kepler_hsr::view::{Camera, View};
 
 fn all_edges(hidden: bool) -> LineOptions {
     LineOptions {
@@ -42,12 +42,12 @@ fn model(name: &str) -> Option<PathBuf> {
 }
 
 fn load(path: &std::path::Path) -> Scene {
-    kepler::load::load_scene(path, &mut Vec::new()).unwrap()
+    kepler_hsr::load::load_scene(path, &mut Vec::new()).unwrap()
 }
 
 /// Icosphere: an icosahedron subdivided `n` times, pushed onto the unit sphere.
 fn icosphere(n: u32) -> PolyMesh {
-    let ico = kepler::primitives::by_name("icosahedron").unwrap();
+    let ico = kepler_hsr::primitives::by_name("icosahedron").unwrap();
     let mut verts: Vec<P3> = ico
         .vertices
         .iter()
@@ -127,7 +127,7 @@ fn check_convex(scene: &Scene, name: &str) {
 fn convex_solids_visible_length_is_analytic() {
     check_convex(&scene(vec![("ico", prim(icosphere(2)))]), "icosphere");
     for name in ["cube", "dodecahedron", "truncated_icosahedron", "snub_cube"] {
-        let m = prim(kepler::primitives::by_name(name).unwrap());
+        let m = prim(kepler_hsr::primitives::by_name(name).unwrap());
         check_convex(&scene(vec![(name, m)]), name);
     }
 }

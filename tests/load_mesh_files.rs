@@ -3,9 +3,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use kepler::geom::P3;
-use kepler::load::{load_mesh, MeshFile};
-use kepler::Pos;
+use kepler_hsr::geom::P3;
+use kepler_hsr::load::{load_mesh, MeshFile};
+use kepler_hsr::Pos;
 
 /// A good fixture of `tests/fixtures/meshes/`.
 fn fixture(name: &str) -> PathBuf {

@@ -6,8 +6,8 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use kepler::load::load_scene;
-use kepler::scene::{Content, Object};
+use kepler_hsr::load::load_scene;
+use kepler_hsr::scene::{Content, Object};
 
 fn crate_dir(sub: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(sub)
@@ -89,7 +89,7 @@ fn polyhedra_shows_all_eighteen_solids() {
         .iter()
         .map(|l| l.path.rsplit('/').next().unwrap_or("").to_string())
         .collect();
-    for solid in kepler::primitives::names() {
+    for solid in kepler_hsr::primitives::names() {
         assert!(names.iter().any(|n| n == solid), "{solid} missing");
     }
     for leaf in scene.leaves() {

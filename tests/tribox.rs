@@ -3,9 +3,9 @@
 //! triple of planes solved, points kept when they satisfy all 18 inequalities), on random and
 //! degenerate bound sets; inputs lie inside; at most 18 faces; volumes below the CBOX's.
 
-use kepler::geom::{Box3, M4, P3, V3};
-use kepler::tribox::bounds::face_normal;
-use kepler::tribox::{Case, Tribox};
+use kepler_hsr::geom::{Box3, M4, P3, V3};
+use kepler_hsr::tribox::bounds::face_normal;
+use kepler_hsr::tribox::{Case, Tribox};
 
 /// xorshift64*: a tiny deterministic generator.
 struct Rng(u64);

@@ -5,15 +5,15 @@
 mod common;
 
 use common::*;
-use kepler::geom::poly2::MultiPolygon;
-use kepler::geom::{PolyMesh, P3, V3};
-use kepler::scene::{Mesh, Object, Scene};
-use kepler::tribox::hull::hull_volume;
-use kepler::tribox::interfere::interfere;
-use kepler::tribox::lod::{substitute, LodOptions};
-use kepler::tribox::{Hierarchy, HierarchyOptions, Tribox};
-use kepler::view::{Camera, Facing};
-use kepler::visibility::include::winding_number;
+use kepler_hsr::geom::poly2::MultiPolygon;
+use kepler_hsr::geom::{PolyMesh, P3, V3};
+use kepler_hsr::scene::{Mesh, Object, Scene};
+use kepler_hsr::tribox::hull::hull_volume;
+use kepler_hsr::tribox::interfere::interfere;
+use kepler_hsr::view::{substitute, LodOptions};
+use kepler_hsr::FaceId;
+use kepler_hsr::tribox::{Hierarchy, HierarchyOptions, Tribox};
+use kepler_hsr::view::{Camera, Facing};
 
 /// xorshift64*.
 struct Rng(u64);
@@ -73,7 +73,7 @@ fn samples(m: &Mesh, rng: &mut Rng) -> (Vec<P3>, Vec<P3>) {
         let n = (1..p.len() - 1)
             .map(|i| (p[i] - p[0]).cross(&(p[i + 1] - p[0])))
             .sum::<V3>();
-        for [i, j, k] in kepler::scene::triangulate::ear_clip(&p, &n) {
+        for [i, j, k] in kepler_hsr::scene::triangulate::ear_clip(&p, &n) {
             for _ in 0..3 {
                 let (mut a, mut b) = (rng.f(), rng.f());
                 if a + b > 1.0 {
@@ -83,12 +83,12 @@ fn samples(m: &Mesh, rng: &mut Rng) -> (Vec<P3>, Vec<P3>) {
             }
         }
     }
-    let bb = kepler::geom::Box3::from_points(m.vertices.iter());
+    let bb = kepler_hsr::geom::Box3::from_points(m.vertices.iter());
     let s = bb.size();
     let mut interior = Vec::new();
     for _ in 0..400 {
         let q = bb.lo + V3::new(rng.f() * s[0], rng.f() * s[1], rng.f() * s[2]);
-        if winding_number(m, &q).abs() > 0.5 {
+        if m.winding_number(&q).abs() > 0.5 {
             interior.push(q);
         }
     }
@@ -165,7 +165,7 @@ fn hierarchy_cells_cover_the_solid() {
 #[test]
 fn lod_render_keeps_visibility_invariants() {
     let ball = |s: f64, at: V3| {
-        let raw = kepler::primitives::by_name("truncated_icosahedron").unwrap();
+        let raw = kepler_hsr::primitives::by_name("truncated_icosahedron").unwrap();
         prim(PolyMesh::new(
             raw.vertices
                 .iter()
@@ -197,9 +197,11 @@ fn lod_render_keeps_visibility_invariants() {
     // The render of the substituted scene: VTPs partition the projected faces.
     let (view, vis) = run(&sub, cam);
     let vtps: Vec<&MultiPolygon> = vis.by_id().into_iter().map(|f| &f.visible).collect();
-    let projected: Vec<MultiPolygon> = (0..view.screen.faces.len())
-        .filter(|&f| matches!(view.screen.faces[f].facing, Facing::Front | Facing::Back))
-        .map(|f| vec![vec![view.screen.ring_ccw(f)]])
+    let projected: Vec<MultiPolygon> = view
+        .screen
+        .piece_ids()
+        .filter(|&p| matches!(view.screen.piece(p).facing, Facing::Front | Facing::Back))
+        .map(|p| vec![vec![view.screen.ring_ccw(p)]])
         .collect();
     let all = union_area_exact(&projected.iter().collect::<Vec<_>>());
     let sum = total_area(&vtps);
@@ -207,7 +209,7 @@ fn lod_render_keeps_visibility_invariants() {
     close(sum, union, 1e-9); // disjoint
     close(union, all, 1e-9); // cover
                              // The substitutes are visible in front of the wall.
-    let wall_area: f64 = (0..6).map(|f| vis.face(f).area).sum();
+    let wall_area: f64 = (0..6).map(|f| vis.face(FaceId(f)).area).sum();
     assert!(wall_area < 64.0 * 1.2);
 }
 
@@ -269,8 +271,12 @@ fn shared_meshes_tribox_between_hull_and_cbox() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let scene: Scene = kepler::load::load_scene(&p, &mut Vec::new()).unwrap();
-        let pts: Vec<P3> = kepler::tribox::lod::world_points(&scene);
+        let scene: Scene = kepler_hsr::load::load_scene(&p, &mut Vec::new()).unwrap();
+        let pts: Vec<P3> = scene
+            .leaves()
+            .iter()
+            .flat_map(|l| l.mesh.vertices.iter().map(|v| l.transform.transform_point(v)))
+            .collect();
         let t = Tribox::from_points(pts.iter());
         assert!(pts.iter().all(|q| t.contains(q)), "{name}");
         let (vt, vb, vh) = (t.volume(), t.cbox().volume(), hull_volume(&pts));

@@ -97,16 +97,16 @@ struct Grid {
 impl Grid {
     fn new(lines: &[Vec<Pt2>]) -> Grid {
         let ends = lines.iter().flat_map(|l| [l[0], l[l.len() - 1]]);
-        let b = crate::geom::poly2::bounds(ends.collect::<Vec<_>>().iter());
+        let b = crate::geom::Rect::of_points(ends.collect::<Vec<_>>().iter());
         let n = ((lines.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
-        let size = (b[2] - b[0]).max(b[3] - b[1]);
+        let size = b.longer_side();
         let cell = if size > 0.0 && size.is_finite() {
             size / n as f64
         } else {
             1.0
         };
         let mut g = Grid {
-            origin: [b[0], b[1]],
+            origin: [b.xmin, b.ymin],
             cell,
             n,
             cells: vec![Vec::new(); n * n],

@@ -1,7 +1,8 @@
 //! A screen segment against a closed region: the parameter intervals where it lies in the
 //! region or on its boundary, from exact crossings (orient2d) and exact location tests.
 
-use crate::geom::poly2::{bounds, locate, orient2d, MultiPolygon, Pt2, Side};
+use crate::geom::poly2::{locate, MultiPolygon, Pt2, Side};
+use crate::geom::{orient2d, Rect};
 
 /// A closed parameter interval [t0, t1] along a segment a → b (point a + t (b - a)).
 pub type Interval = [f64; 2];
@@ -24,13 +25,13 @@ pub fn intervals_in(a: Pt2, b: Pt2, m: &MultiPolygon) -> Vec<Interval> {
     if a == b || m.is_empty() {
         return Vec::new();
     }
-    let sb = bounds([a, b].iter());
-    let mb = bounds(m.iter().flatten().flatten());
-    let scale = [a[0], a[1], b[0], b[1], mb[0], mb[1], mb[2], mb[3]]
+    let sb = Rect::of_points([a, b].iter());
+    let mb = Rect::of_points(m.iter().flatten().flatten());
+    let scale = [a[0], a[1], b[0], b[1], mb.xmin, mb.ymin, mb.xmax, mb.ymax]
         .iter()
         .fold(0.0f64, |s, x| s.max(x.abs()));
     let eps = BOUNDARY_EPS * scale.max(f64::MIN_POSITIVE);
-    if sb[2] < mb[0] - eps || sb[0] > mb[2] + eps || sb[3] < mb[1] - eps || sb[1] > mb[3] + eps {
+    if !sb.overlaps_closed(&mb.padded(eps)) {
         return Vec::new();
     }
     let mut ts = vec![0.0, 1.0];
@@ -52,12 +53,8 @@ pub fn intervals_in(a: Pt2, b: Pt2, m: &MultiPolygon) -> Vec<Interval> {
 }
 
 /// Adds the parameters where ring edge c → d crosses or touches the segment a → b.
-fn splits(a: Pt2, b: Pt2, c: Pt2, d: Pt2, sb: &[f64; 4], eps: f64, ts: &mut Vec<f64>) {
-    if c[0].max(d[0]) < sb[0] - eps
-        || c[0].min(d[0]) > sb[2] + eps
-        || c[1].max(d[1]) < sb[1] - eps
-        || c[1].min(d[1]) > sb[3] + eps
-    {
+fn splits(a: Pt2, b: Pt2, c: Pt2, d: Pt2, sb: &Rect, eps: f64, ts: &mut Vec<f64>) {
+    if !Rect::of_points([c, d].iter()).overlaps_closed(&sb.padded(eps)) {
         return;
     }
     let (oc, od) = (orient2d(a, b, c), orient2d(a, b, d));

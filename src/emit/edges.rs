@@ -5,6 +5,7 @@
 //! plain (any other polygon edge); intersection curves come from [`super::intersect`].
 
 use crate::geom::{P3, V3};
+use crate::scene::FaceId;
 use crate::view::{Facing, View};
 
 use super::world::WorldFaces;
@@ -81,8 +82,8 @@ pub struct Edge {
     pub leaf: u32,
     /// World end points.
     pub ends: [P3; 2],
-    /// Global ids of the faces it lies on.
-    pub faces: Vec<u32>,
+    /// The faces it lies on.
+    pub faces: Vec<FaceId>,
     /// Classification.
     pub kind: EdgeKind,
 }
@@ -118,7 +119,7 @@ pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Ed
                 out.push(Edge {
                     leaf,
                     ends: [at(adj[0].a), at(adj[0].b)],
-                    faces: adj.iter().map(|h| h.face).collect(),
+                    faces: adj.iter().map(|h| FaceId(h.face)).collect(),
                     kind,
                 });
             }
@@ -171,7 +172,7 @@ fn classify(adj: &[HalfEdge], world: &WorldFaces, view: &View, cos_crease: f64) 
         [x, y] => [(x.face, x.fwd), (y.face, y.fwd)],
         _ => return EdgeKind::Border,
     };
-    let facing = |k: u32| view.screen.face_facing(k as usize);
+    let facing = |k: u32| view.screen.face_facing(FaceId(k));
     let (ff, fg) = (facing(f), facing(g));
     let drawn = |x: Facing| matches!(x, Facing::Front | Facing::Back);
     if ff == Facing::Clipped || fg == Facing::Clipped {

@@ -6,17 +6,18 @@
 //! on its positive side (symbolic perturbation), so crossings always pair up.
 
 use crate::geom::box_pairs::filter_map_pairs;
-use crate::geom::{P3, V3};
+use crate::geom::{orient3d_refs, P3, V3};
+use crate::scene::FaceId;
 
 use super::edges::{Edge, EdgeKind};
 use super::world::{WorldFace, WorldFaces};
 
 /// Every intersection segment between pairs of faces that cross (both faces with vertices
 /// strictly on both sides of the other's plane); `keep(f)` filters faces worth testing.
-pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(usize) -> bool + Sync) -> Vec<Edge> {
+pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sync) -> Vec<Edge> {
     let faces = &world.faces;
     let ids: Vec<usize> = (0..faces.len())
-        .filter(|&f| keep(f) && faces[f].points.len() >= 3)
+        .filter(|&f| keep(FaceId(f as u32)) && faces[f].points.len() >= 3)
         .collect();
     let boxes: Vec<_> = ids.iter().map(|&f| faces[f].bbox).collect();
     // Results come in ascending (position, position) pair order, so in (face, face) order:
@@ -34,7 +35,7 @@ pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(usize) -> bool + Syn
                 .map(|seg| Edge {
                     leaf: f.leaf,
                     ends: seg,
-                    faces: vec![lo as u32, hi as u32],
+                    faces: vec![FaceId(lo as u32), FaceId(hi as u32)],
                     kind: EdgeKind::Intersection,
                 })
                 .collect::<Vec<_>>()
@@ -66,20 +67,11 @@ fn plane_refs(p: &[P3]) -> [P3; 3] {
     [a, b, c]
 }
 
-fn orient3d(r: &[P3; 3], p: &P3) -> f64 {
-    let c = |q: &P3| robust::Coord3D {
-        x: q.x,
-        y: q.y,
-        z: q.z,
-    };
-    robust::orient3d(c(&r[0]), c(&r[1]), c(&r[2]), c(p))
-}
-
 /// Segments of the intersection of faces `f` and `g` (empty unless they cross).
 pub fn cross(f: &WorldFace, g: &WorldFace) -> Vec<[P3; 2]> {
     let (rf, rg) = (plane_refs(&f.points), plane_refs(&g.points));
-    let sf: Vec<f64> = f.points.iter().map(|p| orient3d(&rg, p)).collect();
-    let sg: Vec<f64> = g.points.iter().map(|p| orient3d(&rf, p)).collect();
+    let sf: Vec<f64> = f.points.iter().map(|p| orient3d_refs(&rg, p)).collect();
+    let sg: Vec<f64> = g.points.iter().map(|p| orient3d_refs(&rf, p)).collect();
     let straddles = |s: &[f64]| s.iter().any(|&x| x < 0.0) && s.iter().any(|&x| x > 0.0);
     if !straddles(&sf) || !straddles(&sg) {
         return Vec::new();
@@ -186,7 +178,7 @@ mod tests {
         };
         let all = intersection_edges(&w, |_| true);
         assert_eq!(all.len(), 1);
-        assert_eq!(all[0].faces, vec![0, 1]);
+        assert_eq!(all[0].faces, vec![FaceId(0), FaceId(1)]);
     }
 
     #[test]

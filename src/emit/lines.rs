@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use crate::geom::poly2::Pt2;
 use crate::geom::P3;
-use crate::scene::Scene;
+use crate::scene::{FaceId, Scene};
 use crate::view::{Camera, Projection, View};
 use crate::visibility::Visibility;
 
@@ -108,10 +108,10 @@ pub fn project_segment_depth(camera: &Camera, a: &P3, b: &P3) -> Option<[[f64; 3
 }
 
 /// Visible intervals of the screen segment a → b: on the closed VTP of any of `faces`.
-pub fn visible_intervals(a: Pt2, b: Pt2, faces: &[u32], vis: &Visibility) -> Vec<Interval> {
+pub fn visible_intervals(a: Pt2, b: Pt2, faces: &[FaceId], vis: &Visibility) -> Vec<Interval> {
     let lists: Vec<Vec<Interval>> = faces
         .iter()
-        .map(|&f| intervals_in(a, b, &vis.face(f as usize).visible))
+        .map(|&f| intervals_in(a, b, &vis.face(f).visible))
         .collect();
     union(&lists)
 }

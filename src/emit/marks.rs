@@ -7,9 +7,8 @@
 use std::collections::BTreeMap;
 
 use crate::geom::poly2::Pt2;
-use crate::geom::P3;
-use crate::scene::cleanup::FaceShape;
-use crate::scene::{Scene, TextureFrame};
+use crate::geom::{newell, P3};
+use crate::scene::{FaceId, Scene, TextureFrame};
 use crate::view::View;
 use crate::visibility::Visibility;
 
@@ -23,7 +22,7 @@ pub fn face_marks(scene: &Scene, view: &View, vis: &Visibility) -> Vec<Stroke> {
     for (li, leaf) in scene.leaves().iter().enumerate() {
         for (k, face) in leaf.mesh.faces.iter().enumerate() {
             let Some(tex) = &face.texture else { continue };
-            let fv = vis.face(leaf.first_face + k);
+            let fv = vis.face(FaceId((leaf.first_face + k) as u32));
             if fv.visible.is_empty() {
                 continue;
             }
@@ -32,7 +31,7 @@ pub fn face_marks(scene: &Scene, view: &View, vis: &Visibility) -> Vec<Stroke> {
                 .iter()
                 .map(|&v| leaf.mesh.vertices[v as usize])
                 .collect();
-            let Some(frame) = TextureFrame::of_plane(&local[0], &FaceShape::of(&local).normal)
+            let Some(frame) = TextureFrame::of_plane(&local[0], &newell(&local))
             else {
                 continue;
             };

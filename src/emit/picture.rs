@@ -3,16 +3,14 @@
 
 use std::collections::BTreeMap;
 
-use crate::geom::poly2::{bounds, Pt2, Ring};
-use crate::geom::V3;
-use crate::view::{Camera, View};
+use crate::geom::poly2::{Pt2, Ring};
+use crate::geom::{newell, Rect, V3};
+use crate::scene::FaceId;
+use crate::view::{Frame, View};
 use crate::visibility::Visibility;
 
 use super::edges::EdgeKind;
 use super::lines::{Drawing, Stroke};
-
-/// Relative margin around the drawing.
-const MARGIN: f64 = 0.05;
 
 /// A pen: how a kind of line is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -91,10 +89,8 @@ pub struct Layer {
 /// Everything to draw, in screen space (y up).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Picture {
-    /// Framed rectangle [xmin, ymin, xmax, ymax], margin included.
-    pub frame: [f64; 4],
-    /// Size of the drawing (the larger side without margin): line widths scale with it.
-    pub unit: f64,
+    /// The framed part of the screen plane; line widths scale with its unit.
+    pub frame: Frame,
     /// Fills, under everything.
     pub fills: Vec<Fill>,
     /// Line layers, one per object that has lines, in object order.
@@ -137,55 +133,11 @@ pub fn picture(
         .iter()
         .flat_map(|l| l.pens.iter().flat_map(|p| p.1.iter().flatten()))
         .chain(fills.iter().flat_map(|f| f.rings.iter().flatten()));
-    let (frame, unit) = frame(field_of_view(&view.camera, bounds(pts)));
     Picture {
-        frame,
-        unit,
+        frame: Frame::of(&view.camera, Rect::of_points(pts)),
         fills,
         layers,
     }
-}
-
-/// Widest screen aspect a perspective picture keeps (x from -A to A, y from -1 to 1).
-const MAX_ASPECT: f64 = 1.6;
-
-/// Drawing bounds limited, for a perspective camera, to its field of view: the projection
-/// puts the edges of the vertical field of view at y = ±1, and a ground plane clipped near the
-/// eye would otherwise stretch the frame far beyond what the camera sees.
-fn field_of_view(camera: &Camera, b: [f64; 4]) -> [f64; 4] {
-    if camera.projection != crate::view::Projection::Perspective {
-        return b;
-    }
-    let fov = [-MAX_ASPECT, -1.0, MAX_ASPECT, 1.0];
-    let c = [
-        b[0].max(fov[0]),
-        b[1].max(fov[1]),
-        b[2].min(fov[2]),
-        b[3].min(fov[3]),
-    ];
-    if c[0] < c[2] && c[1] < c[3] {
-        c
-    } else {
-        b
-    }
-}
-
-/// Pixels per screen unit of a picture `size` pixels along its longer side whose drawing
-/// has screen bounds `b` [xmin, ymin, xmax, ymax]: the mapping SVG and PNG use.
-pub fn pixels_per_unit(camera: &Camera, b: [f64; 4], size: u32) -> f64 {
-    let ([x0, y0, x1, y1], _) = frame(field_of_view(camera, b));
-    f64::from(size.max(1)) / (x1 - x0).max(y1 - y0)
-}
-
-/// The framed rectangle (5% margin) and unit of drawing bounds.
-fn frame(b: [f64; 4]) -> ([f64; 4], f64) {
-    if !(b[0] <= b[2] && b[1] <= b[3]) {
-        return ([0.0, 0.0, 1.0, 1.0], 1.0);
-    }
-    let size = (b[2] - b[0]).max(b[3] - b[1]);
-    let unit = if size > 0.0 { size } else { 1.0 };
-    let m = MARGIN * unit;
-    ([b[0] - m, b[1] - m, b[2] + m, b[3] + m], unit)
 }
 
 /// Flat-shaded visible regions, one per face with something visible.
@@ -209,35 +161,17 @@ fn fills(view: &View, vis: &Visibility) -> Vec<Fill> {
         .collect()
 }
 
-/// Newell normal of face `f`'s world points.
-fn world_normal(view: &View, f: usize) -> V3 {
-    let r = view.screen.piece_range(f as u32..f as u32 + 1);
-    if r.len() != 1 {
-        // A warped face: the sum of its pieces' normals.
-        return r
-            .map(|p| piece_normal(view.screen.world_pts(p as usize)))
-            .sum();
-    }
-    piece_normal(view.screen.world_pts(r.start as usize))
-}
-
-/// Newell normal of a polygon.
-fn piece_normal(p: &[crate::geom::P3]) -> V3 {
-    crate::scene::cleanup::FaceShape::of(p).normal
+/// Newell normal of face `f`'s world points (for a warped face, the sum of its pieces').
+fn world_normal(view: &View, f: FaceId) -> V3 {
+    view.screen
+        .pieces_of(f)
+        .map(|p| newell(view.screen.world_pts(p)))
+        .sum()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn frame_has_margin_and_survives_empty() {
-        let (f, u) = frame([0., 0., 10., 5.]);
-        assert_eq!(u, 10.0);
-        assert_eq!(f, [-0.5, -0.5, 10.5, 5.5]);
-        let (f, u) = frame(bounds(std::iter::empty()));
-        assert_eq!((f, u), ([0., 0., 1., 1.], 1.0));
-    }
 
     #[test]
     fn pens_by_kind() {

@@ -12,8 +12,7 @@ use super::picture::Picture;
 
 /// Pixel size of a picture whose longer side is `size` pixels: (width, height), each >= 1.
 pub fn pixel_size(pic: &Picture, size: u32) -> (u32, u32) {
-    let [x0, y0, x1, y1] = pic.frame;
-    let (w, h) = (x1 - x0, y1 - y0);
+    let (w, h) = (pic.frame.rect.width(), pic.frame.rect.height());
     let s = f64::from(size.max(1)) / w.max(h);
     let px = |v: f64| ((v * s).round() as u32).clamp(1, size.max(1));
     (px(w), px(h))
@@ -38,9 +37,10 @@ pub fn rasterise(pic: &Picture, size: u32) -> Result<Pixmap, Error> {
     let mut pm =
         Pixmap::new(w, h).ok_or_else(|| Error::Usage(format!("cannot make a {w}x{h} picture")))?;
     pm.fill(Color::WHITE);
-    let [x0, y0, x1, y1] = pic.frame;
-    let s = f64::from(w) / (x1 - x0).max(f64::MIN_POSITIVE);
-    let s = s.min(f64::from(h) / (y1 - y0).max(f64::MIN_POSITIVE));
+    let r = pic.frame.rect;
+    let (x0, y1) = (r.xmin, r.ymax);
+    let s = f64::from(w) / r.width().max(f64::MIN_POSITIVE);
+    let s = s.min(f64::from(h) / r.height().max(f64::MIN_POSITIVE));
     let to_px = |p: &Pt2| ((p[0] - x0) * s, (y1 - p[1]) * s);
     for f in &pic.fills {
         let mut pb = PathBuilder::new();
@@ -77,7 +77,7 @@ pub fn rasterise(pic: &Picture, size: u32) -> Result<Pixmap, Error> {
             let g = pen.grey();
             paint.set_color_rgba8(g, g, g, 255);
             paint.anti_alias = true;
-            let unit = pic.unit * s;
+            let unit = pic.frame.unit * s;
             let stroke = Stroke {
                 width: ((pen.width() * unit) as f32).max(0.5),
                 line_cap: LineCap::Round,
@@ -117,8 +117,10 @@ mod tests {
     #[test]
     fn square_picture_has_requested_size_and_ink() {
         let pic = Picture {
-            frame: [-0.5, -0.5, 10.5, 5.5],
-            unit: 10.0,
+            frame: crate::view::Frame {
+                rect: crate::geom::Rect::new(-0.5, -0.5, 10.5, 5.5),
+                unit: 10.0,
+            },
             fills: vec![Fill {
                 rings: vec![vec![[0., 0.], [10., 0.], [10., 5.], [0., 5.]]],
                 grey: 200,

@@ -10,13 +10,19 @@ use svg::node::element::{Group, Path, Rectangle};
 use svg::Document;
 
 use crate::geom::poly2::Pt2;
+use crate::geom::Rect;
 
 use super::json::num;
 use super::picture::{Pen, Picture};
 
 /// The SVG document of a picture, `size` pixels along its longer side.
 pub fn to_svg(pic: &Picture, size: u32) -> String {
-    let [x0, y0, x1, y1] = pic.frame;
+    let Rect {
+        xmin: x0,
+        ymin: y0,
+        xmax: x1,
+        ymax: y1,
+    } = pic.frame.rect;
     let (w, h) = (x1 - x0, y1 - y0);
     let px = f64::from(size.max(1)) / w.max(h);
     let view_box = format!("{} {} {} {}", num(x0), num(-y1), num(w), num(h));
@@ -36,7 +42,7 @@ pub fn to_svg(pic: &Picture, size: u32) -> String {
         // A thin stroke in each face's own grey closes anti-aliasing seams between faces.
         let mut g = Group::new()
             .set("id", "fill")
-            .set("stroke-width", num(0.0003 * pic.unit))
+            .set("stroke-width", num(0.0003 * pic.frame.unit))
             .set("stroke-linejoin", "round");
         for f in &pic.fills {
             let mut d = String::new();
@@ -62,7 +68,7 @@ pub fn to_svg(pic: &Picture, size: u32) -> String {
             .set("stroke-linecap", "round")
             .set("stroke-linejoin", "round");
         for (pen, lines) in &layer.pens {
-            g = g.add(pen_path(*pen, lines, pic.unit));
+            g = g.add(pen_path(*pen, lines, pic.frame.unit));
         }
         doc = doc.add(g);
     }
@@ -140,11 +146,14 @@ fn unique_id(name: &str, taken: &mut Vec<String>) -> String {
 mod tests {
     use super::*;
     use crate::emit::picture::{Fill, Layer};
+    use crate::view::Frame;
 
     fn pic() -> Picture {
         Picture {
-            frame: [-0.5, -0.5, 10.5, 5.5],
-            unit: 10.0,
+            frame: Frame {
+                rect: Rect::new(-0.5, -0.5, 10.5, 5.5),
+                unit: 10.0,
+            },
             fills: vec![Fill {
                 rings: vec![vec![[0., 0.], [1., 0.], [0., 1.]]],
                 grey: 200,

@@ -1,7 +1,6 @@
 //! World-space polygons of every face (unclipped, in mesh vertex order), with their leaf and vertex indices.
 
-use crate::geom::{P3, V3};
-use crate::scene::cleanup::FaceShape;
+use crate::geom::{newell, Box3, P3, V3};
 use crate::scene::Scene;
 
 /// One face in world space.
@@ -42,7 +41,7 @@ impl WorldFaces {
                 faces.push(WorldFace {
                     leaf: li as u32,
                     vertices: f.vertices.clone(),
-                    normal: FaceShape::of(&points).normal,
+                    normal: newell(&points),
                     bbox: bbox(&points),
                     points,
                 });
@@ -55,14 +54,8 @@ impl WorldFaces {
 
 /// Bounding box of points: min then max.
 fn bbox(pts: &[P3]) -> [[f64; 3]; 2] {
-    let mut b = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
-    for p in pts {
-        for k in 0..3 {
-            b[0][k] = b[0][k].min(p[k]);
-            b[1][k] = b[1][k].max(p[k]);
-        }
-    }
-    b
+    let b = Box3::from_points(pts.iter());
+    [b.lo.into(), b.hi.into()]
 }
 
 #[cfg(test)]

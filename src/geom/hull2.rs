@@ -1,6 +1,7 @@
 //! Convex hulls in the plane and the exact tests on them: hull, proper turn, containment.
 
-use super::poly2::{orient2d, Pt2};
+use super::poly2::Pt2;
+use super::predicates::orient2d;
 
 /// Convex hull (Andrew's monotone chain, exact turns), counter-clockwise, no collinear points.
 pub fn convex_hull(mut pts: Vec<Pt2>) -> Vec<Pt2> {

@@ -1,4 +1,7 @@
-//! Planar polygons in screen space: rings, polygons with holes, multipolygons, and exact predicates.
+//! Planar polygons in screen space: rings, polygons with holes, multipolygons; their areas,
+//! point location and canonical form.
+
+use super::predicates::{orient2d, winding};
 
 /// A point of the screen plane.
 pub type Pt2 = [f64; 2];
@@ -8,16 +11,6 @@ pub type Ring = Vec<Pt2>;
 pub type Polygon = Vec<Ring>;
 /// A set of disjoint polygons.
 pub type MultiPolygon = Vec<Polygon>;
-
-/// Exact sign of the turn a → b → c: > 0 left (counter-clockwise), < 0 right, 0 collinear.
-#[inline]
-pub fn orient2d(a: Pt2, b: Pt2, c: Pt2) -> f64 {
-    robust::orient2d(
-        robust::Coord { x: a[0], y: a[1] },
-        robust::Coord { x: b[0], y: b[1] },
-        robust::Coord { x: c[0], y: c[1] },
-    )
-}
 
 /// Signed area of a ring (shoelace; positive for counter-clockwise).
 pub fn ring_area(r: &[Pt2]) -> f64 {
@@ -54,34 +47,6 @@ pub enum Side {
     Outside,
 }
 
-/// Winding number of `r` around `p`, or None when `p` lies on the ring (exact).
-pub fn winding(r: &[Pt2], p: Pt2) -> Option<i32> {
-    let n = r.len();
-    let mut w = 0;
-    for i in 0..n {
-        let (a, b) = (r[i], r[(i + 1) % n]);
-        let o = orient2d(a, b, p);
-        if o == 0.0 && on_segment_collinear(a, b, p) {
-            return None;
-        }
-        if a[1] <= p[1] {
-            if b[1] > p[1] && o > 0.0 {
-                w += 1;
-            }
-        } else if b[1] <= p[1] && o < 0.0 {
-            w -= 1;
-        }
-    }
-    Some(w)
-}
-
-fn on_segment_collinear(a: Pt2, b: Pt2, p: Pt2) -> bool {
-    p[0] >= a[0].min(b[0])
-        && p[0] <= a[0].max(b[0])
-        && p[1] >= a[1].min(b[1])
-        && p[1] <= a[1].max(b[1])
-}
-
 /// Exact location of `p` relative to a multipolygon (non-zero winding over all rings).
 pub fn locate(m: &MultiPolygon, p: Pt2) -> Side {
     let mut total = 0;
@@ -98,31 +63,6 @@ pub fn locate(m: &MultiPolygon, p: Pt2) -> Side {
     } else {
         Side::Outside
     }
-}
-
-/// The empty rectangle [xmin, ymin, xmax, ymax]: the identity of rectangle union.
-pub const EMPTY_RECT: [f64; 4] = [
-    f64::INFINITY,
-    f64::INFINITY,
-    f64::NEG_INFINITY,
-    f64::NEG_INFINITY,
-];
-
-/// Bounding rectangle [xmin, ymin, xmax, ymax] of points.
-pub fn bounds<'a>(pts: impl IntoIterator<Item = &'a Pt2>) -> [f64; 4] {
-    let mut b = [
-        f64::INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::NEG_INFINITY,
-    ];
-    for p in pts {
-        b[0] = b[0].min(p[0]);
-        b[1] = b[1].min(p[1]);
-        b[2] = b[2].max(p[0]);
-        b[3] = b[3].max(p[1]);
-    }
-    b
 }
 
 /// True when a counter-clockwise ring is convex (no right turn; collinear runs allowed).

@@ -6,11 +6,11 @@ use super::source::Source;
 use crate::error::{Error, Location, Result};
 
 /// Largest accepted |number| in a scene file (the cleanup stage's coordinate limit).
-pub const MAX_NUMBER: f64 = crate::scene::cleanup::MAX_COORD;
+pub(super) const MAX_NUMBER: f64 = crate::geom::MAX_COORD;
 
 /// A KDL node together with the source it came from, for checked access.
 #[derive(Clone, Copy)]
-pub struct Node<'a> {
+pub(super) struct Node<'a> {
     /// The source text (for positions).
     pub src: &'a Source,
     /// The node.
@@ -19,32 +19,32 @@ pub struct Node<'a> {
 
 impl<'a> Node<'a> {
     /// Wraps `node` of `src`.
-    pub fn new(src: &'a Source, node: &'a KdlNode) -> Self {
+    pub(super) fn new(src: &'a Source, node: &'a KdlNode) -> Self {
         Node { src, node }
     }
 
     /// The node's name.
-    pub fn name(&self) -> &'a str {
+    pub(super) fn name(&self) -> &'a str {
         self.node.name().value()
     }
 
     /// The node's position.
-    pub fn loc(&self) -> Location {
+    pub(super) fn loc(&self) -> Location {
         self.src.node_loc(self.node)
     }
 
     /// A parse error at the node.
-    pub fn parse_err(&self, msg: impl Into<String>) -> Error {
+    pub(super) fn parse_err(&self, msg: impl Into<String>) -> Error {
         Error::parse(self.loc(), msg)
     }
 
     /// An invalid-input error at the node.
-    pub fn invalid(&self, msg: impl Into<String>) -> Error {
+    pub(super) fn invalid(&self, msg: impl Into<String>) -> Error {
         Error::invalid(self.loc(), msg)
     }
 
     /// The positional arguments, in order.
-    pub fn args(&self) -> Vec<&'a KdlEntry> {
+    pub(super) fn args(&self) -> Vec<&'a KdlEntry> {
         self.node
             .entries()
             .iter()
@@ -53,7 +53,7 @@ impl<'a> Node<'a> {
     }
 
     /// The property `key`, if given.
-    pub fn prop(&self, key: &str) -> Option<&'a KdlEntry> {
+    pub(super) fn prop(&self, key: &str) -> Option<&'a KdlEntry> {
         self.node
             .entries()
             .iter()
@@ -62,7 +62,7 @@ impl<'a> Node<'a> {
 
     /// Checks that every property is one of `allowed` and given once, and that no type
     /// annotation is used.
-    pub fn check_props(&self, allowed: &[&str]) -> Result<()> {
+    pub(super) fn check_props(&self, allowed: &[&str]) -> Result<()> {
         if self.node.ty().is_some() {
             return Err(self.parse_err("type annotations are not used in scene files"));
         }
@@ -100,7 +100,7 @@ impl<'a> Node<'a> {
     }
 
     /// Checks the argument count against `counts` (the accepted counts); `what` describes them.
-    pub fn check_count(&self, counts: &[usize], what: &str) -> Result<Vec<&'a KdlEntry>> {
+    pub(super) fn check_count(&self, counts: &[usize], what: &str) -> Result<Vec<&'a KdlEntry>> {
         let args = self.args();
         if counts.contains(&args.len()) {
             return Ok(args);
@@ -124,7 +124,7 @@ impl<'a> Node<'a> {
     }
 
     /// Exactly `n` numeric arguments (any of `counts`), checked finite and not huge.
-    pub fn numbers(&self, counts: &[usize], what: &str) -> Result<Vec<f64>> {
+    pub(super) fn numbers(&self, counts: &[usize], what: &str) -> Result<Vec<f64>> {
         self.check_count(counts, what)?
             .into_iter()
             .map(|e| number(self.src, e))
@@ -132,23 +132,23 @@ impl<'a> Node<'a> {
     }
 
     /// Exactly one string argument.
-    pub fn one_string(&self, what: &str) -> Result<&'a str> {
+    pub(super) fn one_string(&self, what: &str) -> Result<&'a str> {
         let args = self.check_count(&[1], what)?;
         string(self.src, args[0])
     }
 
     /// The string property `key`, if given.
-    pub fn string_prop(&self, key: &str) -> Result<Option<&'a str>> {
+    pub(super) fn string_prop(&self, key: &str) -> Result<Option<&'a str>> {
         self.prop(key).map(|e| string(self.src, e)).transpose()
     }
 
     /// The number property `key`, if given.
-    pub fn number_prop(&self, key: &str) -> Result<Option<f64>> {
+    pub(super) fn number_prop(&self, key: &str) -> Result<Option<f64>> {
         self.prop(key).map(|e| number(self.src, e)).transpose()
     }
 
     /// The children, or an error when the node has no `{ }` block.
-    pub fn children(&self) -> Result<Vec<Node<'a>>> {
+    pub(super) fn children(&self) -> Result<Vec<Node<'a>>> {
         match self.node.children() {
             Some(doc) => Ok(doc.nodes().iter().map(|n| Node::new(self.src, n)).collect()),
             None => Err(self.parse_err(format!("`{}` needs a {{ ... }} block", self.name()))),
@@ -156,14 +156,14 @@ impl<'a> Node<'a> {
     }
 
     /// The children if there is a block, else none.
-    pub fn children_or_none(&self) -> Vec<Node<'a>> {
+    pub(super) fn children_or_none(&self) -> Vec<Node<'a>> {
         self.node.children().map_or_else(Vec::new, |doc| {
             doc.nodes().iter().map(|n| Node::new(self.src, n)).collect()
         })
     }
 
     /// An error when the node has a non-empty `{ }` block.
-    pub fn no_children(&self) -> Result<()> {
+    pub(super) fn no_children(&self) -> Result<()> {
         match self.node.children().and_then(|d| d.nodes().first()) {
             Some(first) => Err(Error::parse(
                 self.src.node_loc(first),
@@ -175,7 +175,7 @@ impl<'a> Node<'a> {
 }
 
 /// A number argument: an integer or a float, finite and at most [`MAX_NUMBER`] in magnitude.
-pub fn number(src: &Source, e: &KdlEntry) -> Result<f64> {
+pub(super) fn number(src: &Source, e: &KdlEntry) -> Result<f64> {
     let x = match e.value() {
         KdlValue::Integer(i) => *i as f64,
         KdlValue::Float(f) => *f,
@@ -202,7 +202,7 @@ pub fn number(src: &Source, e: &KdlEntry) -> Result<f64> {
 }
 
 /// An integer argument.
-pub fn integer(src: &Source, e: &KdlEntry) -> Result<i128> {
+pub(super) fn integer(src: &Source, e: &KdlEntry) -> Result<i128> {
     match e.value() {
         KdlValue::Integer(i) => Ok(*i),
         other => Err(Error::parse(
@@ -213,7 +213,7 @@ pub fn integer(src: &Source, e: &KdlEntry) -> Result<i128> {
 }
 
 /// A string argument.
-pub fn string<'a>(src: &Source, e: &'a KdlEntry) -> Result<&'a str> {
+pub(super) fn string<'a>(src: &Source, e: &'a KdlEntry) -> Result<&'a str> {
     match e.value() {
         KdlValue::String(s) => Ok(s),
         other => Err(Error::parse(
@@ -224,7 +224,7 @@ pub fn string<'a>(src: &Source, e: &'a KdlEntry) -> Result<&'a str> {
 }
 
 /// A boolean argument (`#true` / `#false`).
-pub fn boolean(src: &Source, e: &KdlEntry) -> Result<bool> {
+pub(super) fn boolean(src: &Source, e: &KdlEntry) -> Result<bool> {
     match e.value() {
         KdlValue::Bool(b) => Ok(*b),
         other => Err(Error::parse(
@@ -246,7 +246,7 @@ fn describe(v: &KdlValue) -> String {
 }
 
 /// `a`, `b` or `c`.
-pub fn quoted_list(items: &[&str]) -> String {
+pub(super) fn quoted_list(items: &[&str]) -> String {
     let q: Vec<String> = items.iter().map(|s| format!("`{s}`")).collect();
     match q.split_last() {
         None => String::new(),

@@ -6,7 +6,7 @@ use crate::geom::{P3, V3};
 use crate::scene::CameraSpec;
 
 /// Vertical field of view when a perspective camera gives none, degrees.
-pub const DEFAULT_FOV_DEG: f64 = 45.0;
+pub(super) const DEFAULT_FOV_DEG: f64 = 45.0;
 
 /// The nodes a `camera` block may hold.
 const CAMERA_NODES: [&str; 6] = ["eye", "target", "up", "fov", "ortho", "dir"];
@@ -23,7 +23,7 @@ struct Settings<'a> {
 }
 
 /// Parses a `camera { ... }` node.
-pub fn parse_camera(n: &Node) -> Result<CameraSpec> {
+pub(super) fn parse_camera(n: &Node) -> Result<CameraSpec> {
     n.check_props(&[])?;
     if !n.args().is_empty() {
         return Err(n.parse_err("`camera` takes no arguments, only a { ... } block"));

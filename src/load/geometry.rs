@@ -11,11 +11,12 @@ use super::transform::mirrors;
 use crate::error::{Error, Location, Pos, Result, Warning, Warnings};
 use crate::geom::{Box3, PolyMesh, M4, P3};
 use crate::primitives;
-use crate::scene::cleanup::{cleanup, FaceShape, Origin, MAX_COORD};
+use crate::geom::MAX_COORD;
+use crate::scene::cleanup::{cleanup, FaceShape, Origin};
 use crate::scene::{Mesh, Object, Texture, TextureFrame};
 
 /// The names of the geometry nodes (each may carry `name=`).
-pub const GEOMETRY_NODES: [&str; 6] = [
+pub(super) const GEOMETRY_NODES: [&str; 6] = [
     "box",
     "polyhedron",
     "prism",
@@ -25,19 +26,19 @@ pub const GEOMETRY_NODES: [&str; 6] = [
 ];
 
 /// True when `name` is a geometry node (`face` belongs to `vertices`).
-pub fn is_geometry(name: &str) -> bool {
+pub(super) fn is_geometry(name: &str) -> bool {
     GEOMETRY_NODES.contains(&name)
 }
 
 /// Mesh files already loaded, by canonical path: each file's content as one shared prototype.
 #[derive(Debug, Default)]
-pub struct MeshCache {
+pub(super) struct MeshCache {
     files: HashMap<PathBuf, Arc<Object>>,
 }
 
 /// What one object's geometry is built with: its file, the transform to the final frame,
 /// and where warnings and loaded meshes go.
-pub struct GeomCtx<'a> {
+pub(super) struct GeomCtx<'a> {
     /// Directory that relative mesh paths start from.
     pub dir: &'a Path,
     /// Transform from the object's coordinates to the frame it is stored in.
@@ -50,7 +51,7 @@ pub struct GeomCtx<'a> {
 
 /// One built geometry node: a leaf object (a mesh, or an instance of a mesh file) with the
 /// name it gets when it becomes a subobject.
-pub struct Geometry {
+pub(super) struct Geometry {
     /// The node kind (`box`, `mesh`, ...), for default names.
     pub kind: &'static str,
     /// The `name=` property, if given.
@@ -63,7 +64,7 @@ pub struct Geometry {
 
 /// Builds the geometry node `n` (one of [`GEOMETRY_NODES`]); `faces` are the object's `face`
 /// nodes, used by `vertices`.
-pub fn build(n: &Node, faces: &[Node], cx: &mut GeomCtx) -> Result<Geometry> {
+pub(super) fn build(n: &Node, faces: &[Node], cx: &mut GeomCtx) -> Result<Geometry> {
     n.check_props(&["name"])?;
     let name = n.string_prop("name")?.map(str::to_string);
     let (kind, object) = match n.name() {
@@ -153,7 +154,7 @@ fn mesh_node(n: &Node, cx: &mut GeomCtx) -> Result<Object> {
 
 /// The content of the mesh file at `path`, loaded and cleaned once per canonical path; `at`
 /// is the node that asked for it (where a missing file is reported).
-pub fn mesh_prototype(
+pub(super) fn mesh_prototype(
     path: &Path,
     at: &Location,
     cache: &mut MeshCache,
@@ -185,7 +186,7 @@ fn stem(path: &Path) -> String {
 
 /// The groups of a mesh file as cleaned leaf objects, named after the groups (`/` becomes
 /// `_`; repeated names get `.2`, `.3`, ...).
-pub fn mesh_file_objects(file: &MeshFile, warnings: &mut Warnings) -> Result<Vec<Object>> {
+pub(super) fn mesh_file_objects(file: &MeshFile, warnings: &mut Warnings) -> Result<Vec<Object>> {
     let mut names: Vec<String> = Vec::new();
     let mut out = Vec::with_capacity(file.groups.len());
     for g in &file.groups {
@@ -202,7 +203,7 @@ pub fn mesh_file_objects(file: &MeshFile, warnings: &mut Warnings) -> Result<Vec
 }
 
 /// `base`, or `base.2`, `base.3`, ... whichever is not in `taken` first.
-pub fn unique_name(base: &str, taken: &[String]) -> String {
+pub(super) fn unique_name(base: &str, taken: &[String]) -> String {
     let base = if base.is_empty() { "mesh" } else { base };
     if !taken.iter().any(|t| t == base) {
         return base.to_string();

@@ -3,10 +3,8 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Location, Pos, Result};
-use crate::geom::PolyMesh;
+use crate::geom::{PolyMesh, MAX_COORD};
 
-/// The largest coordinate magnitude accepted; anything bigger is reported as a huge coordinate.
-pub const MAX_COORD: f64 = 1e12;
 
 /// One named group of faces from a mesh file (an OBJ `o`/`g` group, or the whole file).
 #[derive(Debug, Clone, PartialEq)]

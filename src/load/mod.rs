@@ -14,7 +14,7 @@ mod transform;
 
 use std::path::Path;
 
-pub use mesh_file::{load_mesh, parse_mesh, MeshFile, MeshGroup, MAX_COORD};
+pub use mesh_file::{load_mesh, parse_mesh, MeshFile, MeshGroup};
 pub use scene_file::load_scene_file;
 
 use crate::error::{Error, Result, Warnings};

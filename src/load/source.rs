@@ -8,7 +8,7 @@ use crate::error::{Error, Location, Result};
 
 /// The text of one scene file, with the start offset of every line for positions.
 #[derive(Debug, Clone)]
-pub struct Source {
+pub(super) struct Source {
     /// The file's name as shown in messages (as given, or joined from an include).
     pub path: PathBuf,
     /// The whole text.
@@ -18,7 +18,7 @@ pub struct Source {
 
 impl Source {
     /// A source from text already in memory.
-    pub fn new(path: &Path, text: String) -> Self {
+    pub(super) fn new(path: &Path, text: String) -> Self {
         let mut line_starts = vec![0];
         line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
         Source {
@@ -30,7 +30,7 @@ impl Source {
 
     /// Reads `path`; `at` is where the file was asked for (an include node), if anywhere.
     /// Text that is not UTF-8 is a parse error at the first bad byte.
-    pub fn read(path: &Path, at: Option<&Location>) -> Result<Self> {
+    pub(super) fn read(path: &Path, at: Option<&Location>) -> Result<Self> {
         let bytes = std::fs::read(path).map_err(|e| {
             let loc = at.cloned().unwrap_or_else(|| Location::file(path));
             let msg = format!("cannot read {}: {e}", path.display());
@@ -52,7 +52,7 @@ impl Source {
     }
 
     /// The 1-based line and column (in characters) of byte `offset`.
-    pub fn line_col(&self, offset: usize) -> (usize, usize) {
+    pub(super) fn line_col(&self, offset: usize) -> (usize, usize) {
         let offset = offset.min(self.text.len());
         let line = self.line_starts.partition_point(|&s| s <= offset);
         let start = self.line_starts[line.saturating_sub(1)];
@@ -64,24 +64,24 @@ impl Source {
     }
 
     /// The location of byte `offset`.
-    pub fn loc(&self, offset: usize) -> Location {
+    pub(super) fn loc(&self, offset: usize) -> Location {
         let (line, col) = self.line_col(offset);
         Location::line(&self.path, line, col)
     }
 
     /// The location of a node (its name, or its type annotation).
-    pub fn node_loc(&self, node: &KdlNode) -> Location {
+    pub(super) fn node_loc(&self, node: &KdlNode) -> Location {
         self.loc(node.span().offset())
     }
 
     /// The location of an argument or property (a property's key).
-    pub fn entry_loc(&self, entry: &KdlEntry) -> Location {
+    pub(super) fn entry_loc(&self, entry: &KdlEntry) -> Location {
         self.loc(entry.span().offset())
     }
 
     /// Parses the text as a KDL v2 document; a syntax error names the first diagnostic's
     /// position. Blocks nested deeper than [`MAX_DEPTH`] are refused before parsing.
-    pub fn parse(&self) -> Result<KdlDocument> {
+    pub(super) fn parse(&self) -> Result<KdlDocument> {
         if let Some(at) = too_deep(self.text.as_bytes(), MAX_DEPTH) {
             return Err(Error::parse(
                 self.loc(at),
@@ -107,7 +107,7 @@ impl Source {
 }
 
 /// The deepest `{ }` nesting accepted (the KDL parser recurses once per level).
-pub const MAX_DEPTH: usize = 64;
+pub(super) const MAX_DEPTH: usize = 64;
 
 /// The offset of the first `{` nested deeper than `max`, if any. Braces in comments and
 /// strings do not count (a rough scan of KDL's comment and string forms).

@@ -46,12 +46,12 @@ pub(crate) struct Word<'a> {
 
 impl Word<'_> {
     /// The word's 1-based line number.
-    pub fn line(&self) -> usize {
+    pub(super) fn line(&self) -> usize {
         self.line
     }
 
     /// The word's line and column.
-    pub fn pos(&self) -> Pos {
+    pub(super) fn pos(&self) -> Pos {
         Pos::Line {
             line: self.line,
             col: column(self.line_text, self.offset),
@@ -59,7 +59,7 @@ impl Word<'_> {
     }
 
     /// Where the word is, in `path`.
-    pub fn loc(&self, path: &Path) -> Location {
+    pub(super) fn loc(&self, path: &Path) -> Location {
         Location {
             file: path.to_path_buf(),
             pos: self.pos(),
@@ -84,7 +84,7 @@ pub(crate) struct Words<'a> {
 
 impl<'a> Words<'a> {
     /// The words of `text`, whose first line is line `first_line`.
-    pub fn new(text: &'a str, first_line: usize) -> Self {
+    pub(super) fn new(text: &'a str, first_line: usize) -> Self {
         Words {
             lines: text.split('\n'),
             line_text: "",
@@ -97,13 +97,13 @@ impl<'a> Words<'a> {
     }
 
     /// Lets a line ending in `\` continue on the next line.
-    pub fn with_continuation(mut self) -> Self {
+    pub(super) fn with_continuation(mut self) -> Self {
         self.continuation = true;
         self
     }
 
     /// Makes a word starting with `c` start a comment to the end of the line.
-    pub fn with_comment(mut self, c: u8) -> Self {
+    pub(super) fn with_comment(mut self, c: u8) -> Self {
         self.comment = Some(c);
         self
     }
@@ -131,7 +131,7 @@ impl<'a> Words<'a> {
 
     /// Moves to the start of the next logical line, skipping what is left of the current one;
     /// false at the end of the text.
-    pub fn next_line(&mut self) -> bool {
+    pub(super) fn next_line(&mut self) -> bool {
         while self.cont {
             self.advance();
         }
@@ -139,7 +139,7 @@ impl<'a> Words<'a> {
     }
 
     /// The next word of the current logical line, or `None` at its end.
-    pub fn next_in_line(&mut self) -> Option<Word<'a>> {
+    pub(super) fn next_in_line(&mut self) -> Option<Word<'a>> {
         loop {
             let bytes = self.line_text.as_bytes();
             let mut p = self.pos;
@@ -174,7 +174,7 @@ impl<'a> Words<'a> {
     }
 
     /// The next word, crossing line ends; `None` at the end of the text.
-    pub fn next_word(&mut self) -> Option<Word<'a>> {
+    pub(super) fn next_word(&mut self) -> Option<Word<'a>> {
         loop {
             if let Some(w) = self.next_in_line() {
                 return Some(w);
@@ -186,13 +186,13 @@ impl<'a> Words<'a> {
     }
 
     /// Whether nothing but blanks is left of the text (a scan of the rest: for error messages).
-    pub fn at_end(&self) -> bool {
+    pub(super) fn at_end(&self) -> bool {
         let rest = self.line_text.get(self.pos..).unwrap_or_default();
         rest.trim().is_empty() && self.lines.clone().all(|l| l.trim().is_empty())
     }
 
     /// The current line and the column just after the last word read (or the end of the text).
-    pub fn here(&self, path: &Path) -> Location {
+    pub(super) fn here(&self, path: &Path) -> Location {
         Location::line(path, self.line.max(1), column(self.line_text, self.pos))
     }
 }

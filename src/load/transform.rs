@@ -5,19 +5,19 @@ use crate::error::Result;
 use crate::geom::{Box3, M4, V3};
 
 /// The names of the transform nodes.
-pub const TRANSFORM_NODES: [&str; 4] = ["translate", "rotate", "scale", "matrix"];
+pub(super) const TRANSFORM_NODES: [&str; 4] = ["translate", "rotate", "scale", "matrix"];
 
 /// Relative determinant below which a linear part counts as singular.
 const SINGULAR_TOL: f64 = 1e-12;
 
 /// True when `name` is a transform node.
-pub fn is_transform(name: &str) -> bool {
+pub(super) fn is_transform(name: &str) -> bool {
     TRANSFORM_NODES.contains(&name)
 }
 
 /// The product of `nodes`' transforms, applied in the order written: for nodes T1, T2, ...
 /// the result is ... * T2 * T1 (T1 acts on a point first).
-pub fn compose(nodes: &[Node]) -> Result<M4> {
+pub(super) fn compose(nodes: &[Node]) -> Result<M4> {
     let mut m = M4::identity();
     for n in nodes {
         m = parse(n)? * m;
@@ -26,7 +26,7 @@ pub fn compose(nodes: &[Node]) -> Result<M4> {
 }
 
 /// One transform node as a matrix.
-pub fn parse(n: &Node) -> Result<M4> {
+pub(super) fn parse(n: &Node) -> Result<M4> {
     n.no_children()?;
     match n.name() {
         "translate" => translate(n),
@@ -103,7 +103,7 @@ fn rotation_axis(n: &Node) -> Result<V3> {
 
 /// Rotation by `deg` degrees about the unit vector `axis` through the origin, right-handed
 /// (counter-clockwise seen from the axis' tip). Multiples of 90° are exact.
-pub fn rotation(deg: f64, axis: &V3) -> M4 {
+pub(super) fn rotation(deg: f64, axis: &V3) -> M4 {
     let (s, c) = sin_cos_deg(deg);
     let k = axis;
     let t = 1.0 - c;
@@ -168,17 +168,17 @@ fn check_invertible(n: &Node, m: &M4) -> Result<()> {
 
 /// True when `m` maps axis-aligned boxes to axis-aligned boxes exactly: its linear part has
 /// exactly one nonzero entry in each row (a scaled permutation).
-pub fn is_axis_preserving(m: &M4) -> bool {
+pub(super) fn is_axis_preserving(m: &M4) -> bool {
     (0..3).all(|i| (0..3).filter(|&j| m[(i, j)] != 0.0).count() == 1)
 }
 
 /// `b` carried by `m` when `m` is axis-preserving (the image is then exactly a box).
-pub fn transform_box(b: &Box3, m: &M4) -> Option<Box3> {
+pub(super) fn transform_box(b: &Box3, m: &M4) -> Option<Box3> {
     is_axis_preserving(m).then(|| b.transformed(m))
 }
 
 /// True when `m` mirrors (negative determinant of its linear part).
-pub fn mirrors(m: &M4) -> bool {
+pub(super) fn mirrors(m: &M4) -> bool {
     m.fixed_view::<3, 3>(0, 0).determinant() < 0.0
 }
 

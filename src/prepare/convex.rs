@@ -1,7 +1,7 @@
 //! INBOX of a convex closed mesh: the largest-volume axis-aligned box inside it, found by a
 //! convex optimisation over its face planes, shrunk a little and verified exactly.
 
-use crate::geom::{Box3, P3, V3};
+use crate::geom::{newell_indexed, Box3, P3, V3};
 use crate::scene::Mesh;
 
 use super::halfspace::largest_box;
@@ -29,7 +29,7 @@ pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
     }
     let sign = if flipped { -1.0 } else { 1.0 };
     mesh.faces.iter().all(|f| {
-        let n = newell(mesh, &f.vertices) * sign;
+        let n = newell_indexed(&mesh.vertices, &f.vertices) * sign;
         let len = n.norm();
         if len == 0.0 {
             return false;
@@ -49,16 +49,6 @@ pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
             })
         })
     })
-}
-
-/// Newell's normal of a polygon (twice its vector area).
-fn newell(mesh: &Mesh, idx: &[u32]) -> V3 {
-    let o = mesh.vertices[idx[0] as usize];
-    let mut n = V3::zeros();
-    for w in idx[1..].windows(2) {
-        n += (mesh.vertices[w[0] as usize] - o).cross(&(mesh.vertices[w[1] as usize] - o));
-    }
-    n
 }
 
 /// The largest box inside a convex mesh, verified to lie inside it; None when the

@@ -6,6 +6,7 @@
 //! size with a separating-axis test in f64: the rounding error of those dot products is
 //! below 1e-14 of the size, far under the margin, so a face reported clear truly is.
 
+use crate::geom::triangle::closest_on_triangle;
 use crate::geom::{Box3, P3, V3};
 
 use super::solid::Triangles;
@@ -155,7 +156,7 @@ impl Field<'_> {
                 d = d.max(b.lo[i] - p[i]).max(p[i] - b.hi[i]);
             }
             if d < r {
-                let e = (closest_on_triangle(p, t) - p).norm() / 3f64.sqrt();
+                let e = (closest_on_triangle(p, &t[0], &t[1], &t[2]) - p).norm() / 3f64.sqrt();
                 r = r.min(d.max(e));
             }
         }
@@ -226,43 +227,6 @@ impl Field<'_> {
         }
         ok
     }
-}
-
-/// The point of triangle `t` nearest to `p` (Ericson, Real-Time Collision Detection 5.1.5).
-fn closest_on_triangle(p: &P3, t: &[P3; 3]) -> P3 {
-    let (a, b, c) = (t[0], t[1], t[2]);
-    let (ab, ac, ap) = (b - a, c - a, p - a);
-    let (d1, d2) = (ab.dot(&ap), ac.dot(&ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
-    }
-    let bp = p - b;
-    let (d3, d4) = (ab.dot(&bp), ac.dot(&bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return a + ab * (d1 / (d1 - d3));
-    }
-    let cp = p - c;
-    let (d5, d6) = (ab.dot(&cp), ac.dot(&cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return a + ac * (d2 / (d2 - d6));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    }
-    let denom = va + vb + vc;
-    if denom == 0.0 {
-        return a;
-    }
-    a + ab * (vb / denom) + ac * (vc / denom)
 }
 
 /// Separating-axis test: does triangle `t` meet the closed box with centre `c` and

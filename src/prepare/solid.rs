@@ -1,9 +1,8 @@
 //! Geometry of a closed mesh shared by the inbox methods: orientation, fan triangles, face
 //! planes, and the exact test that a box lies on the inner side of every face.
 
-use robust::{orient3d, Coord3D};
 
-use crate::geom::{Box3, P3, V3};
+use crate::geom::{orient3d_refs, Box3, P3, V3};
 use crate::scene::Mesh;
 
 use super::halfspace::HalfSpace;
@@ -49,11 +48,10 @@ impl Triangles {
     /// Exact test: every corner of `b` is on the inner side of (or on) every triangle's
     /// plane. Such a box lies in the kernel of the polyhedron, hence inside it.
     pub fn box_in_kernel(&self, b: &Box3) -> bool {
-        let corners = b.corners().map(|c| co(&c));
+        let corners = b.corners();
         self.tris.iter().all(|t| {
-            let (a, b, c) = (co(&t[0]), co(&t[1]), co(&t[2]));
             // orient3d > 0: the point lies below the counter-clockwise triangle, i.e. inside.
-            corners.iter().all(|&p| orient3d(a, b, c, p) >= 0.0)
+            corners.iter().all(|p| orient3d_refs(t, p) >= 0.0)
         })
     }
 
@@ -87,15 +85,6 @@ fn signed_volume(tris: &[[P3; 3]]) -> f64 {
         .map(|t| (t[0] - o).dot(&(t[1] - o).cross(&(t[2] - o))))
         .sum::<f64>()
         / 6.0
-}
-
-/// A point for the robust predicates.
-pub fn co(p: &P3) -> Coord3D<f64> {
-    Coord3D {
-        x: p.x,
-        y: p.y,
-        z: p.z,
-    }
 }
 
 /// The box scaled about its centre by `1 − eps` on every axis.

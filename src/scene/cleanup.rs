@@ -13,13 +13,11 @@
 use std::path::Path;
 
 use crate::error::{Error, Location, Pos, Result, Warning, Warnings};
-use crate::geom::{PolyMesh, P3, V3};
+use crate::geom::{newell, PolyMesh, MAX_COORD, P3, V3};
 
 use super::object::{Face, Mesh};
 use super::topology::is_closed_oriented;
 
-/// Largest accepted |coordinate|; beyond it products in the predicates lose too much.
-pub const MAX_COORD: f64 = 1e12;
 /// Relative distance from the face plane above which a face counts as non-planar.
 pub const PLANAR_TOL: f64 = 1e-9;
 /// Relative distance from the face plane above which a non-planar face is split.
@@ -241,15 +239,7 @@ impl FaceShape {
     /// Measures the polygon `pts`.
     pub fn of(pts: &[P3]) -> Self {
         let n = pts.len();
-        let mut normal = V3::zeros();
-        for i in 0..n {
-            let (a, b) = (&pts[i], &pts[(i + 1) % n]);
-            normal += V3::new(
-                (a.y - b.y) * (a.z + b.z),
-                (a.z - b.z) * (a.x + b.x),
-                (a.x - b.x) * (a.y + b.y),
-            );
-        }
+        let normal = newell(pts);
         let bbox = crate::geom::Box3::from_points(pts.iter());
         let diameter = (bbox.hi - bbox.lo).norm();
         let area2 = normal.norm();

@@ -1,8 +1,8 @@
 //! The scene database: Franklin's object tree with CBOX/INBOX, instancing, cleanup and FLATTEN.
 
 pub mod cleanup;
+pub mod face_id;
 pub mod flatten;
-pub mod generate;
 pub mod object;
 pub mod texture;
 pub mod topology;
@@ -12,6 +12,7 @@ use std::path::PathBuf;
 
 use crate::geom::{Box3, M4, P3, V3};
 
+pub use face_id::FaceId;
 pub use flatten::{flatten, FlatMesh};
 pub use object::{Content, Face, Instance, Mesh, Object};
 pub use texture::{Texture, TextureFrame};
@@ -122,7 +123,7 @@ pub(crate) mod testing {
     use crate::scene::cleanup::{cleanup, Origin};
 
     /// The unit cube [0, 1]^3 as a closed leaf named "cube".
-    pub fn unit_cube() -> Object {
+    pub(crate) fn unit_cube() -> Object {
         let raw = crate::primitives::cuboid(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
         let origin = Origin {
             file: std::path::Path::new("t"),
@@ -132,7 +133,7 @@ pub(crate) mod testing {
     }
 
     /// A scene of the unit cube alone.
-    pub fn unit_cube_scene() -> Scene {
+    pub(crate) fn unit_cube_scene() -> Scene {
         Scene::new(Object::group("", vec![unit_cube()]), "t".into())
     }
 }

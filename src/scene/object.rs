@@ -37,6 +37,19 @@ pub struct Mesh {
     pub closed: bool,
 }
 
+impl Mesh {
+    /// The generalized winding number of the faces around `p`
+    /// ([`winding_number`](crate::geom::solid_angle::winding_number)): about 1 inside a
+    /// closed outward solid, 0 outside.
+    pub fn winding_number(&self, p: &P3) -> f64 {
+        crate::geom::solid_angle::winding_number(
+            &self.vertices,
+            self.faces.iter().map(|f| f.vertices.as_slice()),
+            p,
+        )
+    }
+}
+
 /// A prototype placed with a transform: stored once, placed many times.
 #[derive(Debug, Clone)]
 pub struct Instance {

@@ -20,7 +20,7 @@
 //! The bounds must be tight (each plane touching the tribox), as those of a point set are;
 //! [`crate::tribox::Tribox::boundary`] tightens them first.
 
-use crate::geom::{PolyMesh, P3, V3};
+use crate::geom::{newell_indexed, PolyMesh, P3};
 
 use super::bounds::Tribox;
 
@@ -109,7 +109,7 @@ impl Boundary {
     pub fn area(&self) -> f64 {
         self.faces
             .iter()
-            .map(|f| newell(&self.vertices, f).norm() * 0.5)
+            .map(|f| newell_indexed(&self.vertices, f).norm() * 0.5)
             .sum()
     }
 
@@ -140,7 +140,7 @@ impl Boundary {
                     (verts[ring[i] as usize] - verts[ring[(i + 1) % ring.len()] as usize]).norm()
                 })
                 .fold(0.0, f64::max);
-            if newell(&verts, &ring).norm() * 0.5 <= eps * longest {
+            if newell_indexed(&verts, &ring).norm() * 0.5 <= eps * longest {
                 continue;
             }
             faces.push(ring);
@@ -302,19 +302,6 @@ fn principal_corners(a: usize, max: bool) -> [usize; 4] {
     seq.map(|(sb, sc)| usize::from(max) << a | sb << b | sc << c)
 }
 
-/// Twice the vector area of a polygon (Newell).
-pub fn newell(verts: &[P3], f: &[u32]) -> V3 {
-    let mut n = V3::zeros();
-    if f.len() < 3 {
-        return n;
-    }
-    let o = verts[f[0] as usize];
-    for i in 1..f.len() - 1 {
-        n += (verts[f[i] as usize] - o).cross(&(verts[f[i + 1] as usize] - o));
-    }
-    n
-}
-
 /// Volume enclosed by closed, outward faces.
 pub fn volume(verts: &[P3], faces: &[Vec<u32>]) -> f64 {
     let Some(r) = verts.first() else { return 0.0 };
@@ -375,7 +362,7 @@ fn compact(verts: Vec<P3>, mut faces: Vec<Vec<u32>>) -> PolyMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::Box3;
+    use crate::geom::{Box3, V3};
 
     fn tribox(pts: &[[f64; 3]]) -> Tribox {
         Tribox::from_points(
@@ -402,7 +389,7 @@ mod tests {
         assert_eq!(m.faces.len(), 6);
         // Every principal face is a unit square counter-clockwise from outside.
         for (i, f) in m.faces.iter().enumerate() {
-            let n = newell(&m.vertices, f);
+            let n = newell_indexed(&m.vertices, f);
             assert!((n.norm() - 2.0).abs() < 1e-15, "face {i}");
             let c: V3 = f.iter().map(|&v| m.vertices[v as usize].coords).sum::<V3>() / 4.0;
             assert!(

@@ -25,10 +25,10 @@
 //!   the two areas alone (caps included) never pays for a convex-ish shape: a cow or a bunny
 //!   would never be split.
 
-use crate::geom::{Box3, PolyMesh, P3, V3};
+use crate::geom::triangle::closest_on_triangle;
+use crate::geom::{newell, Box3, PolyMesh, P3};
 use crate::scene::triangulate::ear_clip;
 use crate::scene::Mesh;
-use crate::visibility::include::winding_number;
 
 use super::bounds::{direction, project, Tribox};
 
@@ -400,7 +400,7 @@ fn inner_vertices(cell: &Cell, parent: &Tribox, s: Split, below: bool, solid: &M
         .mesh()
         .vertices
         .into_iter()
-        .filter(|v| !surface.contains(v) && winding_number(solid, v).abs() > 0.5)
+        .filter(|v| !surface.contains(v) && solid.winding_number(v).abs() > 0.5)
         .collect()
 }
 
@@ -422,7 +422,7 @@ impl SurfaceIndex {
         let mut tris: Vec<[P3; 3]> = polygons
             .iter()
             .flat_map(|p| {
-                let n = super::boundary::newell(p, &(0..p.len() as u32).collect::<Vec<_>>());
+                let n = newell(p);
                 ear_clip(p, &n)
                     .into_iter()
                     .map(|[a, b, c]| [p[a], p[b], p[c]])
@@ -543,53 +543,6 @@ fn box_distance2(b: &Box3, p: &P3) -> f64 {
         .sum()
 }
 
-/// The closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision Detection 5.1.5).
-pub fn closest_on_triangle(p: &P3, a: &P3, b: &P3, c: &P3) -> P3 {
-    let (ab, ac, ap) = (b - a, c - a, p - a);
-    let (d1, d2) = (ab.dot(&ap), ac.dot(&ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return *a;
-    }
-    let bp = p - b;
-    let (d3, d4) = (ab.dot(&bp), ac.dot(&bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return *b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return a + ab * (d1 / (d1 - d3));
-    }
-    let cp = p - c;
-    let (d5, d6) = (ab.dot(&cp), ac.dot(&cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return *c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return a + ac * (d2 / (d2 - d6));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    }
-    let denom = va + vb + vc;
-    if denom == 0.0 {
-        // Degenerate (collinear) triangle: the nearest of its corners will do.
-        return [a, b, c]
-            .into_iter()
-            .min_by(|x, y| (*x - p).norm_squared().total_cmp(&(*y - p).norm_squared()))
-            .copied()
-            .unwrap_or(*a);
-    }
-    let (v, w) = (vb / denom, vc / denom);
-    a + ab * v + ac * w
-}
-
-/// Unit direction of the split plane's normal.
-pub fn split_normal(s: &Split) -> V3 {
-    direction(s.k).normalize()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -654,17 +607,4 @@ mod tests {
         assert!(h.nodes[0].error < 1e-12);
     }
 
-    #[test]
-    fn closest_point_on_triangle_regions() {
-        let (a, b, c) = (
-            P3::new(0., 0., 0.),
-            P3::new(1., 0., 0.),
-            P3::new(0., 1., 0.),
-        );
-        assert_eq!(closest_on_triangle(&P3::new(-1., -1., 5.), &a, &b, &c), a);
-        let i = closest_on_triangle(&P3::new(0.2, 0.2, 5.), &a, &b, &c);
-        assert!((i - P3::new(0.2, 0.2, 0.)).norm() < 1e-15);
-        let e = closest_on_triangle(&P3::new(1., 1., 0.), &a, &b, &c);
-        assert!((e - P3::new(0.5, 0.5, 0.)).norm() < 1e-15);
-    }
 }

@@ -3,7 +3,7 @@
 
 use std::collections::HashMap;
 
-use crate::geom::P3;
+use crate::geom::{orient3d, P3};
 
 /// A hull triangle: corners counter-clockwise from outside, the neighbour across each edge
 /// (v\[i\], v\[i+1\]), and the points still outside it.
@@ -52,16 +52,6 @@ pub fn hull_volume(points: &[P3]) -> f64 {
         / 6.0
 }
 
-/// Positive when `d` is behind the plane of the counter-clockwise triangle (a, b, c): inside.
-fn orient(a: &P3, b: &P3, c: &P3, d: &P3) -> f64 {
-    let c3 = |p: &P3| robust::Coord3D {
-        x: p.x,
-        y: p.y,
-        z: p.z,
-    };
-    robust::orient3d(c3(a), c3(b), c3(c), c3(d))
-}
-
 /// Four points spanning a volume, ordered so that (0, 1, 2) is counter-clockwise from outside.
 fn initial_tetrahedron(p: &[P3]) -> Option<[u32; 4]> {
     if p.len() < 4 {
@@ -78,7 +68,7 @@ fn initial_tetrahedron(p: &[P3]) -> Option<[u32; 4]> {
     let c = far(&|q: &P3| ab.cross(&(q - p[a])).norm_squared());
     let n = ab.cross(&(p[c] - p[a]));
     let d = far(&|q: &P3| n.dot(&(q - p[a])).abs());
-    let o = orient(&p[a], &p[b], &p[c], &p[d]);
+    let o = orient3d(&p[a], &p[b], &p[c], &p[d]);
     if o == 0.0 {
         return None;
     }
@@ -99,7 +89,7 @@ impl Hull<'_> {
     /// True when point `p` is strictly outside triangle `t`'s plane.
     fn sees(&self, t: usize, p: u32) -> bool {
         let v = self.tris[t].v;
-        orient(self.at(v[0]), self.at(v[1]), self.at(v[2]), self.at(p)) < 0.0
+        orient3d(self.at(v[0]), self.at(v[1]), self.at(v[2]), self.at(p)) < 0.0
     }
 
     /// The tetrahedron's four faces, neighbours linked, every other point assigned.
@@ -247,7 +237,7 @@ mod tests {
         for t in &tris {
             for q in &pts {
                 let [a, b, c] = t.map(|i| &pts[i as usize]);
-                assert!(orient(a, b, c, q) >= 0.0);
+                assert!(orient3d(a, b, c, q) >= 0.0);
             }
         }
     }

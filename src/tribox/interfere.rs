@@ -3,8 +3,7 @@
 //!
 //! Faces are closed sets: objects that touch (a shared vertex, an edge on a face) intersect.
 
-use crate::geom::poly2::orient2d;
-use crate::geom::{P3, V3};
+use crate::geom::{newell, orient2d, orient3d, P3, V3};
 use crate::scene::triangulate::ear_clip;
 use crate::scene::Scene;
 
@@ -112,31 +111,14 @@ fn faces_intersect(a: &[Tri], b: &[Tri], ta: &Tribox, tb: &Tribox, tests: &mut u
     false
 }
 
-fn newell(p: &[P3]) -> V3 {
-    let mut n = V3::zeros();
-    for i in 0..p.len() {
-        n += p[i].coords.cross(&p[(i + 1) % p.len()].coords);
-    }
-    n
-}
-
-fn o3(a: &P3, b: &P3, c: &P3, d: &P3) -> f64 {
-    let c3 = |p: &P3| robust::Coord3D {
-        x: p.x,
-        y: p.y,
-        z: p.z,
-    };
-    robust::orient3d(c3(a), c3(b), c3(c), c3(d))
-}
-
 /// Exact closed intersection test of two non-degenerate triangles: they meet exactly when an
 /// edge of one meets the other (non-coplanar), or in the plane's 2D test (coplanar).
 pub fn triangles_intersect(t: &[P3; 3], u: &[P3; 3]) -> bool {
-    let su = t.map(|p| o3(&u[0], &u[1], &u[2], &p));
+    let su = t.map(|p| orient3d(&u[0], &u[1], &u[2], &p));
     if su.iter().all(|&s| s > 0.0) || su.iter().all(|&s| s < 0.0) {
         return false;
     }
-    let st = u.map(|p| o3(&t[0], &t[1], &t[2], &p));
+    let st = u.map(|p| orient3d(&t[0], &t[1], &t[2], &p));
     if st.iter().all(|&s| s > 0.0) || st.iter().all(|&s| s < 0.0) {
         return false;
     }
@@ -164,7 +146,7 @@ fn plane_axes(t: &[P3; 3]) -> (usize, usize) {
 
 /// Closed segment pq against closed triangle t.
 fn segment_meets_triangle(p: &P3, q: &P3, t: &[P3; 3]) -> bool {
-    let (sp, sq) = (o3(&t[0], &t[1], &t[2], p), o3(&t[0], &t[1], &t[2], q));
+    let (sp, sq) = (orient3d(&t[0], &t[1], &t[2], p), orient3d(&t[0], &t[1], &t[2], q));
     if (sp > 0.0 && sq > 0.0) || (sp < 0.0 && sq < 0.0) {
         return false;
     }
@@ -176,9 +158,9 @@ fn segment_meets_triangle(p: &P3, q: &P3, t: &[P3; 3]) -> bool {
             || (0..3).any(|i| segments_2d(a, b, tri[i], tri[(i + 1) % 3]));
     }
     let s = [
-        o3(p, q, &t[0], &t[1]),
-        o3(p, q, &t[1], &t[2]),
-        o3(p, q, &t[2], &t[0]),
+        orient3d(p, q, &t[0], &t[1]),
+        orient3d(p, q, &t[1], &t[2]),
+        orient3d(p, q, &t[2], &t[0]),
     ];
     s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0)
 }

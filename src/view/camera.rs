@@ -2,7 +2,29 @@
 
 use crate::error::{Error, Result};
 use crate::geom::{M4, P3, V3};
-use crate::scene::CameraSpec;
+use crate::scene::{CameraSpec, Scene};
+
+/// Field of view of a perspective camera asked for by an eye point alone, degrees.
+pub const DEFAULT_FOV_DEG: f64 = 40.0;
+
+/// What a caller asks of the camera (the command line's `--dir`, `--eye`, `--target`,
+/// `--fov`, `--ortho`, `--up`); what it leaves unset comes from the scene's camera block, then
+/// from the three-quarter view. See [`Camera::for_scene`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CameraRequest {
+    /// Orthographic, looking along this vector.
+    pub dir: Option<V3>,
+    /// Perspective from this eye point.
+    pub eye: Option<P3>,
+    /// With `eye`: the point looked at (default: the centre of the scene's CBOX).
+    pub target: Option<P3>,
+    /// With `eye`: vertical field of view in degrees (default [`DEFAULT_FOV_DEG`]).
+    pub fov_deg: Option<f64>,
+    /// With `eye`: orthographic along `target - eye` instead of perspective.
+    pub ortho: bool,
+    /// Up vector (default +Y).
+    pub up: Option<V3>,
+}
 
 /// Kind of projection.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -108,6 +130,57 @@ impl Camera {
                 up,
                 fov_deg,
             } => Camera::perspective(eye, target, up, fov_deg, default_near(&eye, &target)),
+        }
+    }
+
+    /// The camera a request asks for, for `scene`: `dir` first, then `eye` (with `target`,
+    /// `fov_deg`, `ortho`), then the scene's own camera (with `up` overriding its up vector),
+    /// then the three-quarter view.
+    pub fn for_scene(scene: &Scene, req: &CameraRequest) -> Result<Camera> {
+        let up = req.up.unwrap_or(V3::y());
+        if let Some(dir) = req.dir {
+            return Camera::orthographic(dir, up);
+        }
+        if let Some(eye) = req.eye {
+            let target = req.target.unwrap_or_else(|| scene.cbox().center());
+            let spec = if req.ortho {
+                CameraSpec::Orthographic {
+                    dir: target - eye,
+                    up,
+                }
+            } else {
+                CameraSpec::Perspective {
+                    eye,
+                    target,
+                    up,
+                    fov_deg: req.fov_deg.unwrap_or(DEFAULT_FOV_DEG),
+                }
+            };
+            return Camera::from_spec(&spec);
+        }
+        if req.target.is_some() {
+            return Err(Error::Usage("a camera target needs an eye point".into()));
+        }
+        match (&scene.camera, req.up) {
+            (None, _) => Ok(Camera::three_quarter()),
+            (Some(spec), None) => Camera::from_spec(spec),
+            (Some(CameraSpec::Orthographic { dir, .. }), Some(up)) => {
+                Camera::orthographic(*dir, up)
+            }
+            (
+                Some(CameraSpec::Perspective {
+                    eye,
+                    target,
+                    fov_deg,
+                    ..
+                }),
+                Some(up),
+            ) => Camera::from_spec(&CameraSpec::Perspective {
+                eye: *eye,
+                target: *target,
+                up,
+                fov_deg: *fov_deg,
+            }),
         }
     }
 

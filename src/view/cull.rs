@@ -16,9 +16,9 @@
 //! is in front of the near plane).
 
 use crate::geom::hull2::{convex_hull, covers_convex};
-use crate::geom::poly2::{bounds, Pt2};
-use crate::geom::{Box3, M4};
-use crate::scene::{Content, Leaf, Object, Scene};
+use crate::geom::poly2::Pt2;
+use crate::geom::{Box3, Rect, M4};
+use crate::scene::{Content, FaceId, Leaf, Object, Scene};
 
 use super::camera::{Camera, Projection};
 
@@ -32,8 +32,8 @@ pub struct HiddenObject<'a> {
     /// The object (a shared prototype's part appears once per placement, told apart by
     /// `first_face`).
     pub object: &'a Object,
-    /// Its first global face id.
-    pub first_face: u32,
+    /// Its first face.
+    pub first_face: FaceId,
     /// Its number of faces (instances expanded).
     pub face_count: u32,
 }
@@ -84,7 +84,7 @@ impl<'a> Cull<'a> {
 /// A projected INBOX: a convex screen hull in front of everything behind its least depth.
 struct Occluder {
     hull: Vec<Pt2>,
-    rect: [f64; 4],
+    rect: Rect,
     area: f64,
     zmin: f64,
     /// Index of its object among the level's children.
@@ -94,7 +94,7 @@ struct Occluder {
 /// A projected CBOX.
 struct Projected {
     corners: [Pt2; 8],
-    rect: [f64; 4],
+    rect: Rect,
     zmin: f64,
     zmax: f64,
 }
@@ -140,7 +140,7 @@ impl<'a> Walker<'a, '_> {
                 let n = s.face_count() as u32;
                 self.out.hidden.push(HiddenObject {
                     object: s,
-                    first_face: f,
+                    first_face: FaceId(f),
                     face_count: n,
                 });
                 f += n;
@@ -169,9 +169,9 @@ impl<'a> Walker<'a, '_> {
         if hull.len() < 3 {
             return None;
         }
-        let rect = bounds(hull.iter());
+        let rect = Rect::of_points(hull.iter());
         Some(Occluder {
-            area: rect_area(&rect),
+            area: rect.area(),
             hull,
             rect,
             zmin: p.zmin,
@@ -188,7 +188,7 @@ impl<'a> Walker<'a, '_> {
             return false;
         };
         self.out.objects_tested += 1;
-        let need = rect_area(&p.rect);
+        let need = p.rect.area();
         let innermost = self.levels.len() - 1;
         self.levels.iter().enumerate().any(|(li, level)| {
             level
@@ -198,7 +198,7 @@ impl<'a> Walker<'a, '_> {
                 .take(MAX_TESTS_PER_LEVEL)
                 .any(|o| {
                     p.zmax < o.zmin
-                        && contains_rect(&o.rect, &p.rect)
+                        && o.rect.contains_rect(&p.rect)
                         && covers_convex(&o.hull, &p.corners)
                 })
         })
@@ -215,18 +215,10 @@ impl<'a> Walker<'a, '_> {
         let s = world.map(|c| cam.project(&c));
         let corners = s.map(|q| [q[0], q[1]]);
         Some(Projected {
-            rect: bounds(corners.iter()),
+            rect: Rect::of_points(corners.iter()),
             zmin: s.iter().map(|q| q[2]).fold(f64::INFINITY, f64::min),
             zmax: s.iter().map(|q| q[2]).fold(f64::NEG_INFINITY, f64::max),
             corners,
         })
     }
-}
-
-fn rect_area(r: &[f64; 4]) -> f64 {
-    (r[2] - r[0]).max(0.0) * (r[3] - r[1]).max(0.0)
-}
-
-fn contains_rect(outer: &[f64; 4], inner: &[f64; 4]) -> bool {
-    outer[0] <= inner[0] && outer[1] <= inner[1] && inner[2] <= outer[2] && inner[3] <= outer[3]
 }

@@ -1,13 +1,26 @@
 //! The view stage: a camera turns the scene into screen-space faces and a view tree.
+//!
+//! - [`camera`]: the world-to-screen matrix, chosen from flags, the scene or a default.
+//! - [`lod`]: small objects replaced by their triboxes for this camera (optional).
+//! - [`cull`]: subtrees HIDDEN by inboxes, found from boxes before any face is projected.
+//! - [`screen`]: the remaining faces projected as planar pieces.
+//! - [`tree`]: the object tree in screen space, with bounds for VISFAC2's pruning.
+//! - [`frame`]: the part of the screen plane a picture shows.
 
 pub mod camera;
 pub mod cull;
+pub mod frame;
+pub mod lod;
+pub mod piece_id;
 pub mod screen;
 pub mod tree;
 
-pub use camera::{Camera, Projection};
+pub use camera::{Camera, CameraRequest, Projection};
 pub use cull::Cull;
-pub use screen::{Facing, ScreenFace, ScreenFaces};
+pub use frame::Frame;
+pub use lod::{substitute, LodOptions, LodStats};
+pub use piece_id::PieceId;
+pub use screen::{Facing, Piece, ScreenFaces};
 pub use tree::{ObjectNode, ViewTree};
 
 use crate::scene::Scene;
@@ -17,7 +30,7 @@ use crate::scene::Scene;
 pub struct View {
     /// The camera.
     pub camera: Camera,
-    /// Faces in screen space, by global id.
+    /// Faces in screen space, as planar pieces.
     pub screen: ScreenFaces,
     /// The object tree with screen bounds.
     pub tree: ViewTree,
@@ -37,7 +50,7 @@ pub struct CullSummary {
 }
 
 impl View {
-    /// Projects every face of `scene` with `camera`.
+    /// Projects every face of `scene` with `camera` (no cull).
     pub fn new(scene: &Scene, camera: Camera) -> View {
         Self::from_cull(scene, camera, &Cull::none(scene))
     }

@@ -1,13 +1,15 @@
 //! Screen-space faces: every face of the scene (outside hidden subtrees) projected into the
-//! standard view, in global face order.
+//! standard view as planar pieces, in global face order.
 
-use crate::geom::poly2::{orient2d, ring_area, Pt2};
-use crate::geom::P3;
-use crate::scene::{Leaf, Scene};
+use std::ops::Range;
 
-use super::cull::Cull;
+use crate::geom::poly2::{is_convex_ccw, ring_area, Pt2};
+use crate::geom::{newell, orient2d, orient3d_refs, Rect, P3};
+use crate::scene::{FaceId, Leaf, Scene};
 
 use super::camera::{Camera, Projection};
+use super::cull::Cull;
+use super::piece_id::PieceId;
 
 /// How a projected face presents itself to the viewer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,17 +27,17 @@ pub enum Facing {
 /// One planar piece of a face in screen space (a planar face is one piece; a warped face is
 /// split into planar triangles here, so that every piece has a plane).
 #[derive(Debug, Clone, Copy)]
-pub struct ScreenFace {
-    /// Global id of the face this piece belongs to.
-    pub id: u32,
+pub struct Piece {
+    /// The face this piece belongs to.
+    pub face: FaceId,
     /// First point in [`ScreenFaces::points`].
     pub start: u32,
     /// Number of points.
     pub len: u32,
     /// Index of the leaf object in [`ScreenFaces::leaves`].
     pub leaf: u32,
-    /// Screen bounding rectangle [xmin, ymin, xmax, ymax].
-    pub rect: [f64; 4],
+    /// Screen bounding rectangle.
+    pub rect: Rect,
     /// Least depth (farthest from the viewer).
     pub zmin: f64,
     /// Greatest depth (nearest to the viewer).
@@ -52,8 +54,8 @@ pub struct ScreenFace {
     pub convex: bool,
 }
 
-impl ScreenFace {
-    /// True when this face can hide anything (not edge-on, not clipped away, not culled).
+impl Piece {
+    /// True when this piece can hide anything (not edge-on, not clipped away, not culled).
     pub fn is_occluder(&self) -> bool {
         matches!(self.facing, Facing::Front | Facing::Back) && !self.culled
     }
@@ -64,20 +66,29 @@ impl ScreenFace {
 pub struct LeafInfo {
     /// Object path.
     pub path: String,
-    /// First global face id.
-    pub first_face: u32,
+    /// Its first face.
+    pub first_face: FaceId,
     /// Number of faces.
     pub face_count: u32,
+}
+
+impl LeafInfo {
+    /// The leaf's faces.
+    pub fn faces(&self) -> Range<FaceId> {
+        self.first_face..self.first_face.offset(self.face_count)
+    }
 }
 
 /// All faces in screen space, as planar pieces in global face order.
 #[derive(Debug, Clone, Default)]
 pub struct ScreenFaces {
-    /// Pieces; pieces of one face are consecutive, faces in global order.
-    pub faces: Vec<ScreenFace>,
-    /// Piece range of face `f`: `pieces[f]..pieces[f + 1]` (length: face count + 1).
-    pub pieces: Vec<u32>,
-    /// Projected points (x, y, depth) of all faces, face after face.
+    /// The planar pieces; pieces of one face are consecutive, faces in global order.
+    pub pieces: Vec<Piece>,
+    /// Where each face's pieces start: face `f`'s pieces are
+    /// `face_starts[f]..face_starts[f + 1]` (length: face count + 1; a face of a hidden
+    /// subtree has none).
+    pub face_starts: Vec<u32>,
+    /// Projected points (x, y, depth) of all pieces, piece after piece.
     pub points: Vec<[f64; 3]>,
     /// World position of each point in `points` (exact input coordinates where not clipped);
     /// side-of-plane decisions are made on these.
@@ -111,51 +122,67 @@ impl ScreenFaces {
             .flat_map(|l| &l.mesh.faces)
             .map(|f| f.vertices.len())
             .sum();
-        out.faces.reserve(faces);
+        out.pieces.reserve(faces);
         out.points.reserve(corners);
         out.world.reserve(corners);
-        out.pieces.reserve(cull.face_count as usize + 1);
-        out.pieces.push(0);
+        out.face_starts.reserve(cull.face_count as usize + 1);
+        out.face_starts.push(0);
         for (li, leaf) in cull.leaves.iter().enumerate() {
-            out.pieces
-                .resize(leaf.first_face + 1, out.faces.len() as u32);
+            out.face_starts
+                .resize(leaf.first_face + 1, out.pieces.len() as u32);
             out.add_leaf(li as u32, leaf, camera);
         }
-        out.pieces
-            .resize(cull.face_count as usize + 1, out.faces.len() as u32);
+        out.face_starts
+            .resize(cull.face_count as usize + 1, out.pieces.len() as u32);
         out
     }
 
     /// Number of faces (not pieces).
     pub fn face_count(&self) -> usize {
-        self.pieces.len() - 1
+        self.face_starts.len() - 1
     }
 
-    /// The pieces of the faces in a global face id range.
-    pub fn piece_range(&self, faces: std::ops::Range<u32>) -> std::ops::Range<u32> {
-        self.pieces[faces.start as usize]..self.pieces[faces.end as usize]
+    /// The piece `p`.
+    #[inline]
+    pub fn piece(&self, p: PieceId) -> &Piece {
+        &self.pieces[p.index()]
     }
 
-    /// How face `id` presents itself: its single piece's facing, or for a warped face split
+    /// Every piece id, in order.
+    pub fn piece_ids(&self) -> impl ExactSizeIterator<Item = PieceId> + Clone {
+        (0..self.pieces.len() as u32).map(PieceId)
+    }
+
+    /// Indices into [`ScreenFaces::pieces`] of the pieces of the faces in `faces`.
+    pub fn piece_span(&self, faces: Range<FaceId>) -> Range<usize> {
+        self.face_starts[faces.start.index()] as usize..self.face_starts[faces.end.index()] as usize
+    }
+
+    /// The pieces of the faces in `faces`, in order.
+    pub fn pieces_in(&self, faces: Range<FaceId>) -> impl ExactSizeIterator<Item = PieceId> + Clone {
+        let r = self.piece_span(faces);
+        (r.start as u32..r.end as u32).map(PieceId)
+    }
+
+    /// The pieces of face `f`.
+    pub fn pieces_of(&self, f: FaceId) -> impl ExactSizeIterator<Item = PieceId> + Clone {
+        self.pieces_in(f..f.offset(1))
+    }
+
+    /// How face `f` presents itself: its single piece's facing, or for a warped face split
     /// into pieces, the sign of the pieces' summed projected area (clipped or edge-on when no
     /// piece shows area).
-    pub fn face_facing(&self, id: usize) -> Facing {
-        let r = self.piece_range(id as u32..id as u32 + 1);
-        if r.len() == 1 {
-            return self.faces[r.start as usize].facing;
+    pub fn face_facing(&self, f: FaceId) -> Facing {
+        let pieces = self.pieces_of(f);
+        if pieces.len() == 1 {
+            return self.piece(PieceId(self.face_starts[f.index()])).facing;
         }
         let mut area = 0.0;
         let mut any_clipped = false;
-        for p in r {
-            match self.faces[p as usize].facing {
+        for p in pieces {
+            match self.piece(p).facing {
                 Facing::Front | Facing::Back => {
-                    area += ring_area(
-                        &self
-                            .pts(p as usize)
-                            .iter()
-                            .map(|q| [q[0], q[1]])
-                            .collect::<Vec<_>>(),
-                    )
+                    area += ring_area(&self.pts(p).iter().map(|q| [q[0], q[1]]).collect::<Vec<_>>())
                 }
                 Facing::Clipped => any_clipped = true,
                 Facing::EdgeOn => {}
@@ -172,51 +199,52 @@ impl ScreenFaces {
         }
     }
 
-    /// True when some piece of face `id` can hide something (projected, not culled, not
+    /// True when some piece of face `f` can hide something (projected, not culled, not
     /// edge-on).
-    pub fn face_is_occluder(&self, id: usize) -> bool {
-        let r = self.piece_range(id as u32..id as u32 + 1);
-        r.into_iter().any(|p| self.faces[p as usize].is_occluder())
+    pub fn face_is_occluder(&self, f: FaceId) -> bool {
+        self.pieces_of(f).any(|p| self.piece(p).is_occluder())
     }
 
-    /// The world points of all pieces of face `id` (the face's own corners when it is one piece).
-    pub fn face_world_pts(&self, id: usize) -> Vec<P3> {
-        let r = self.piece_range(id as u32..id as u32 + 1);
-        r.flat_map(|p| self.world_pts(p as usize).iter().copied())
+    /// The world points of all pieces of face `f` (the face's own corners when it is one piece).
+    pub fn face_world_pts(&self, f: FaceId) -> Vec<P3> {
+        self.pieces_of(f)
+            .flat_map(|p| self.world_pts(p).iter().copied())
             .collect()
     }
 
-    /// The leaf object of face `id`.
-    pub fn leaf_of_face(&self, id: usize) -> &LeafInfo {
-        &self.leaves[self.faces[self.pieces[id] as usize].leaf as usize]
+    /// The leaf object of face `f` (which must have pieces).
+    pub fn leaf_of_face(&self, f: FaceId) -> &LeafInfo {
+        let first = PieceId(self.face_starts[f.index()]);
+        &self.leaves[self.piece(first).leaf as usize]
     }
 
-    /// The projected points of face `f`.
-    pub fn pts(&self, f: usize) -> &[[f64; 3]] {
-        let sf = &self.faces[f];
-        &self.points[sf.start as usize..(sf.start + sf.len) as usize]
+    /// The projected points (x, y, depth) of piece `p`.
+    #[inline]
+    pub fn pts(&self, p: PieceId) -> &[[f64; 3]] {
+        let pc = self.piece(p);
+        &self.points[pc.start as usize..(pc.start + pc.len) as usize]
     }
 
-    /// The projected ring of face `f` in (x, y), counter-clockwise.
-    pub fn ring_ccw(&self, f: usize) -> Vec<Pt2> {
-        let mut r: Vec<Pt2> = self.pts(f).iter().map(|p| [p[0], p[1]]).collect();
-        if self.faces[f].facing == Facing::Back {
+    /// The projected ring of piece `p` in (x, y), counter-clockwise.
+    pub fn ring_ccw(&self, p: PieceId) -> Vec<Pt2> {
+        let mut r: Vec<Pt2> = self.pts(p).iter().map(|q| [q[0], q[1]]).collect();
+        if self.piece(p).facing == Facing::Back {
             r.reverse();
         }
         r
     }
 
-    /// The world points of face `f`.
-    pub fn world_pts(&self, f: usize) -> &[P3] {
-        let sf = &self.faces[f];
-        &self.world[sf.start as usize..(sf.start + sf.len) as usize]
+    /// The world points of piece `p`.
+    #[inline]
+    pub fn world_pts(&self, p: PieceId) -> &[P3] {
+        let pc = self.piece(p);
+        &self.world[pc.start as usize..(pc.start + pc.len) as usize]
     }
 
-    /// The three world reference points of face `f`'s plane.
-    pub fn plane_refs(&self, f: usize) -> [P3; 3] {
-        let sf = &self.faces[f];
-        let p = self.world_pts(f);
-        sf.refs.map(|k| p[k as usize])
+    /// The three world reference points of piece `p`'s plane.
+    pub fn plane_refs(&self, p: PieceId) -> [P3; 3] {
+        let w = self.world_pts(p);
+        self.piece(p).refs.map(|k| w[k as usize])
     }
 
     fn add_leaf(&mut self, li: u32, leaf: &Leaf, camera: &Camera) {
@@ -233,7 +261,7 @@ impl ScreenFaces {
         let mirrors = leaf.mirrors();
         self.leaves.push(LeafInfo {
             path: leaf.path.clone(),
-            first_face: leaf.first_face as u32,
+            first_face: FaceId(leaf.first_face as u32),
             face_count: leaf.mesh.faces.len() as u32,
         });
         for (k, f) in leaf.mesh.faces.iter().enumerate() {
@@ -241,7 +269,7 @@ impl ScreenFaces {
             if mirrors {
                 idx.reverse();
             }
-            let id = (leaf.first_face + k) as u32;
+            let id = FaceId((leaf.first_face + k) as u32);
             for piece in planar_pieces(&idx, &world) {
                 let mut poly: Vec<([f64; 4], P3)> = piece
                     .iter()
@@ -252,13 +280,13 @@ impl ScreenFaces {
                 }
                 self.add_piece(id, li, &poly, camera, may_cull);
             }
-            self.pieces.push(self.faces.len() as u32);
+            self.face_starts.push(self.pieces.len() as u32);
         }
     }
 
     fn add_piece(
         &mut self,
-        id: u32,
+        face: FaceId,
         leaf: u32,
         poly: &[([f64; 4], P3)],
         camera: &Camera,
@@ -274,23 +302,18 @@ impl ScreenFaces {
                 [h[0], h[1], h[2]]
             }
         }));
-        let mut face = describe(&self.points[start as usize..], start, leaf, may_cull);
+        let mut piece = describe(&self.points[start as usize..], start, leaf, may_cull);
         let w = &self.world[start as usize..];
         if let (Some(eye), true) = (camera.eye, w.len() >= 3) {
             // The eye exactly in the piece's plane: edge-on, whatever rounding the divide did.
-            let [a, b, c] = face.refs.map(|k| w[k as usize]);
-            let co = |v: &P3| robust::Coord3D {
-                x: v.x,
-                y: v.y,
-                z: v.z,
-            };
-            if robust::orient3d(co(&a), co(&b), co(&c), co(&eye)) == 0.0 {
-                face.facing = Facing::EdgeOn;
-                face.culled = false;
+            let refs = piece.refs.map(|k| w[k as usize]);
+            if orient3d_refs(&refs, &eye) == 0.0 {
+                piece.facing = Facing::EdgeOn;
+                piece.culled = false;
             }
         }
-        face.id = id;
-        self.faces.push(face);
+        piece.face = face;
+        self.pieces.push(piece);
     }
 }
 
@@ -302,8 +325,7 @@ fn planar_pieces(idx: &[u32], world: &[P3]) -> Vec<Vec<u32>> {
     if idx.len() > 3 {
         let pts: Vec<P3> = idx.iter().map(|&k| world[k as usize]).collect();
         if !exactly_planar(&pts) {
-            let shape = crate::scene::cleanup::FaceShape::of(&pts);
-            let tris = crate::scene::triangulate::ear_clip(&pts, &shape.normal);
+            let tris = crate::scene::triangulate::ear_clip(&pts, &newell(&pts));
             return tris
                 .iter()
                 .map(|t| t.iter().map(|&i| idx[i]).collect())
@@ -316,14 +338,8 @@ fn planar_pieces(idx: &[u32], world: &[P3]) -> Vec<Vec<u32>> {
 /// True when every point lies exactly on the plane of a well-spread triple of them.
 fn exactly_planar(pts: &[P3]) -> bool {
     let arr: Vec<[f64; 3]> = pts.iter().map(|p| [p.x, p.y, p.z]).collect();
-    let [a, b, c] = reference_triple(&arr).map(|k| pts[k as usize]);
-    let co = |v: &P3| robust::Coord3D {
-        x: v.x,
-        y: v.y,
-        z: v.z,
-    };
-    pts.iter()
-        .all(|p| robust::orient3d(co(&a), co(&b), co(&c), co(p)) == 0.0)
+    let refs = reference_triple(&arr).map(|k| pts[k as usize]);
+    pts.iter().all(|p| orient3d_refs(&refs, p) == 0.0)
 }
 
 /// Sutherland–Hodgman clip of a homogeneous polygon (with its world points) to w >= near.
@@ -350,13 +366,13 @@ fn clip_near(poly: &[([f64; 4], P3)], near: f64) -> Vec<([f64; 4], P3)> {
 }
 
 /// Bounds, reference triple, facing and convexity of a projected face.
-fn describe(p: &[[f64; 3]], start: u32, leaf: u32, may_cull: bool) -> ScreenFace {
-    let mut f = ScreenFace {
-        id: 0,
+fn describe(p: &[[f64; 3]], start: u32, leaf: u32, may_cull: bool) -> Piece {
+    let mut f = Piece {
+        face: FaceId(0),
         start,
         len: p.len() as u32,
         leaf,
-        rect: crate::geom::poly2::EMPTY_RECT,
+        rect: Rect::EMPTY,
         zmin: f64::INFINITY,
         zmax: f64::NEG_INFINITY,
         refs: [0, 0, 0],
@@ -369,12 +385,7 @@ fn describe(p: &[[f64; 3]], start: u32, leaf: u32, may_cull: bool) -> ScreenFace
         return f;
     }
     for q in p {
-        f.rect = [
-            f.rect[0].min(q[0]),
-            f.rect[1].min(q[1]),
-            f.rect[2].max(q[0]),
-            f.rect[3].max(q[1]),
-        ];
+        f.rect.add([q[0], q[1]]);
         f.zmin = f.zmin.min(q[2]);
         f.zmax = f.zmax.max(q[2]);
     }
@@ -397,7 +408,7 @@ fn describe(p: &[[f64; 3]], start: u32, leaf: u32, may_cull: bool) -> ScreenFace
         if f.facing == Facing::Back {
             r.reverse();
         }
-        f.convex = crate::geom::poly2::is_convex_ccw(&r);
+        f.convex = is_convex_ccw(&r);
     }
     f
 }

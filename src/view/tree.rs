@@ -8,15 +8,16 @@ use std::ops::Range;
 
 use crate::geom::hull2::convex_hull;
 use crate::geom::poly2::Pt2;
-use crate::geom::{Box3, M4};
-use crate::scene::{Content, Object, Scene};
+use crate::geom::{Box3, Rect, M4};
+use crate::scene::{Content, FaceId, Object, Scene};
 
 use super::camera::{Camera, Projection};
 use super::cull::HiddenObject;
-use super::screen::{ScreenFace, ScreenFaces};
+use super::piece_id::PieceId;
+use super::screen::{Piece, ScreenFaces};
 
-/// Faces per BVH leaf inside a large mesh.
-const LEAF_FACES: usize = 4;
+/// Pieces per BVH leaf inside a large mesh.
+const LEAF_PIECES: usize = 4;
 /// Most children of a group's node before the group gets a hierarchy of its own.
 const MAX_CHILDREN: usize = 8;
 
@@ -25,28 +26,28 @@ const MAX_CHILDREN: usize = 8;
 pub enum NodeKind {
     /// Child nodes: a range of [`ViewTree::children`].
     Inner(Range<u32>),
-    /// Faces: a range of [`ViewTree::faces`] (global face ids).
+    /// Pieces: a range of [`ViewTree::pieces`].
     Leaf(Range<u32>),
 }
 
-/// What the walk tests first of a candidate occluder: its screen rectangle, nearest depth and
-/// face id.
+/// What the walk tests first of a candidate occluder piece: its screen rectangle, nearest
+/// depth and face.
 #[derive(Debug, Clone, Copy)]
-pub struct FaceBound {
+pub struct PieceBound {
     /// Screen rectangle.
-    pub rect: [f64; 4],
+    pub rect: Rect,
     /// Greatest screen depth.
     pub zmax: f64,
-    /// Global face id.
-    pub id: u32,
+    /// The face the piece belongs to.
+    pub face: FaceId,
 }
 
-impl FaceBound {
-    fn of(sf: &ScreenFace) -> FaceBound {
-        FaceBound {
-            rect: sf.rect,
-            zmax: sf.zmax,
-            id: sf.id,
+impl PieceBound {
+    fn of(p: &Piece) -> PieceBound {
+        PieceBound {
+            rect: p.rect,
+            zmax: p.zmax,
+            face: p.face,
         }
     }
 }
@@ -54,8 +55,8 @@ impl FaceBound {
 /// A node: a subtree with its screen bounds (the CBOX in the standard view).
 #[derive(Debug, Clone)]
 pub struct Node {
-    /// Screen rectangle [xmin, ymin, xmax, ymax] of the occluding faces below.
-    pub rect: [f64; 4],
+    /// Screen rectangle of the occluding pieces below.
+    pub rect: Rect,
     /// Least depth below.
     pub zmin: f64,
     /// Greatest depth below (nearest to the viewer).
@@ -72,7 +73,7 @@ pub struct ScreenInbox {
     /// Convex hull, counter-clockwise.
     pub hull: Vec<Pt2>,
     /// Bounding rectangle of the hull.
-    pub rect: [f64; 4],
+    pub rect: Rect,
     /// Depth of the farthest corner.
     pub zmin: f64,
     /// Node of the object owning the box.
@@ -86,8 +87,8 @@ pub struct ObjectNode {
     pub path: String,
     /// Its node.
     pub node: u32,
-    /// Its faces: a contiguous range of global face ids (see [`ScreenFaces::piece_range`]).
-    pub faces: Range<u32>,
+    /// Its faces: a contiguous range of the global face order.
+    pub faces: Range<FaceId>,
 }
 
 /// The whole view tree.
@@ -97,11 +98,11 @@ pub struct ViewTree {
     pub nodes: Vec<Node>,
     /// Child lists, each sorted front to back (greatest `zmax` first).
     pub children: Vec<u32>,
-    /// Face lists of the leaves.
-    pub faces: Vec<u32>,
-    /// The screen bounds of `faces`, in the same order: the walk's first test reads these
-    /// contiguously instead of the screen faces scattered in global order.
-    pub face_bounds: Vec<FaceBound>,
+    /// Piece lists of the leaves.
+    pub pieces: Vec<PieceId>,
+    /// The screen bounds of `pieces`, in the same order: the walk's first test reads these
+    /// contiguously instead of the pieces scattered in global order.
+    pub piece_bounds: Vec<PieceBound>,
     /// Screen inboxes.
     pub inboxes: Vec<ScreenInbox>,
     /// Named objects in depth-first order.
@@ -126,7 +127,7 @@ impl ViewTree {
             tree: ViewTree::default(),
             sf,
             camera,
-            next_face: 0,
+            next_face: FaceId(0),
             hidden,
         };
         b.object(&scene.root, &M4::identity(), "", None);
@@ -143,7 +144,7 @@ struct Builder<'a> {
     tree: ViewTree,
     sf: &'a ScreenFaces,
     camera: &'a Camera,
-    next_face: u32,
+    next_face: FaceId,
     /// Hidden objects not yet met, in global face order.
     hidden: &'a [HiddenObject<'a>],
 }
@@ -153,7 +154,7 @@ impl Builder<'_> {
     fn object(&mut self, obj: &Object, xf: &M4, path: &str, slot: Option<usize>) -> u32 {
         let first = self.next_face;
         if let Some(n) = self.hidden_here(obj) {
-            self.next_face += n;
+            self.next_face = self.next_face.offset(n);
             let node = self.push(empty_node());
             if let Some(s) = slot {
                 self.tree.objects[s].node = node;
@@ -164,12 +165,13 @@ impl Builder<'_> {
         let inbox = obj.inbox;
         let node = match &obj.content {
             Content::Mesh(m) => {
-                let ids: Vec<u32> = self
+                let end = first.offset(m.faces.len() as u32);
+                let ids: Vec<PieceId> = self
                     .sf
-                    .piece_range(first..first + m.faces.len() as u32)
-                    .filter(|&f| self.sf.faces[f as usize].is_occluder())
+                    .pieces_in(first..end)
+                    .filter(|&p| self.sf.piece(p).is_occluder())
                     .collect();
-                self.next_face += m.faces.len() as u32;
+                self.next_face = end;
                 self.bvh(ids)
             }
             Content::Subobjects(subs) => {
@@ -185,7 +187,7 @@ impl Builder<'_> {
                         self.tree.objects.push(ObjectNode {
                             path: p.clone(),
                             node: 0,
-                            faces: 0..0,
+                            faces: FaceId(0)..FaceId(0),
                         });
                         self.object(s, xf, &p, Some(slot))
                     })
@@ -237,7 +239,7 @@ impl Builder<'_> {
         if hull.len() < 3 {
             return;
         }
-        let rect = crate::geom::poly2::bounds(hull.iter());
+        let rect = Rect::of_points(hull.iter());
         let zmin = s.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
         self.tree.inboxes.push(ScreenInbox {
             hull,
@@ -265,7 +267,7 @@ impl Builder<'_> {
             let n = &nodes[k as usize];
             match axis {
                 2 => n.zmin + n.zmax,
-                _ => n.rect[axis] + n.rect[axis + 2],
+                _ => n.rect.centre2(axis),
             }
         };
         let span = |axis: usize| {
@@ -305,31 +307,30 @@ impl Builder<'_> {
         self.push(n)
     }
 
-    /// A median-split hierarchy over faces by their screen rectangles.
-    fn bvh(&mut self, mut ids: Vec<u32>) -> u32 {
-        if ids.len() <= LEAF_FACES {
+    /// A median-split hierarchy over pieces by their screen rectangles.
+    fn bvh(&mut self, mut ids: Vec<PieceId>) -> u32 {
+        if ids.len() <= LEAF_PIECES {
             let mut n = empty_node();
-            for &f in &ids {
-                let sf = &self.sf.faces[f as usize];
-                n.grow(&sf.rect, sf.zmin, sf.zmax);
+            for &p in &ids {
+                let pc = self.sf.piece(p);
+                n.grow(&pc.rect, pc.zmin, pc.zmax);
             }
-            let start = self.tree.faces.len() as u32;
-            self.tree.face_bounds.extend(
-                ids.iter()
-                    .map(|&f| FaceBound::of(&self.sf.faces[f as usize])),
-            );
-            self.tree.faces.extend(ids);
-            n.kind = NodeKind::Leaf(start..self.tree.faces.len() as u32);
+            let start = self.tree.pieces.len() as u32;
+            self.tree
+                .piece_bounds
+                .extend(ids.iter().map(|&p| PieceBound::of(self.sf.piece(p))));
+            self.tree.pieces.extend(ids);
+            n.kind = NodeKind::Leaf(start..self.tree.pieces.len() as u32);
             return self.push(n);
         }
-        let faces = &self.sf.faces;
+        let sf = self.sf;
         // Axis 0 and 1 are screen x and y, axis 2 is depth: splitting by depth too separates
         // the front and back layers of a mesh, so the depth test prunes whole nodes.
-        let centre = |f: u32, axis: usize| {
-            let sf = &faces[f as usize];
+        let centre = |p: PieceId, axis: usize| {
+            let pc = sf.piece(p);
             match axis {
-                2 => sf.zmin + sf.zmax,
-                _ => sf.rect[axis] + sf.rect[axis + 2],
+                2 => pc.zmin + pc.zmax,
+                _ => pc.rect.centre2(axis),
             }
         };
         let span = |axis: usize| {
@@ -356,8 +357,8 @@ impl Builder<'_> {
 
 impl Node {
     /// Grows the bounds to hold a rectangle and depth range.
-    fn grow(&mut self, rect: &[f64; 4], zmin: f64, zmax: f64) {
-        self.rect = union_rect(&self.rect, rect);
+    fn grow(&mut self, rect: &Rect, zmin: f64, zmax: f64) {
+        self.rect = self.rect.union(rect);
         self.zmin = self.zmin.min(zmin);
         self.zmax = self.zmax.max(zmax);
     }
@@ -365,20 +366,10 @@ impl Node {
 
 fn empty_node() -> Node {
     Node {
-        rect: crate::geom::poly2::EMPTY_RECT,
+        rect: Rect::EMPTY,
         zmin: f64::INFINITY,
         zmax: f64::NEG_INFINITY,
         kind: NodeKind::Leaf(0..0),
         inbox: None,
     }
-}
-
-/// Union of two rectangles.
-pub fn union_rect(a: &[f64; 4], b: &[f64; 4]) -> [f64; 4] {
-    [
-        a[0].min(b[0]),
-        a[1].min(b[1]),
-        a[2].max(b[2]),
-        a[3].max(b[3]),
-    ]
 }

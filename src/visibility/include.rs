@@ -1,7 +1,7 @@
 //! INCLUDE: is a point inside an object? Box shortcuts first, then a point-in-polyhedron test.
 
-use crate::geom::{M4, P3, V3};
-use crate::scene::{Content, Mesh, Object};
+use crate::geom::{M4, P3};
+use crate::scene::{Content, Object};
 
 /// The paper's INCLUDE answer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -34,7 +34,7 @@ fn include_local(a: &Object, p: &P3) -> Inclusion {
     }
     match &a.content {
         Content::Mesh(m) => {
-            if winding_number(m, p).abs() > 0.5 {
+            if m.winding_number(p).abs() > 0.5 {
                 Inclusion::In
             } else {
                 Inclusion::Out
@@ -51,30 +51,6 @@ fn include_local(a: &Object, p: &P3) -> Inclusion {
     }
 }
 
-/// Generalized winding number of a mesh's faces around `p`: the sum of the signed solid
-/// angles of its (fan-triangulated) faces over 4π (Van Oosterom–Strackee).
-pub fn winding_number(m: &Mesh, p: &P3) -> f64 {
-    let mut total = 0.0;
-    for f in &m.faces {
-        let v: Vec<V3> = f
-            .vertices
-            .iter()
-            .map(|&k| m.vertices[k as usize] - p)
-            .collect();
-        for i in 1..v.len() - 1 {
-            total += solid_angle(&v[0], &v[i], &v[i + 1]);
-        }
-    }
-    total / (4.0 * std::f64::consts::PI)
-}
-
-fn solid_angle(a: &V3, b: &V3, c: &V3) -> f64 {
-    let (la, lb, lc) = (a.norm(), b.norm(), c.norm());
-    let num = a.dot(&b.cross(c));
-    let den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-    2.0 * num.atan2(den)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -87,7 +63,7 @@ mod tests {
         assert_eq!(include(&c, &id, &P3::new(0.5, 0.5, 0.5)), Inclusion::In);
         assert_eq!(include(&c, &id, &P3::new(0.99, 0.01, 0.5)), Inclusion::In);
         assert_eq!(include(&c, &id, &P3::new(1.5, 0.5, 0.5)), Inclusion::Out);
-        let w = winding_number(c.mesh().unwrap(), &P3::new(0.3, 0.6, 0.2));
+        let w = c.mesh().unwrap().winding_number(&P3::new(0.3, 0.6, 0.2));
         assert!((w - 1.0).abs() < 1e-12, "{w}");
     }
 

@@ -1,7 +1,6 @@
 //! The visibility stage: VISFAC, VISFAC2, VISOBJ, VISP and INCLUDE (paper 001, ALGORITHMS),
 //! and the whole-scene pass that gives every face its visibility texture polygon (VTP).
 
-pub mod clip;
 pub mod include;
 pub mod occlusion;
 pub mod pass;

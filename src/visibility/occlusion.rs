@@ -3,18 +3,19 @@
 //! coplanar faces, shared edges and shared vertices are recognised without tolerances.
 
 use crate::geom::hull2::has_turn;
-use crate::geom::poly2::{orient2d, Pt2};
-use crate::geom::P3;
-use crate::view::{Facing, Projection, ScreenFaces};
+use crate::geom::poly2::Pt2;
+use crate::geom::{orient2d, orient3d_refs, Rect, P3};
+use crate::scene::FaceId;
+use crate::view::{Facing, PieceId, Projection, ScreenFaces};
 
 /// The face being solved, prepared once for all its occluders.
 #[derive(Debug, Clone)]
 pub struct Target {
-    /// Piece index (piece order follows global face order: it decides coplanar ties, the
+    /// The piece (piece order follows global face order: it decides coplanar ties, the
     /// earlier face is in front).
-    pub id: u32,
-    /// Global id of the face the piece belongs to: a face never hides itself.
-    pub face: u32,
+    pub piece: PieceId,
+    /// The face the piece belongs to: a face never hides itself.
+    pub face: FaceId,
     /// World reference triple of F's plane.
     pub refs: [P3; 3],
     /// Sign making orient3d positive on the viewer's side: -(turn of refs on screen) * sign(det M).
@@ -22,7 +23,7 @@ pub struct Target {
     /// F's projected ring, counter-clockwise.
     pub ring: Vec<Pt2>,
     /// F's screen rectangle.
-    pub rect: [f64; 4],
+    pub rect: Rect,
     /// F's least depth.
     pub zmin: f64,
     /// F's greatest depth.
@@ -32,32 +33,26 @@ pub struct Target {
 }
 
 impl Target {
-    /// Prepares face `f` (which must not be edge-on or clipped).
-    pub fn new(sf: &ScreenFaces, f: usize) -> Target {
-        let face = &sf.faces[f];
+    /// Prepares piece `p` (which must not be edge-on or clipped).
+    pub fn new(sf: &ScreenFaces, p: PieceId) -> Target {
+        let pc = sf.piece(p);
         Target {
-            id: f as u32,
-            face: face.id,
-            refs: sf.plane_refs(f),
-            front_sign: -face.ref_turn * sf.det_sign,
-            ring: sf.ring_ccw(f),
-            rect: face.rect,
-            zmin: face.zmin,
-            zmax: face.zmax,
-            convex: face.convex,
+            piece: p,
+            face: pc.face,
+            refs: sf.plane_refs(p),
+            front_sign: -pc.ref_turn * sf.det_sign,
+            ring: sf.ring_ccw(p),
+            rect: pc.rect,
+            zmin: pc.zmin,
+            zmax: pc.zmax,
+            convex: pc.convex,
         }
     }
 
     /// Exact side of world point `p`: > 0 in front of F's plane (toward the viewer), < 0 behind, 0 on it.
     #[inline]
     pub fn side(&self, p: &P3) -> f64 {
-        let c = |q: &P3| robust::Coord3D {
-            x: q.x,
-            y: q.y,
-            z: q.z,
-        };
-        robust::orient3d(c(&self.refs[0]), c(&self.refs[1]), c(&self.refs[2]), c(p))
-            * self.front_sign
+        orient3d_refs(&self.refs, p) * self.front_sign
     }
 }
 
@@ -70,8 +65,13 @@ pub enum Occlusion {
     Region(Vec<Pt2>),
 }
 
-/// The region of the screen where face `g` is in front of target F's plane.
-pub fn occluder_region(sf: &ScreenFaces, g: usize, t: &Target, sides: &mut Vec<f64>) -> Occlusion {
+/// The region of the screen where piece `g` is in front of target F's plane.
+pub fn occluder_region(
+    sf: &ScreenFaces,
+    g: PieceId,
+    t: &Target,
+    sides: &mut Vec<f64>,
+) -> Occlusion {
     let world = sf.world_pts(g);
     let pts = sf.pts(g);
     sides.clear();
@@ -80,7 +80,7 @@ pub fn occluder_region(sf: &ScreenFaces, g: usize, t: &Target, sides: &mut Vec<f
     let any_behind = sides.iter().any(|&s| s < 0.0);
     let mut ring: Vec<Pt2> = if !any_front {
         let coplanar = !any_behind;
-        if coplanar && (g as u32) < t.id {
+        if coplanar && g < t.piece {
             pts.iter().map(|p| [p[0], p[1]]).collect()
         } else {
             return Occlusion::Nothing;
@@ -94,16 +94,16 @@ pub fn occluder_region(sf: &ScreenFaces, g: usize, t: &Target, sides: &mut Vec<f
     if ring.len() < 3 || !has_turn(&ring) {
         return Occlusion::Nothing;
     }
-    if sf.faces[g].facing == Facing::Back {
+    if sf.piece(g).facing == Facing::Back {
         ring.reverse();
     }
     Occlusion::Region(ring)
 }
 
-/// The part of face `g`'s projection on the non-negative side, cut where the side changes
+/// The part of piece `g`'s projection on the non-negative side, cut where the side changes
 /// sign. The cut is placed on the world edge with the exact side values, then projected
 /// (orthographic views interpolate the screen points directly: the same point, cheaper).
-fn front_part(sf: &ScreenFaces, g: usize, sides: &[f64]) -> Vec<Pt2> {
+fn front_part(sf: &ScreenFaces, g: PieceId, sides: &[f64]) -> Vec<Pt2> {
     let (pts, world) = (sf.pts(g), sf.world_pts(g));
     let perspective = sf
         .camera
@@ -146,12 +146,6 @@ fn edge_separates(a: &[Pt2], b: &[Pt2]) -> bool {
         let (p, q) = (a[i], a[(i + 1) % n]);
         p != q && b.iter().all(|&r| orient2d(p, q, r) <= 0.0)
     })
-}
-
-/// True when the rectangles share interior area.
-#[inline]
-pub fn rects_overlap(a: &[f64; 4], b: &[f64; 4]) -> bool {
-    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
 }
 
 #[cfg(test)]

@@ -5,8 +5,11 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
 
+use crate::geom::boolean;
 use crate::geom::poly2::{canonicalize, multipolygon_area, MultiPolygon};
-use crate::view::{Facing, View};
+use crate::geom::Rect;
+use crate::scene::FaceId;
+use crate::view::{Facing, PieceId, ScreenFaces, View};
 
 use super::stats::Counters;
 use super::visfac::{visfac, Scratch, Vtp};
@@ -59,7 +62,7 @@ static HIDDEN: FaceVisibility = FaceVisibility {
 /// pieces merged), by ascending global id; faces of culled subtrees are absent (empty).
 #[derive(Debug, Clone)]
 pub struct Visibility {
-    ids: Vec<u32>,
+    ids: Vec<FaceId>,
     faces: Vec<FaceVisibility>,
     face_count: usize,
     /// What the pass did.
@@ -68,24 +71,26 @@ pub struct Visibility {
 
 impl Visibility {
     /// Face `id`'s visibility; empty (with no projected area) for a face of a culled subtree.
-    pub fn face(&self, id: usize) -> &FaceVisibility {
+    pub fn face(&self, id: FaceId) -> &FaceVisibility {
         if self.ids.len() == self.face_count {
-            return self.faces.get(id).unwrap_or(&HIDDEN);
+            return self.faces.get(id.index()).unwrap_or(&HIDDEN);
         }
-        match self.ids.binary_search(&(id as u32)) {
+        match self.ids.binary_search(&id) {
             Ok(k) => &self.faces[k],
             Err(_) => &HIDDEN,
         }
     }
 
     /// The solved faces with their global ids, ascending.
-    pub fn iter(&self) -> impl Iterator<Item = (usize, &FaceVisibility)> + '_ {
-        self.ids.iter().map(|&i| i as usize).zip(self.faces.iter())
+    pub fn iter(&self) -> impl Iterator<Item = (FaceId, &FaceVisibility)> + '_ {
+        self.ids.iter().copied().zip(self.faces.iter())
     }
 
-    /// Every face's visibility by global id, solved or not.
+    /// Every face's visibility in global face order, solved or not.
     pub fn by_id(&self) -> Vec<&FaceVisibility> {
-        (0..self.face_count).map(|id| self.face(id)).collect()
+        (0..self.face_count as u32)
+            .map(|id| self.face(FaceId(id)))
+            .collect()
     }
 
     /// Number of faces in the scene (solved or not).
@@ -112,7 +117,7 @@ pub fn solve(view: &View, opts: PassOptions) -> Visibility {
     solve_counted(view, opts, None)
 }
 
-/// [`solve`], adding 1 to `done` as each of the `view.screen.faces.len()` face pieces is
+/// [`solve`], adding 1 to `done` as each of the `view.screen.pieces.len()` pieces is
 /// finished (for a progress bar; one relaxed atomic add per piece, the result is the same).
 pub fn solve_counted(view: &View, opts: PassOptions, done: Option<&AtomicUsize>) -> Visibility {
     let mut counters = Counters {
@@ -137,28 +142,26 @@ pub fn solve_counted(view: &View, opts: PassOptions, done: Option<&AtomicUsize>)
         }
         r
     };
-    let results: Vec<(FaceVisibility, Counters)> = if sf.faces.len() < SEQUENTIAL_BELOW {
+    let results: Vec<(FaceVisibility, Counters)> = if sf.pieces.len() < SEQUENTIAL_BELOW {
         let mut scratch = Scratch::default();
-        (0..sf.faces.len())
-            .map(|f| solve(&mut scratch, f))
-            .collect()
+        sf.piece_ids().map(|p| solve(&mut scratch, p)).collect()
     } else {
-        (0..sf.faces.len())
+        (0..sf.pieces.len() as u32)
             .into_par_iter()
-            .map_init(Scratch::default, solve)
+            .map_init(Scratch::default, |s, p| solve(s, PieceId(p)))
             .collect()
     };
     for (_, c) in &results {
         counters += *c;
     }
-    let ids: Vec<u32> = sf
+    let ids: Vec<FaceId> = sf
         .leaves
         .iter()
-        .flat_map(|l| l.first_face..l.first_face + l.face_count)
+        .flat_map(|l| FaceId::each(&l.faces()))
         .collect();
-    let merge = |&id: &u32| {
-        let r = sf.piece_range(id..id + 1);
-        merge_pieces(&results[r.start as usize..r.end as usize], sf, r)
+    let merge = |&id: &FaceId| {
+        let r = sf.piece_span(id..id.offset(1));
+        merge_pieces(&results[r.clone()], sf, r)
     };
     let faces = if ids.len() < SEQUENTIAL_BELOW {
         ids.iter().map(merge).collect()
@@ -177,8 +180,8 @@ pub fn solve_counted(view: &View, opts: PassOptions, done: Option<&AtomicUsize>)
 /// face have disjoint interiors, so their union is exact and their areas add).
 fn merge_pieces(
     pieces: &[(FaceVisibility, Counters)],
-    sf: &crate::view::ScreenFaces,
-    r: std::ops::Range<u32>,
+    sf: &ScreenFaces,
+    r: std::ops::Range<usize>,
 ) -> FaceVisibility {
     if pieces.len() == 1 {
         return pieces[0].0.clone();
@@ -193,11 +196,15 @@ fn merge_pieces(
         0 => Vec::new(),
         1 => parts[0].clone(),
         _ => {
-            let empty = crate::geom::poly2::EMPTY_RECT;
-            let rect = r.fold(empty, |acc, p| {
-                crate::view::tree::union_rect(&acc, &sf.faces[p as usize].rect)
-            });
-            super::clip::union(&parts, &rect)
+            // The parts come out of earlier boolean calls on their own grids: a point may sit
+            // an ulp outside its piece's rectangle, so take the rectangle of the parts
+            // themselves too, padded.
+            let rect = sf.pieces[r]
+                .iter()
+                .fold(Rect::EMPTY, |acc, p| acc.union(&p.rect))
+                .union(&Rect::of_points(parts.iter().flatten().flatten().flatten()));
+            let rect = rect.padded(1e-9 * rect.longer_side());
+            boolean::union(parts.iter().flatten().flatten(), &rect)
         }
     };
     FaceVisibility::new(visible, projected_area)
@@ -215,11 +222,11 @@ fn without_inboxes(view: &View) -> View {
 fn solve_face(
     view: &View,
     root: u32,
-    f: usize,
+    f: PieceId,
     scratch: &mut Scratch,
 ) -> (FaceVisibility, Counters) {
     let mut c = Counters::default();
-    let sf = &view.screen.faces[f];
+    let sf = view.screen.piece(f);
     let projected_area = if matches!(sf.facing, Facing::Front | Facing::Back) {
         ccw_area(view, f)
     } else {
@@ -251,13 +258,13 @@ fn solve_face(
 }
 
 /// `ring_area(ring_ccw(f))` without building the ring (same arithmetic, same bits).
-fn ccw_area(view: &View, f: usize) -> f64 {
+fn ccw_area(view: &View, f: PieceId) -> f64 {
     let pts = view.screen.pts(f);
     let n = pts.len();
     if n < 3 {
         return 0.0;
     }
-    let back = view.screen.faces[f].facing == Facing::Back;
+    let back = view.screen.piece(f).facing == Facing::Back;
     let at = |i: usize| {
         let p = pts[if back { n - 1 - i } else { i }];
         [p[0], p[1]]

@@ -5,13 +5,14 @@
 //! at the leaves each face's occluding region is collected, a single face covering all of F
 //! empties the VTP at once, and the rest are subtracted from F in one batched boolean call.
 
+use crate::geom::boolean::subtract;
 use crate::geom::hull2::covers_convex;
 use crate::geom::poly2::{MultiPolygon, Pt2, Ring};
+use crate::geom::Rect;
 use crate::view::tree::{NodeKind, ScreenInbox};
-use crate::view::View;
+use crate::view::{Facing, PieceId, View};
 
-use super::clip::{clip_to_rect, subtract};
-use super::occlusion::{occluder_region, rects_overlap, separated_convex, Occlusion, Target};
+use super::occlusion::{occluder_region, separated_convex, Occlusion, Target};
 use super::stats::Counters;
 
 /// The paper's VISFAC answer: what an object does to a face.
@@ -55,18 +56,19 @@ enum Walk {
 
 /// True when the INBOX (a solid box inside its object) hides all of F: F lies entirely
 /// behind the box's farthest corner, and inside its projected outline.
-pub fn inbox_hides(ib: &ScreenInbox, rect: &[f64; 4], zmax: f64, ring: &[Pt2]) -> bool {
-    zmax < ib.zmin
-        && ib.rect[0] <= rect[0]
-        && ib.rect[1] <= rect[1]
-        && rect[2] <= ib.rect[2]
-        && rect[3] <= ib.rect[3]
-        && covers_convex(&ib.hull, ring)
+pub fn inbox_hides(ib: &ScreenInbox, rect: &Rect, zmax: f64, ring: &[Pt2]) -> bool {
+    zmax < ib.zmin && ib.rect.contains_rect(rect) && covers_convex(&ib.hull, ring)
 }
 
-/// VISFAC(A, F): the VTP of face `f` against the subtree at node `a` (the whole scene when
+/// VISFAC(A, F): the VTP of piece `f` against the subtree at node `a` (the whole scene when
 /// `a` is the root). `f` must be able to show something (not edge-on, clipped or culled).
-pub fn visfac(view: &View, a: u32, f: usize, scratch: &mut Scratch, stats: &mut Counters) -> Vtp {
+pub fn visfac(
+    view: &View,
+    a: u32,
+    f: PieceId,
+    scratch: &mut Scratch,
+    stats: &mut Counters,
+) -> Vtp {
     let target = Target::new(&view.screen, f);
     scratch.occluders.clear();
     stats.faces_walked += 1;
@@ -94,7 +96,7 @@ fn visfac2(view: &View, a: u32, t: &Target, scratch: &mut Scratch, stats: &mut C
     scratch.stack.push(a);
     while let Some(n) = scratch.stack.pop() {
         let node = &tree.nodes[n as usize];
-        if !rects_overlap(&node.rect, &t.rect) || node.zmax < t.zmin {
+        if !node.rect.overlaps(&t.rect) || node.zmax < t.zmin {
             stats.skipped_by_cbox += 1;
             continue;
         }
@@ -113,14 +115,14 @@ fn visfac2(view: &View, a: u32, t: &Target, scratch: &mut Scratch, stats: &mut C
             }
             NodeKind::Leaf(r) => {
                 let range = r.start as usize..r.end as usize;
-                for (&g, b) in tree.faces[range.clone()]
+                for (&g, b) in tree.pieces[range.clone()]
                     .iter()
-                    .zip(&tree.face_bounds[range])
+                    .zip(&tree.piece_bounds[range])
                 {
-                    if b.id == t.face || !rects_overlap(&b.rect, &t.rect) || b.zmax < t.zmin {
+                    if b.face == t.face || !b.rect.overlaps(&t.rect) || b.zmax < t.zmin {
                         continue;
                     }
-                    if let Walk::Emptied = examine(view, g as usize, t, scratch, stats) {
+                    if let Walk::Emptied = examine(view, g, t, scratch, stats) {
                         return Walk::Emptied;
                     }
                 }
@@ -131,8 +133,14 @@ fn visfac2(view: &View, a: u32, t: &Target, scratch: &mut Scratch, stats: &mut C
 }
 
 /// One candidate occluder at a leaf (its bounds already overlap F's, in front of F's back).
-fn examine(view: &View, g: usize, t: &Target, scratch: &mut Scratch, stats: &mut Counters) -> Walk {
-    let sg = &view.screen.faces[g];
+fn examine(
+    view: &View,
+    g: PieceId,
+    t: &Target,
+    scratch: &mut Scratch,
+    stats: &mut Counters,
+) -> Walk {
+    let sg = view.screen.piece(g);
     stats.faces_examined += 1;
     // Convex regions (every triangle, every convex face cut by a plane) get exact quick tests;
     // separation of G's whole projection (cheaper than classifying its vertices) comes first.
@@ -142,7 +150,7 @@ fn examine(view: &View, g: usize, t: &Target, scratch: &mut Scratch, stats: &mut
         scratch
             .ring
             .extend(view.screen.pts(g).iter().map(|p| [p[0], p[1]]));
-        if sg.facing == crate::view::Facing::Back {
+        if sg.facing == Facing::Back {
             scratch.ring.reverse();
         }
         if separated_convex(&scratch.ring, &t.ring) {
@@ -156,7 +164,7 @@ fn examine(view: &View, g: usize, t: &Target, scratch: &mut Scratch, stats: &mut
         stats.emptied_by_face += 1;
         return Walk::Emptied;
     }
-    let clipped = clip_to_rect(&region, &t.rect);
+    let clipped = t.rect.clip_ring(&region);
     if clipped.len() >= 3 {
         scratch.occluders.push(clipped);
     }

@@ -1,9 +1,10 @@
 //! VISP: is a point visible from the standard viewpoint, or hidden by an object?
 
-use crate::geom::poly2::{winding, Pt2};
-use crate::geom::P3;
+use crate::geom::poly2::Pt2;
+use crate::geom::{orient3d_refs, winding, Rect, P3};
+use crate::scene::FaceId;
 use crate::view::tree::NodeKind;
-use crate::view::View;
+use crate::view::{PieceId, View};
 
 use crate::geom::hull2::covers_convex;
 
@@ -20,7 +21,7 @@ pub enum PointVisibility {
 /// when P is strictly behind its plane and P's projection is strictly inside the face's.
 /// `on_face` names the face (global id) P lies on, so that coplanar faces earlier in global order hide it
 /// (DESIGN's coplanar rule). A point behind the near plane of a perspective camera is HIDDEN.
-pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<u32>) -> PointVisibility {
+pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<FaceId>) -> PointVisibility {
     if !view.camera.in_front(p) {
         return PointVisibility::Hidden;
     }
@@ -31,11 +32,7 @@ pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<u32>) -> PointVisibilit
     while let Some(n) = stack.pop() {
         let node = &tree.nodes[n as usize];
         // 1. Not hidden by CBOX: the point is outside its outline, or in front of all of it.
-        if !(node.rect[0] <= q[0]
-            && q[0] <= node.rect[2]
-            && node.rect[1] <= q[1]
-            && q[1] <= node.rect[3])
-            || node.zmax < s[2]
+        if !node.rect.contains_rect(&Rect::new(q[0], q[1], q[0], q[1])) || node.zmax < s[2]
         {
             continue;
         }
@@ -50,9 +47,9 @@ pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<u32>) -> PointVisibilit
             NodeKind::Inner(r) => stack.extend(&tree.children[r.start as usize..r.end as usize]),
             NodeKind::Leaf(r) => {
                 // 3. Hidden by a face.
-                if tree.faces[r.start as usize..r.end as usize]
+                if tree.pieces[r.start as usize..r.end as usize]
                     .iter()
-                    .any(|&g| face_hides(view, g as usize, p, q, on_face))
+                    .any(|&g| face_hides(view, g, p, q, on_face))
                 {
                     return PointVisibility::Hidden;
                 }
@@ -62,27 +59,16 @@ pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<u32>) -> PointVisibilit
     PointVisibility::Visible
 }
 
-/// True when face `g` hides world point `p` (screen point `q`).
-pub fn face_hides(view: &View, g: usize, p: &P3, q: Pt2, on_face: Option<u32>) -> bool {
+/// True when piece `g` hides world point `p` (screen point `q`).
+pub fn face_hides(view: &View, g: PieceId, p: &P3, q: Pt2, on_face: Option<FaceId>) -> bool {
     let sf = &view.screen;
-    let face = &sf.faces[g];
+    let piece = sf.piece(g);
     // A face never hides itself (nor do the planar pieces of a warped face hide each other).
-    if on_face == Some(face.id)
-        || !(face.rect[0] < q[0]
-            && q[0] < face.rect[2]
-            && face.rect[1] < q[1]
-            && q[1] < face.rect[3])
-    {
+    if on_face == Some(piece.face) || !piece.rect.contains_strictly(q) {
         return false;
     }
-    let [a, b, c] = sf.plane_refs(g);
-    let co = |v: &P3| robust::Coord3D {
-        x: v.x,
-        y: v.y,
-        z: v.z,
-    };
-    let side = robust::orient3d(co(&a), co(&b), co(&c), co(p)) * (-face.ref_turn * sf.det_sign);
-    let in_front_of_p = side < 0.0 || (side == 0.0 && on_face.is_some_and(|f| face.id < f));
+    let side = orient3d_refs(&sf.plane_refs(g), p) * (-piece.ref_turn * sf.det_sign);
+    let in_front_of_p = side < 0.0 || (side == 0.0 && on_face.is_some_and(|f| piece.face < f));
     if !in_front_of_p {
         return false;
     }

@@ -3,15 +3,16 @@
 
 use std::sync::Arc;
 
-use kepler::geom::poly2::{multipolygon_area, MultiPolygon};
-use kepler::geom::{PolyMesh, M4, P3, V3};
-use kepler::scene::cleanup::{cleanup, Origin};
-use kepler::scene::{Mesh, Object, Scene};
-use kepler::view::{Camera, View};
-use kepler::visibility::{solve, PassOptions, Visibility};
+use kepler_hsr::geom::poly2::{multipolygon_area, MultiPolygon};
+use kepler_hsr::geom::{PolyMesh, M4, P3, V3};
+use kepler_hsr::scene::cleanup::{cleanup, Origin};
+use kepler_hsr::scene::{Mesh, Object, Scene};
+use kepler_hsr::view::{Camera, View};
+use kepler_hsr::visibility::Visibility;
+use kepler_hsr::{render, RenderOptions};
 
 /// A cleaned mesh from points and faces.
-pub fn mesh(pts: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
+pub(crate) fn mesh(pts: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
     let raw = PolyMesh::new(
         pts.iter().map(|p| P3::new(p[0], p[1], p[2])).collect(),
         faces.iter().map(|f| f.to_vec()).collect(),
@@ -28,7 +29,7 @@ pub fn mesh(pts: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
 }
 
 /// A cleaned primitive.
-pub fn prim(raw: PolyMesh) -> Mesh {
+pub(crate) fn prim(raw: PolyMesh) -> Mesh {
     cleanup(
         &raw,
         &Origin {
@@ -41,7 +42,7 @@ pub fn prim(raw: PolyMesh) -> Mesh {
 }
 
 /// An axis-aligned square at height z (counter-clockwise seen from +z).
-pub fn square(x0: f64, y0: f64, s: f64, z: f64) -> Mesh {
+pub(crate) fn square(x0: f64, y0: f64, s: f64, z: f64) -> Mesh {
     mesh(
         &[
             [x0, y0, z],
@@ -54,15 +55,15 @@ pub fn square(x0: f64, y0: f64, s: f64, z: f64) -> Mesh {
 }
 
 /// A box mesh.
-pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Mesh {
-    prim(kepler::primitives::cuboid(
+pub(crate) fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Mesh {
+    prim(kepler_hsr::primitives::cuboid(
         P3::new(lo[0], lo[1], lo[2]),
         P3::new(hi[0], hi[1], hi[2]),
     ))
 }
 
 /// A scene of named leaf objects.
-pub fn scene(objs: Vec<(&str, Mesh)>) -> Scene {
+pub(crate) fn scene(objs: Vec<(&str, Mesh)>) -> Scene {
     let subs = objs
         .into_iter()
         .map(|(n, m)| Object::from_mesh(n, m))
@@ -71,29 +72,33 @@ pub fn scene(objs: Vec<(&str, Mesh)>) -> Scene {
 }
 
 /// Camera looking down -z, +y up: screen (x, y) = world (x, y).
-pub fn top() -> Camera {
+pub(crate) fn top() -> Camera {
     Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap()
 }
 
-/// Solves a scene.
-pub fn run(scene: &Scene, camera: Camera) -> (View, Visibility) {
-    let view = View::new(scene, camera);
-    let vis = solve(&view, PassOptions::default());
-    (view, vis)
+/// Solves a scene through the one pipeline, every face in the view (no cull), and gives a
+/// view with its tree for VISP alongside (the render frees its own).
+pub(crate) fn run(scene: &Scene, camera: Camera) -> (View, Visibility) {
+    let opts = RenderOptions {
+        no_inbox: true,
+        ..RenderOptions::default()
+    };
+    let r = render(scene, &camera, &opts).expect("in-memory render");
+    (View::new(scene, camera), r.visibility)
 }
 
 /// Areas of every face's VTP.
-pub fn areas(vis: &Visibility) -> Vec<f64> {
+pub(crate) fn areas(vis: &Visibility) -> Vec<f64> {
     vis.by_id().into_iter().map(|f| f.area).collect()
 }
 
 /// Asserts |a - b| <= tol * max(1, |b|).
-pub fn close(a: f64, b: f64, tol: f64) {
+pub(crate) fn close(a: f64, b: f64, tol: f64) {
     assert!((a - b).abs() <= tol * b.abs().max(1.0), "{a} != {b}");
 }
 
 /// Union area of many multipolygons, through geo's boolean ops (an independent engine).
-pub fn union_area(parts: &[&MultiPolygon]) -> f64 {
+pub(crate) fn union_area(parts: &[&MultiPolygon]) -> f64 {
     use geo::{BooleanOps, Coord, LineString, MultiPolygon as GMP, Polygon as GP};
     let to_geo = |m: &MultiPolygon| -> GMP<f64> {
         GMP(m
@@ -115,56 +120,28 @@ pub fn union_area(parts: &[&MultiPolygon]) -> f64 {
 }
 
 /// Sum of areas.
-pub fn total_area(parts: &[&MultiPolygon]) -> f64 {
+pub(crate) fn total_area(parts: &[&MultiPolygon]) -> f64 {
     parts.iter().map(|m| multipolygon_area(m)).sum()
 }
 
 /// A transform from translation.
-pub fn translate(x: f64, y: f64, z: f64) -> M4 {
+pub(crate) fn translate(x: f64, y: f64, z: f64) -> M4 {
     nalgebra::Translation3::new(x, y, z).to_homogeneous()
 }
 
 /// Shares a prototype.
-pub fn instance(name: &str, proto: &Arc<Object>, m: M4) -> Object {
+pub(crate) fn instance(name: &str, proto: &Arc<Object>, m: M4) -> Object {
     Object::instance(name, proto.clone(), m)
 }
 
-/// Union area of many multipolygons on a fixed i64 grid (i_overlay 9, NonZero): precise to
+/// Union area of many multipolygons on a fixed i64 grid (i_overlay, NonZero): precise to
 /// f64 precision; used where geo's coarser grid (~1e-10 relative) is not enough.
-pub fn union_area_exact(parts: &[&MultiPolygon]) -> f64 {
-    use i_overlay::core::fill_rule::FillRule;
-    use i_overlay::core::overlay::ShapeType;
-    use i_overlay::core::overlay_rule::OverlayRule;
-    use i_overlay::float::overlay::{FloatOverlay, OverlayOptions};
-    use i_overlay::i_float::adapter::FloatPointAdapter;
-    use i_overlay::i_float::float::rect::FloatRect;
-    let pts = parts.iter().flat_map(|m| m.iter().flatten().flatten());
-    let b = kepler::geom::poly2::bounds(pts);
-    if b[0].is_nan() || b[0] > b[2] {
-        return 0.0;
-    }
-    let adapter = FloatPointAdapter::<[f64; 2], i64>::new_conservative(
-        FloatRect::new(b[0], b[2], b[1], b[3]).unwrap(),
-    );
-    let mut ov = FloatOverlay::new_custom(
-        adapter,
-        OverlayOptions::<f64, i64>::default(),
-        Default::default(),
-        64,
-    );
-    for m in parts {
-        for p in m.iter() {
-            for r in p {
-                ov = ov.unsafe_add_contour(r, ShapeType::Subject);
-            }
-        }
-    }
-    let u = ov.overlay(OverlayRule::Subject, FillRule::NonZero);
-    multipolygon_area(&u)
+pub(crate) fn union_area_exact(parts: &[&MultiPolygon]) -> f64 {
+    kepler_hsr::geom::boolean::union_area(parts)
 }
 
 /// The shared models directory, or None (tests then skip with a message).
-pub fn models() -> Option<std::path::PathBuf> {
+pub(crate) fn models() -> Option<std::path::PathBuf> {
     let dir = std::env::var_os("KEPLER_MODELS")
         .map(std::path::PathBuf::from)
         .unwrap_or_else(|| {

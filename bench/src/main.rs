@@ -1,0 +1,24 @@
+//! `kepler-bench`: the benchmark suite — stage times, peak memory, time against accuracy,
+//! size and hidden complexity — as CSV, SVG charts and a table.
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+/// kepler's benchmark suite.
+#[derive(Parser, Debug)]
+#[command(name = "kepler-bench", version, about, long_about = None)]
+struct Cli {
+    #[command(flatten)]
+    args: kepler_bench::BenchArgs,
+}
+
+fn main() -> ExitCode {
+    match kepler_bench::run(Cli::parse().args) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,68 @@
+//! Camera flags shared by render and query: `--dir`, `--eye/--target/--fov/--ortho`, `--up`.
+
+use anyhow::{bail, Result};
+use clap::Args;
+use kepler_hsr::geom::{P3, V3};
+use kepler_hsr::scene::Scene;
+use kepler_hsr::view::{Camera, CameraRequest};
+
+/// Camera flags; they override the scene's camera.
+#[derive(Args, Debug, Clone, Default)]
+pub(crate) struct CameraArgs {
+    /// Orthographic view looking along this vector (X,Y,Z).
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub(crate) dir: Option<String>,
+    /// Perspective eye point (X,Y,Z).
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub(crate) eye: Option<String>,
+    /// Point looked at (X,Y,Z); default the centre of the scene.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub(crate) target: Option<String>,
+    /// Vertical field of view in degrees (perspective).
+    #[arg(long, default_value_t = 40.0)]
+    pub(crate) fov: f64,
+    /// With --eye/--target: orthographic along target - eye.
+    #[arg(long)]
+    pub(crate) ortho: bool,
+    /// Up vector (X,Y,Z); default +Y.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub(crate) up: Option<String>,
+}
+
+/// Parses "X,Y,Z".
+pub(crate) fn parse_vec3(s: &str, flag: &str) -> Result<V3> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        bail!("--{flag} {s}: expected three numbers X,Y,Z");
+    }
+    let mut v = [0.0; 3];
+    for (k, p) in parts.iter().enumerate() {
+        v[k] = p
+            .parse::<f64>()
+            .map_err(|_| anyhow::anyhow!("--{flag} {s}: '{p}' is not a number"))?;
+        if !v[k].is_finite() {
+            bail!("--{flag} {s}: '{p}' is not finite");
+        }
+    }
+    Ok(V3::new(v[0], v[1], v[2]))
+}
+
+impl CameraArgs {
+    /// The camera the flags ask for (see [`Camera::for_scene`]: flags first, then the
+    /// scene's camera block, then the three-quarter view).
+    pub(crate) fn camera(&self, scene: &Scene) -> Result<Camera> {
+        if self.target.is_some() && self.eye.is_none() {
+            bail!("--target needs --eye");
+        }
+        let vec = |s: &Option<String>, flag: &str| s.as_deref().map(|s| parse_vec3(s, flag)).transpose();
+        let req = CameraRequest {
+            dir: vec(&self.dir, "dir")?,
+            eye: vec(&self.eye, "eye")?.map(P3::from),
+            target: vec(&self.target, "target")?.map(P3::from),
+            fov_deg: Some(self.fov),
+            ortho: self.ortho,
+            up: vec(&self.up, "up")?,
+        };
+        Ok(Camera::for_scene(scene, &req)?)
+    }
+}

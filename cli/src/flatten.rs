@@ -1,0 +1,30 @@
+//! `kepler flatten`: the paper's FLATTEN, written as one OBJ.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::Args;
+
+use super::{load_only, write};
+
+/// Arguments of `kepler flatten`.
+#[derive(Args, Debug)]
+pub(crate) struct FlattenArgs {
+    /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
+    pub(crate) scene: PathBuf,
+    /// Output OBJ file.
+    #[arg(short = 'o', long = "output", value_name = "F.obj")]
+    pub(crate) output: PathBuf,
+    /// Do not print warnings.
+    #[arg(long, short)]
+    pub(crate) quiet: bool,
+}
+
+/// Runs `kepler flatten`.
+pub(crate) fn run(a: FlattenArgs) -> Result<ExitCode> {
+    let scene = load_only(&a.scene, a.quiet)?;
+    let flat = kepler_hsr::scene::flatten(&scene);
+    write(&a.output, flat.to_obj())?;
+    Ok(ExitCode::SUCCESS)
+}

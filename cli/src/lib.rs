@@ -1,0 +1,97 @@
+//! The `kepler` command line: argument definitions and a thin run of each subcommand over the
+//! library (`kepler_hsr`), which does all the work; errors become messages here (anyhow).
+
+mod camera_args;
+mod check;
+mod flatten;
+mod info;
+pub mod progress;
+mod query;
+mod render;
+mod tribox;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+use kepler_hsr::scene::Scene;
+
+use camera_args::CameraArgs;
+
+/// kepler: exact hidden-surface removal for polyhedral scenes.
+#[derive(Parser, Debug)]
+#[command(name = "kepler", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Compute the exact visible region of every face and write SVG, PNG or JSON.
+    Render(render::RenderArgs),
+    /// Ask INCLUDE, VISP or VISOBJ questions about a scene.
+    Query(query::QueryArgs),
+    /// Write the scene as one OBJ: world coordinates, one `o` group per object, global face order.
+    Flatten(flatten::FlattenArgs),
+    /// Show the object tree with counts, boxes and closedness.
+    Info(info::InfoArgs),
+    /// Re-render and compare the visible-polygon set with a golden file (exit 1 on changes).
+    Check(check::CheckArgs),
+    /// Hierarchical tribox substitutes at each level (OBJ, SVG) and the paper's Table 1.
+    Tribox(tribox::TriboxArgs),
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        Command::Render(a) => render::run(a),
+        Command::Query(a) => query::run(a),
+        Command::Flatten(a) => flatten::run(a),
+        Command::Info(a) => info::run(a),
+        Command::Check(a) => check::run(a),
+        Command::Tribox(a) => tribox::run(a),
+    }
+}
+
+/// Loads a scene and runs the prepare stage (INBOXes), printing warnings to standard error.
+fn load(path: &Path, quiet: bool) -> Result<Scene> {
+    let mut scene = load_only(path, quiet)?;
+    kepler_hsr::prepare(&mut scene);
+    Ok(scene)
+}
+
+/// Loads a scene without preparing it, printing its warnings to standard error.
+fn load_only(path: &Path, quiet: bool) -> Result<Scene> {
+    let mut warnings = Vec::new();
+    let scene = kepler_hsr::load_scene(path, &mut warnings)?;
+    if !quiet {
+        print_warnings(&warnings);
+    }
+    Ok(scene)
+}
+
+/// Prints warnings, at most 20 in full and a count of the rest.
+fn print_warnings(warnings: &[kepler_hsr::Warning]) {
+    for w in warnings.iter().take(20) {
+        eprintln!("{w}");
+    }
+    if warnings.len() > 20 {
+        eprintln!("warning: ... and {} more", warnings.len() - 20);
+    }
+}
+
+/// Prints to standard output; a closed pipe (`kepler info | head`) is not an error.
+fn out(text: &str) {
+    use std::io::Write;
+    let mut o = std::io::stdout().lock();
+    let _ = o
+        .write_all(text.as_bytes())
+        .and_then(|_| o.write_all(b"\n"));
+}
+
+/// Writes a file, naming it in the error.
+fn write(path: &PathBuf, bytes: impl AsRef<[u8]>) -> Result<()> {
+    std::fs::write(path, bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
+}

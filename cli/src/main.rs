@@ -1,0 +1,16 @@
+//! The `kepler` command: render, query, flatten and inspect polyhedral scenes.
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+fn main() -> ExitCode {
+    let cli = kepler_cli::Cli::parse();
+    match kepler_cli::run(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

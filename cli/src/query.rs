@@ -1,0 +1,85 @@
+//! `kepler query`: INCLUDE (point in scene), VISP (point visibility), VISOBJ (what A does to B).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{anyhow, bail, Result};
+use clap::Args;
+use kepler_hsr::geom::{M4, P3};
+use kepler_hsr::view::View;
+use kepler_hsr::visibility::{include, visobj, visp, Inclusion, PointVisibility, Verdict};
+
+use super::camera_args::parse_vec3;
+use super::{load, out, CameraArgs};
+
+/// Arguments of `kepler query`.
+#[derive(Args, Debug)]
+pub(crate) struct QueryArgs {
+    /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
+    pub(crate) scene: PathBuf,
+    /// INCLUDE: is the point X,Y,Z inside the scene's solids? Prints IN or OUT.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub(crate) include: Option<String>,
+    /// VISP: is the point X,Y,Z visible from the camera? Prints VISIBLE or HIDDEN.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub(crate) visp: Option<String>,
+    /// VISOBJ: what object A does to object B (paths as in `kepler info`). Prints VISIBLE, HIDDEN or MIXED.
+    #[arg(long, num_args = 2, value_names = ["A", "B"])]
+    pub(crate) visobj: Option<Vec<String>>,
+    /// The pairs of objects whose triboxes meet, each INTERSECT (faces really meet, touching
+    /// included) or APART, then a summary.
+    #[arg(long)]
+    pub(crate) interfere: bool,
+    #[command(flatten)]
+    pub(crate) camera: CameraArgs,
+    /// Do not print warnings.
+    #[arg(long, short)]
+    pub(crate) quiet: bool,
+}
+
+/// Runs `kepler query`.
+pub(crate) fn run(a: QueryArgs) -> Result<ExitCode> {
+    let scene = load(&a.scene, a.quiet)?;
+    let asked = a.include.is_some() as u8
+        + a.visp.is_some() as u8
+        + a.visobj.is_some() as u8
+        + a.interfere as u8;
+    if asked != 1 {
+        bail!("give exactly one of --include, --visp, --visobj, --interfere");
+    }
+    if a.interfere {
+        out(&super::tribox::interfere_report(&scene));
+        return Ok(ExitCode::SUCCESS);
+    }
+    if let Some(p) = &a.include {
+        let p = P3::from(parse_vec3(p, "include")?);
+        let r = include(&scene.root, &M4::identity(), &p);
+        out(if r == Inclusion::In { "IN" } else { "OUT" });
+        return Ok(ExitCode::SUCCESS);
+    }
+    let view = View::new(&scene, a.camera.camera(&scene)?);
+    if let Some(p) = &a.visp {
+        let p = P3::from(parse_vec3(p, "visp")?);
+        let r = visp(&view, view.tree.root(), &p, None);
+        out(if r == PointVisibility::Visible {
+            "VISIBLE"
+        } else {
+            "HIDDEN"
+        });
+    }
+    if let Some(ab) = &a.visobj {
+        let find = |p: &str| {
+            view.tree
+                .object(p)
+                .ok_or_else(|| anyhow!("no object '{p}' (see `kepler info`)"))
+        };
+        let (oa, ob) = (find(&ab[0])?, find(&ab[1])?);
+        let r = visobj(&view, oa.node, ob.faces.clone());
+        out(match r {
+            Verdict::Visible => "VISIBLE",
+            Verdict::Hidden => "HIDDEN",
+            Verdict::Mixed => "MIXED",
+        });
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,325 @@
+//! The one pipeline from a loaded scene and a camera to what people look at: level-of-detail
+//! substitution, cull, view, visibility, line drawing and emit, with stage times, counters
+//! and progress. Every command, the benchmarks and the tests render through [`render`].
+
+use std::borrow::Cow;
+use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+use crate::emit::json::to_json;
+use crate::emit::lines::{draw, Drawing, LineOptions};
+use crate::emit::marks::face_marks;
+use crate::emit::picture::{picture, Picture};
+use crate::emit::png::to_png;
+use crate::emit::svg::to_svg;
+use crate::error::Result;
+use crate::scene::Scene;
+use crate::view::{substitute, Camera, Cull, LodOptions, LodStats, View};
+use crate::visibility::{solve_counted, Counters, PassOptions, Visibility};
+
+/// What to render and how.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RenderOptions {
+    /// The line drawing: which edges, and whether hidden lines are computed. Hidden lines
+    /// need every face's facing, so asking for them turns the INBOX cull off.
+    pub lines: LineOptions,
+    /// What to emit into memory.
+    pub outputs: Outputs,
+    /// Render without inboxes (no cull, no INBOX tests in VISFAC2): for comparison only,
+    /// the result is the same.
+    pub no_inbox: bool,
+    /// Replace small objects by their triboxes first ("model no more than a scene needs").
+    pub lod: Option<LodOptions>,
+}
+
+/// The outputs [`render`] emits (each into memory, in [`Rendered`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Outputs {
+    /// The `kepler-visible/1` JSON visible-polygon set.
+    pub json: bool,
+    /// With `json`: the line drawing's polylines in the JSON too (`"lines"`).
+    pub json_lines: bool,
+    /// The line drawing ([`Rendered::drawing`]) even when no output shows it.
+    pub drawing: bool,
+    /// An SVG line drawing.
+    pub svg: bool,
+    /// A PNG picture.
+    pub png: bool,
+    /// How the pictures look.
+    pub picture: PictureOptions,
+}
+
+/// How the SVG and PNG pictures look.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PictureOptions {
+    /// Pixels along the picture's longer side.
+    pub size: u32,
+    /// Flat-shaded visible faces under the lines.
+    pub fill: bool,
+}
+
+impl Default for PictureOptions {
+    fn default() -> Self {
+        PictureOptions {
+            size: 1024,
+            fill: false,
+        }
+    }
+}
+
+/// A stage of the pipeline, for times and progress.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Stage {
+    /// Loading the scene (timed by the caller).
+    Load,
+    /// Level-of-detail substitution.
+    Lod,
+    /// INBOXes (the caller's, or the substitutes' under `lod`).
+    Prepare,
+    /// HIDDEN subtrees from boxes, before any face is projected.
+    Cull,
+    /// Projection of the remaining faces and the view tree.
+    View,
+    /// Every face's VTP.
+    Visibility,
+    /// The line drawing: edges and intersection curves clipped to the VTPs.
+    Lines,
+    /// JSON, SVG and PNG into memory.
+    Emit,
+}
+
+impl Stage {
+    const ALL: [Stage; 8] = [
+        Stage::Load,
+        Stage::Lod,
+        Stage::Prepare,
+        Stage::Cull,
+        Stage::View,
+        Stage::Visibility,
+        Stage::Lines,
+        Stage::Emit,
+    ];
+
+    /// Lower-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Load => "load",
+            Stage::Lod => "lod",
+            Stage::Prepare => "prepare",
+            Stage::Cull => "cull",
+            Stage::View => "view",
+            Stage::Visibility => "visibility",
+            Stage::Lines => "lines",
+            Stage::Emit => "emit",
+        }
+    }
+}
+
+/// Where a render is, shared with a watcher thread (a progress bar): the current stage and,
+/// for stages that count, units done of a total. Plain atomics: watching never changes the
+/// result.
+#[derive(Debug, Default)]
+pub struct Progress {
+    stage: AtomicU8,
+    done: AtomicUsize,
+    total: AtomicUsize,
+}
+
+impl Progress {
+    /// A new, idle progress (stage [`Stage::Load`], nothing counted).
+    pub fn new() -> Progress {
+        Progress::default()
+    }
+
+    /// The current stage.
+    pub fn stage(&self) -> Stage {
+        Stage::ALL[usize::from(self.stage.load(Ordering::Relaxed)).min(Stage::ALL.len() - 1)]
+    }
+
+    /// Units done of the current stage's total (0 of 0 when the stage does not count).
+    pub fn counts(&self) -> (usize, usize) {
+        (
+            self.done.load(Ordering::Relaxed),
+            self.total.load(Ordering::Relaxed),
+        )
+    }
+
+    /// Enters a stage of `total` units (0: not counted).
+    pub fn enter(&self, stage: Stage, total: usize) {
+        self.total.store(0, Ordering::Relaxed);
+        self.done.store(0, Ordering::Relaxed);
+        let k = Stage::ALL.iter().position(|&s| s == stage).unwrap_or(0);
+        self.stage.store(k as u8, Ordering::Relaxed);
+        self.total.store(total, Ordering::Relaxed);
+    }
+
+    /// The counter of units done, for the stage's worker to add to.
+    pub fn done_counter(&self) -> &AtomicUsize {
+        &self.done
+    }
+}
+
+/// Stage times and work counters of one render.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RenderStats {
+    /// Wall time per stage, in pipeline order (stages that did not run are absent).
+    pub times: Vec<(Stage, Duration)>,
+    /// What the visibility pass did.
+    pub counters: Counters,
+    /// What level-of-detail substitution did, under `lod`.
+    pub lod: Option<LodStats>,
+}
+
+impl RenderStats {
+    /// The time of a stage (zero when it did not run).
+    pub fn time(&self, stage: Stage) -> Duration {
+        self.times
+            .iter()
+            .filter(|(s, _)| *s == stage)
+            .map(|(_, d)| *d)
+            .sum()
+    }
+
+    /// Total time of all stages.
+    pub fn total(&self) -> Duration {
+        self.times.iter().map(|(_, d)| *d).sum()
+    }
+
+    fn timed<T>(&mut self, stage: Stage, progress: Option<&Progress>, f: impl FnOnce() -> T) -> T {
+        if let Some(p) = progress {
+            p.enter(stage, 0);
+        }
+        let t = Instant::now();
+        let out = f();
+        self.times.push((stage, t.elapsed()));
+        out
+    }
+}
+
+/// The result of [`render`]: the view, every face's visible region, the line drawing and the
+/// emitted outputs.
+#[derive(Debug)]
+pub struct Rendered<'s> {
+    /// The scene as rendered (its level-of-detail substitute under `lod`).
+    pub scene: Cow<'s, Scene>,
+    /// The view: camera and screen-space pieces. Its tree (needed only by the visibility
+    /// stage) is freed before the drawing is made, and is empty here.
+    pub view: View,
+    /// Every face's visible region.
+    pub visibility: Visibility,
+    /// The line drawing, when an output needs it.
+    pub drawing: Option<Drawing>,
+    /// The JSON set, when asked for.
+    pub json: Option<String>,
+    /// The SVG drawing, when asked for.
+    pub svg: Option<String>,
+    /// The PNG picture, when asked for.
+    pub png: Option<Vec<u8>>,
+    /// Stage times and counters.
+    pub stats: RenderStats,
+}
+
+impl Rendered<'_> {
+    /// The `kepler-visible/1` JSON of the visible regions, with the drawing's polylines
+    /// when `lines` (and a drawing was made).
+    pub fn to_json(&self, lines: bool) -> String {
+        let lines = self.drawing.as_ref().filter(|_| lines).map(Drawing::lines);
+        to_json(&self.view, &self.visibility, lines.as_ref())
+    }
+
+    /// The picture both SVG and PNG draw (texture markings included).
+    pub fn picture(&self, opts: &PictureOptions) -> Picture {
+        let empty = Drawing::default();
+        let drawing = self.drawing.as_ref().unwrap_or(&empty);
+        let marks = face_marks(&self.scene, &self.view, &self.visibility);
+        picture(&self.view, &self.visibility, drawing, &marks, opts.fill)
+    }
+}
+
+/// Renders `scene` (loaded, and best prepared: without INBOXes nothing is culled, the result
+/// is the same) from `camera`.
+///
+/// ```
+/// use kepler_hsr::{load_scene, render, Camera, Outputs, RenderOptions};
+///
+/// let scene = load_scene("scenes/polyhedra.kdl".as_ref(), &mut Vec::new()).unwrap();
+/// let outputs = Outputs { json: true, ..Outputs::default() };
+/// let r = render(&scene, &Camera::three_quarter(), &RenderOptions { outputs, ..Default::default() }).unwrap();
+/// assert!(r.json.unwrap().starts_with("{\"format\":\"kepler-visible/1\""));
+/// ```
+pub fn render<'s>(scene: &'s Scene, camera: &Camera, opts: &RenderOptions) -> Result<Rendered<'s>> {
+    render_with(scene, camera, opts, None)
+}
+
+/// [`render`], reporting its stage and counts to `progress` as it goes.
+pub fn render_with<'s>(
+    scene: &'s Scene,
+    camera: &Camera,
+    opts: &RenderOptions,
+    progress: Option<&Progress>,
+) -> Result<Rendered<'s>> {
+    let mut stats = RenderStats::default();
+    let scene = match &opts.lod {
+        Some(lod) => {
+            let (mut s, lod_stats) = stats.timed(Stage::Lod, progress, || substitute(scene, camera, lod));
+            stats.lod = Some(lod_stats);
+            stats.timed(Stage::Prepare, progress, || crate::prepare::prepare(&mut s));
+            Cow::Owned(s)
+        }
+        None => Cow::Borrowed(scene),
+    };
+    // Hidden lines need every face's facing, so they keep every face in the view.
+    let cull = stats.timed(Stage::Cull, progress, || {
+        if opts.no_inbox || opts.lines.hidden {
+            Cull::none(&scene)
+        } else {
+            Cull::new(&scene, camera)
+        }
+    });
+    let mut view = stats.timed(Stage::View, progress, || View::from_cull(&scene, *camera, &cull));
+    drop(cull);
+    let pass = PassOptions {
+        use_inbox: !opts.no_inbox,
+    };
+    if let Some(p) = progress {
+        p.enter(Stage::Visibility, view.screen.pieces.len());
+    }
+    let t = Instant::now();
+    let visibility = solve_counted(&view, pass, progress.map(Progress::done_counter));
+    stats.times.push((Stage::Visibility, t.elapsed()));
+    stats.counters = visibility.counters;
+    // Emitting needs the screen faces, not the tree: free it before the drawing's own memory.
+    view.tree = Default::default();
+    let out = &opts.outputs;
+    let pictures = out.svg || out.png;
+    let drawing = (pictures || out.drawing || (out.json && out.json_lines)).then(|| {
+        stats.timed(Stage::Lines, progress, || draw(&scene, &view, &visibility, &opts.lines))
+    });
+    let mut r = Rendered {
+        scene,
+        view,
+        visibility,
+        drawing,
+        json: None,
+        svg: None,
+        png: None,
+        stats: RenderStats::default(),
+    };
+    stats.timed(Stage::Emit, progress, || -> Result<()> {
+        if out.json {
+            r.json = Some(r.to_json(out.json_lines));
+        }
+        if pictures {
+            let pic = r.picture(&out.picture);
+            if out.svg {
+                r.svg = Some(to_svg(&pic, out.picture.size));
+            }
+            if out.png {
+                r.png = Some(to_png(&pic, out.picture.size)?);
+            }
+        }
+        Ok(())
+    })?;
+    r.stats = stats;
+    Ok(r)
+}

@@ -1,0 +1,79 @@
+//! The picture's frame: which part of the screen plane a drawing shows, and how many pixels
+//! a screen unit is. SVG, PNG and the level-of-detail substitution all use this one mapping.
+
+use crate::geom::Rect;
+
+use super::camera::{Camera, Projection};
+
+/// Relative margin around the drawing.
+const MARGIN: f64 = 0.05;
+
+/// Widest screen aspect a perspective picture keeps (x from -A to A, y from -1 to 1).
+const MAX_ASPECT: f64 = 1.6;
+
+/// The framed part of the screen plane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame {
+    /// Framed rectangle, margin included.
+    pub rect: Rect,
+    /// Size of the drawing (its longer side without the margin): line widths scale with it.
+    pub unit: f64,
+}
+
+impl Frame {
+    /// The frame of a drawing whose screen bounds are `b`: limited, for a perspective
+    /// camera, to its field of view, then given a 5% margin. An empty drawing gets the
+    /// unit square.
+    pub fn of(camera: &Camera, b: Rect) -> Frame {
+        let b = field_of_view(camera, b);
+        if b.is_empty() {
+            return Frame {
+                rect: Rect::new(0.0, 0.0, 1.0, 1.0),
+                unit: 1.0,
+            };
+        }
+        let size = b.longer_side();
+        let unit = if size > 0.0 { size } else { 1.0 };
+        Frame {
+            rect: b.padded(MARGIN * unit),
+            unit,
+        }
+    }
+
+    /// Pixels per screen unit of a picture `size` pixels along its longer side.
+    pub fn pixels_per_unit(&self, size: u32) -> f64 {
+        f64::from(size.max(1)) / self.rect.longer_side()
+    }
+}
+
+/// Drawing bounds limited, for a perspective camera, to its field of view: the projection
+/// puts the edges of the vertical field of view at y = ±1, and a ground plane clipped near the
+/// eye would otherwise stretch the frame far beyond what the camera sees.
+fn field_of_view(camera: &Camera, b: Rect) -> Rect {
+    if camera.projection != Projection::Perspective {
+        return b;
+    }
+    let c = b.intersection(&Rect::new(-MAX_ASPECT, -1.0, MAX_ASPECT, 1.0));
+    if c.xmin < c.xmax && c.ymin < c.ymax {
+        c
+    } else {
+        b
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::V3;
+
+    #[test]
+    fn frame_has_margin_and_survives_empty() {
+        let cam = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
+        let f = Frame::of(&cam, Rect::new(0., 0., 10., 5.));
+        assert_eq!(f.unit, 10.0);
+        assert_eq!(f.rect, Rect::new(-0.5, -0.5, 10.5, 5.5));
+        assert_eq!(f.pixels_per_unit(1100), 100.0);
+        let e = Frame::of(&cam, Rect::EMPTY);
+        assert_eq!((e.rect, e.unit), (Rect::new(0., 0., 1., 1.), 1.0));
+    }
+}
