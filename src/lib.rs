@@ -4,7 +4,7 @@
 //! pictures and canonical JSON visible-polygon sets.
 //!
 //! Data flows one way, one module per stage:
-//! [`load`] → [`prepare`] → [`view`] → [`visibility`] → [`emit`], and [`render()`] runs the
+//! [`load`] → [`mod@prepare`] → [`view`] → [`visibility`] → [`emit`], and [`render()`] runs the
 //! stages after `prepare` as one call:
 //!
 //! ```
@@ -21,17 +21,17 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! The papers' names are kept: [`visibility::visfac`], [`visibility::visp`],
-//! [`visibility::visobj`], [`visibility::include`], CBOX and INBOX ([`scene::Object`]),
+//! The papers' names are kept: [`visibility::visfac()`], [`visibility::visp()`],
+//! [`visibility::visobj()`], [`visibility::include()`], CBOX and INBOX ([`scene::Object`]),
 //! [`tribox`].
 
 pub mod emit;
 pub mod error;
 pub mod geom;
 pub mod load;
+pub mod pipeline;
 pub mod prepare;
 pub mod primitives;
-pub mod render;
 pub mod scene;
 pub mod tribox;
 pub mod view;
@@ -40,11 +40,11 @@ pub mod visibility;
 pub use emit::{Drawing, EdgeKind, EdgeOptions, EdgeSet, LineOptions};
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
 pub use load::load_scene;
-pub use prepare::prepare;
-pub use render::{
+pub use pipeline::{
     render, render_with, Outputs, PictureOptions, Progress, RenderOptions, RenderStats, Rendered,
     Stage,
 };
+pub use prepare::prepare;
 pub use scene::{FaceId, Object, Scene};
 pub use view::{Camera, CameraRequest, LodOptions, PieceId, Projection, View};
 pub use visibility::{FaceVisibility, Visibility};

@@ -5,8 +5,8 @@ mod common;
 
 use common::*;
 use kepler_hsr::geom::V3;
-use kepler_hsr::FaceId;
 use kepler_hsr::view::Camera;
+use kepler_hsr::FaceId;
 
 #[test]
 fn two_overlapping_squares() {
@@ -186,7 +186,11 @@ fn coplanar_faces_earlier_is_in_front() {
     // Also from below, and from a skew direction: the rule does not depend on the view.
     for dir in [V3::new(0., 0., 1.), V3::new(0.3, -0.2, -1.0)] {
         let (_, vis) = run(&s, Camera::orthographic(dir, V3::y()).unwrap());
-        close(vis.face(FaceId(1)).area / vis.face(FaceId(0)).area, 0.75, 1e-12);
+        close(
+            vis.face(FaceId(1)).area / vis.face(FaceId(0)).area,
+            0.75,
+            1e-12,
+        );
     }
 }
 

@@ -10,8 +10,8 @@ use kepler_hsr::geom::{Box3, PolyMesh, M4, P3, V3};
 use kepler_hsr::prepare::{compute_inboxes, mesh_inbox};
 use kepler_hsr::primitives;
 use kepler_hsr::scene::{Mesh, Object, Scene};
-use kepler_hsr::view::{Camera, View};
-use kepler_hsr::visibility::{solve, PassOptions};
+use kepler_hsr::view::Camera;
+use kepler_hsr::{render, Outputs, RenderOptions};
 
 /// A small deterministic generator (xorshift64*).
 struct Rng(u64);
@@ -370,22 +370,30 @@ fn scene_behind_wall() -> Scene {
 
 /// Inboxes on (culled view, VISFAC2's complete-hide test) against inboxes off (every face
 /// projected and walked): the visible-polygon sets must be equal, face by face.
-fn assert_same_visibility(mut scene: Scene, camera: Camera, expect_pruning: bool) {
+/// Returns whether the cull hid a subtree.
+fn assert_same_visibility(mut scene: Scene, camera: Camera, expect_pruning: bool) -> bool {
     compute_inboxes(&mut scene.root);
-    let culled = View::culled(&scene, camera);
-    let full = View::new(&scene, camera);
-    let with = solve(&culled, PassOptions { use_inbox: true });
-    let without = solve(&full, PassOptions { use_inbox: false });
+    let json = |no_inbox| {
+        let outputs = Outputs {
+            json: true,
+            ..Outputs::default()
+        };
+        let opts = RenderOptions {
+            no_inbox,
+            outputs,
+            ..RenderOptions::default()
+        };
+        render(&scene, &camera, &opts).unwrap()
+    };
+    let (culled, full) = (json(false), json(true));
+    let (with, without) = (&culled.visibility, &full.visibility);
     assert_eq!(with.face_count(), without.face_count());
     for (f, (a, b)) in with.by_id().into_iter().zip(without.by_id()).enumerate() {
         assert_eq!(a.visible, b.visible, "face {f} differs");
         assert_eq!(a.area, b.area, "face {f} differs");
     }
     // The JSON a regression suite keeps is the same bytes.
-    assert_eq!(
-        kepler_hsr::emit::to_json(&culled, &with, None),
-        kepler_hsr::emit::to_json(&full, &without, None)
-    );
+    assert_eq!(culled.json, full.json);
     if expect_pruning {
         let c = with.counters;
         assert!(
@@ -394,6 +402,7 @@ fn assert_same_visibility(mut scene: Scene, camera: Camera, expect_pruning: bool
         );
         assert!(with.solved_count() < with.face_count());
     }
+    with.counters.subtrees_hidden > 0
 }
 
 #[test]
@@ -452,10 +461,7 @@ fn culling_random_scenes_changes_nothing() {
             let eye = P3::new(rng.range(-3., 3.), rng.range(-3., 3.), rng.range(15., 30.));
             Camera::perspective(eye, P3::origin(), V3::y(), 50., 0.1).unwrap()
         };
-        let mut prepared = scene.clone();
-        compute_inboxes(&mut prepared.root);
-        culled += (View::culled(&prepared, camera).culled.subtrees > 0) as usize;
-        assert_same_visibility(scene, camera, false);
+        culled += assert_same_visibility(scene, camera, false) as usize;
     }
     eprintln!("{culled} of 12 random scenes culled a subtree");
     assert!(

@@ -7,11 +7,11 @@ mod common;
 use common::*;
 use kepler_hsr::geom::poly2::{locate, Pt2, Side};
 use kepler_hsr::geom::winding;
-use kepler_hsr::FaceId;
 use kepler_hsr::geom::{P3, V3};
 use kepler_hsr::scene::{Mesh, Scene};
 use kepler_hsr::view::{Camera, Facing, View};
 use kepler_hsr::visibility::{visp, PointVisibility, Visibility};
+use kepler_hsr::FaceId;
 
 /// xorshift64*: a tiny deterministic generator.
 struct Rng(u64);

@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use common::*;
 use kepler_hsr::emit::edges::{mesh_edges, EdgeKind, EdgeOptions, EdgeSet};
 use kepler_hsr::emit::intersect::intersection_edges;
-use kepler_hsr::emit::lines::{draw, project_segment, total_length, LineOptions};
+use kepler_hsr::emit::lines::{project_segment, total_length, LineOptions};
 use kepler_hsr::emit::world::WorldFaces;
 use kepler_hsr::geom::{PolyMesh, P3, V3};
 use kepler_hsr::scene::Scene;
@@ -112,8 +112,7 @@ fn convex_visible_length(scene: &Scene, cam: &Camera, dir: V3) -> f64 {
 fn check_convex(scene: &Scene, name: &str) {
     for dir in [V3::new(-0.55, -0.5, -0.75), V3::new(0.3, 0.9, -0.2)] {
         let cam = Camera::orthographic(dir, V3::y()).unwrap();
-        let (view, vis) = run(scene, cam);
-        let d = draw(scene, &view, &vis, &all_edges(true));
+        let (_, d) = drawing(scene, cam, all_edges(true));
         let got = total_length(&d.visible);
         let want = convex_visible_length(scene, &cam, dir);
         assert!(
@@ -151,8 +150,7 @@ fn projected_total(scene: &Scene, view: &View) -> f64 {
 }
 
 fn check_complement(scene: &Scene, cam: Camera, name: &str) {
-    let (view, vis) = run(scene, cam);
-    let d = draw(scene, &view, &vis, &all_edges(true));
+    let (view, d) = drawing(scene, cam, all_edges(true));
     let (v, h) = (total_length(&d.visible), total_length(&d.hidden));
     let all = projected_total(scene, &view);
     assert!(v > 0.0 && h > 0.0, "{name}: {v} {h}");
@@ -197,9 +195,7 @@ fn crossing_faces_draw_their_intersection_exactly() {
     );
     let s = scene(vec![("f", f), ("g", g)]);
     let cam = Camera::orthographic(V3::new(0.3, -0.2, -1.0), V3::y()).unwrap();
-    let (view, vis) = run(&s, cam);
-    let opts = LineOptions::default();
-    let d = draw(&s, &view, &vis, &opts);
+    let (_, d) = drawing(&s, cam, LineOptions::default());
     let cut: Vec<_> = d
         .visible
         .iter()

@@ -10,10 +10,10 @@ use kepler_hsr::geom::{PolyMesh, P3, V3};
 use kepler_hsr::scene::{Mesh, Object, Scene};
 use kepler_hsr::tribox::hull::hull_volume;
 use kepler_hsr::tribox::interfere::interfere;
-use kepler_hsr::view::{substitute, LodOptions};
-use kepler_hsr::FaceId;
 use kepler_hsr::tribox::{Hierarchy, HierarchyOptions, Tribox};
+use kepler_hsr::view::{substitute, LodOptions};
 use kepler_hsr::view::{Camera, Facing};
+use kepler_hsr::FaceId;
 
 /// xorshift64*.
 struct Rng(u64);
@@ -275,7 +275,12 @@ fn shared_meshes_tribox_between_hull_and_cbox() {
         let pts: Vec<P3> = scene
             .leaves()
             .iter()
-            .flat_map(|l| l.mesh.vertices.iter().map(|v| l.transform.transform_point(v)))
+            .flat_map(|l| {
+                l.mesh
+                    .vertices
+                    .iter()
+                    .map(|v| l.transform.transform_point(v))
+            })
             .collect();
         let t = Tribox::from_points(pts.iter());
         assert!(pts.iter().all(|q| t.contains(q)), "{name}");

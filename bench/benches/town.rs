@@ -1,15 +1,11 @@
 //! The town benchmark: a wall in front of N detailed buildings (instances of a few
 //! prototypes), timed stage by stage with inboxes on and off, with the buildings in districts
 //! and blocks and flat under the root. Writes out/town-bench.csv and
-//! out/town-bench.svg. Run with `cargo bench --bench town` (optionally `-- 10,30` for the Ns).
-//! The same measurement is part of `kepler bench`; both use the one copy of its code.
+//! out/town-bench.svg. Run with `cargo bench -p kepler-hsr-bench --bench town` (optionally
+//! `-- 10,30` for the Ns). The same measurement is part of `kepler-bench`; both use the one
+//! copy of its code in the harness library.
 
-#[allow(dead_code)]
-#[path = "../src/cmd/bench/chart.rs"]
-mod chart;
-#[allow(dead_code)]
-#[path = "../src/cmd/bench/town.rs"]
-mod town;
+use kepler_bench::{chart, town};
 
 fn main() {
     let ns: Vec<usize> = std::env::args()
@@ -34,7 +30,11 @@ fn main() {
             eprintln!("visibility, {label}: largest N / smallest N: {g:.2}x");
         }
     }
-    let _ = std::fs::create_dir_all("out");
-    let _ = std::fs::write("out/town-bench.csv", town::csv(&rows));
-    let _ = std::fs::write("out/town-bench.svg", chart::to_svg(&town::chart(&rows)));
+    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../out");
+    let _ = std::fs::create_dir_all(&out);
+    let _ = std::fs::write(out.join("town-bench.csv"), town::csv(&rows));
+    let _ = std::fs::write(
+        out.join("town-bench.svg"),
+        chart::to_svg(&town::chart(&rows)),
+    );
 }

@@ -15,6 +15,10 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+use super::coverage::Coverage;
+use super::rays;
+use super::suite::ms_since;
+use super::zbuffer::{self, IdBuffer};
 use kepler_hsr::emit::clip_segment::Interval;
 use kepler_hsr::emit::edges::{mesh_edges, Edge, EdgeOptions};
 use kepler_hsr::emit::intersect::intersection_edges;
@@ -26,10 +30,6 @@ use kepler_hsr::scene::Scene;
 use kepler_hsr::view::{Camera, LodOptions, View};
 use kepler_hsr::visibility::Visibility;
 use kepler_hsr::{render, Outputs, RenderOptions};
-use super::coverage::Coverage;
-use super::rays;
-use super::suite::ms_since;
-use super::zbuffer::{self, IdBuffer};
 
 /// What produced a point of the time-against-accuracy chart. Each method is one variant: an
 /// approximate kepler mode (tribox `--lod PX`) joins as another.

@@ -30,7 +30,8 @@ fn clean(raw: &PolyMesh, what: &str) -> Mesh {
 
 /// An axis-aligned box mesh.
 fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Mesh {
-    let raw = kepler_hsr::primitives::cuboid(P3::new(lo[0], lo[1], lo[2]), P3::new(hi[0], hi[1], hi[2]));
+    let raw =
+        kepler_hsr::primitives::cuboid(P3::new(lo[0], lo[1], lo[2]), P3::new(hi[0], hi[1], hi[2]));
     clean(&raw, "cuboid")
 }
 

@@ -20,8 +20,8 @@ use std::time::Duration;
 use anyhow::{Context, Result};
 use clap::Args;
 
-use kepler_cli::progress::Progress;
 use accuracy::{Method, Reference};
+use kepler_cli::progress::Progress;
 use suite::{Case, Run, Source, ViewKind};
 
 /// Arguments of `kepler-bench`.
@@ -47,10 +47,8 @@ pub struct BenchArgs {
     /// 10,30,100 with --quick).
     #[arg(long, value_name = "N,...", value_delimiter = ',')]
     pub town: Option<Vec<usize>>,
-    /// Do not measure peak memory (one child process per case and view).
-    #[arg(long)]
-    pub no_memory: bool,
-    /// Internal: run one case once in this process and print its peak memory.
+    /// Internal: run one case once in this process and print its peak memory and stage
+    /// times (every timed run is such a fresh process).
     #[arg(long, hide = true, value_name = "CASE/VIEW")]
     pub child: Option<String>,
 }
@@ -165,7 +163,8 @@ fn case_by_name(name: &str, models: &Path) -> Option<Case> {
     })
 }
 
-/// The child process: one run of one case, then `peak_kb base_kb faces` on standard output.
+/// The child process: one run of one case, then `peak_kb base_kb faces ms…` (the stage
+/// times of [`suite::STAGES`]) on standard output.
 fn child(spec: &str, models: &Path) -> Result<ExitCode> {
     let base = suite::peak_kb().unwrap_or(0);
     let (name, view) = spec.rsplit_once('/').context("--child expects CASE/VIEW")?;
@@ -173,25 +172,42 @@ fn child(spec: &str, models: &Path) -> Result<ExitCode> {
     let view = ViewKind::by_name(view).with_context(|| format!("no view {view}"))?;
     let r = suite::run(&case, view)?;
     let peak = suite::peak_kb().unwrap_or(0);
-    // A closed pipe (`| head`) is not an error.
-    let _ = writeln!(std::io::stdout().lock(), "{peak} {base} {}", r.faces);
+    let ms: Vec<String> = r.ms.iter().map(|m| format!("{m:.6}")).collect();
+    // A closed pipe is not an error.
+    let _ = writeln!(
+        std::io::stdout().lock(),
+        "{peak} {base} {} {}",
+        r.faces,
+        ms.join(" ")
+    );
     Ok(ExitCode::SUCCESS)
 }
 
-/// Peak memory of one case and view, measured in a child process: (peak KB, KB at start).
-fn child_memory(case: &Case, view: ViewKind, models: &Path) -> Option<(u64, u64)> {
-    let exe = std::env::current_exe().ok()?;
+/// One run of a case and view in a fresh process (this program with `--child`): its stage
+/// times, and its peak memory and memory at start (KB) where /proc tells them.
+fn child_run(case: &Case, view: ViewKind, models: &Path) -> Result<(Run, Option<(u64, u64)>)> {
+    let exe = std::env::current_exe().context("finding kepler-bench itself")?;
     let out = std::process::Command::new(exe)
         .args(["--child", &format!("{}/{}", case.name, view.name())])
         .arg("--models")
         .arg(models)
-        .stderr(std::process::Stdio::null())
+        .stderr(std::process::Stdio::inherit())
         .output()
-        .ok()?;
-    let text = String::from_utf8(out.stdout).ok()?;
-    let mut it = text.split_whitespace().map(|w| w.parse::<u64>().ok());
-    let (peak, base) = (it.next()??, it.next()??);
-    (out.status.success() && peak > 0).then_some((peak, base))
+        .context("starting a child run")?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    let words: Vec<f64> = text
+        .split_whitespace()
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    if !out.status.success() || words.len() != 3 + suite::STAGES.len() {
+        anyhow::bail!("child run of {}/{} failed: {text}", case.name, view.name());
+    }
+    let run = Run {
+        ms: std::array::from_fn(|k| words[3 + k]),
+        faces: words[2] as usize,
+    };
+    let (peak, base) = (words[0] as u64, words[1] as u64);
+    Ok((run, (peak > 0).then_some((peak, base))))
 }
 
 /// Median and least of some numbers (0, 0 for none).
@@ -288,7 +304,7 @@ pub fn run(a: BenchArgs) -> Result<ExitCode> {
         Duration::ZERO,
     );
     let mut done = 0;
-    let rows = time_cases(&plan, &cases, &models, !a.no_memory, &mut bar, &mut done)?;
+    let rows = time_cases(&plan, &cases, &models, &mut bar, &mut done)?;
     let mut acc = Vec::new();
     for s in subjects {
         let case = cases.iter().find(|c| &c.name == s).expect("filtered above");
@@ -309,13 +325,13 @@ pub fn run(a: BenchArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Times every case from every view (warm-up, then the plan's runs) and measures its peak
-/// memory in a child process.
+/// Times every case from every view: a warm-up, then the plan's runs, each in a fresh
+/// process (so the numbers are what `kepler render` takes, whatever ran before), with the
+/// largest peak memory of the runs.
 fn time_cases(
     plan: &Plan,
     cases: &[Case],
     models: &Path,
-    memory: bool,
     bar: &mut Progress,
     done: &mut usize,
 ) -> Result<Vec<CaseRow>> {
@@ -324,8 +340,8 @@ fn time_cases(
         for &view in &plan.views {
             let label = format!("{} {}", case.name, view.name());
             bar.update(*done, &format!("{label} warm-up"));
-            let first = match suite::run(case, view) {
-                Ok(r) => r,
+            let first = match child_run(case, view, models) {
+                Ok((r, _)) => r,
                 Err(e) => {
                     eprintln!("bench: {label}: {e:#}, skipped");
                     *done += 1;
@@ -338,16 +354,13 @@ fn time_cases(
                 continue;
             }
             let mut runs = Vec::with_capacity(plan.runs);
+            let mut memory: Option<(u64, u64)> = None;
             for k in 0..plan.runs {
                 bar.update(*done, &format!("{label} run {}/{}", k + 1, plan.runs));
-                runs.push(suite::run(case, view)?);
+                let (run, mem) = child_run(case, view, models)?;
+                runs.push(run);
+                memory = memory.max(mem);
             }
-            let memory = if memory {
-                bar.update(*done, &format!("{label} memory"));
-                child_memory(case, view, models)
-            } else {
-                None
-            };
             rows.push(CaseRow {
                 case: case.clone(),
                 view,

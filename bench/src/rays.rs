@@ -84,7 +84,10 @@ impl Index {
     /// Cell range [i0, i1] × [j0, j1] of a rectangle.
     fn cells(&self, r: &Rect) -> [usize; 4] {
         let ci = |x: f64, k: usize, n: usize| {
-            (((x - self.rect.bound(k, false)) / self.cell[k]).floor().max(0.0) as usize).min(n - 1)
+            (((x - self.rect.bound(k, false)) / self.cell[k])
+                .floor()
+                .max(0.0) as usize)
+                .min(n - 1)
         };
         [
             ci(r.xmin, 0, self.nx),

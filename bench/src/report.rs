@@ -1,7 +1,7 @@
 //! The bench's outputs: CSV files, SVG charts and the markdown summary (also printed).
 
-use std::io::Write as _;
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::Path;
 
 use anyhow::{Context, Result};

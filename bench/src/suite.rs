@@ -213,7 +213,10 @@ pub fn run(case: &Case, view: ViewKind) -> Result<Run> {
     ms[2] = st(&[Stage::Lod, Stage::Prepare, Stage::Cull, Stage::View]);
     ms[3] = st(&[Stage::Visibility]);
     ms[4] = st(&[Stage::Lines, Stage::Emit]);
-    std::hint::black_box((r.json.as_ref().map(String::len), r.svg.as_ref().map(String::len)));
+    std::hint::black_box((
+        r.json.as_ref().map(String::len),
+        r.svg.as_ref().map(String::len),
+    ));
     Ok(Run {
         ms,
         faces: scene.face_count(),

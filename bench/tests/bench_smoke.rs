@@ -9,7 +9,6 @@ fn quick_bench_writes_csv_charts_and_table() {
     let _ = std::fs::remove_dir_all(&out);
     let run = Command::new(env!("CARGO_BIN_EXE_kepler-bench"))
         .args([
-            
             "--quick",
             "--runs",
             "1",

@@ -54,7 +54,8 @@ impl CameraArgs {
         if self.target.is_some() && self.eye.is_none() {
             bail!("--target needs --eye");
         }
-        let vec = |s: &Option<String>, flag: &str| s.as_deref().map(|s| parse_vec3(s, flag)).transpose();
+        let vec =
+            |s: &Option<String>, flag: &str| s.as_deref().map(|s| parse_vec3(s, flag)).transpose();
         let req = CameraRequest {
             dir: vec(&self.dir, "dir")?,
             eye: vec(&self.eye, "eye")?.map(P3::from),

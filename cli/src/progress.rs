@@ -35,7 +35,7 @@ impl Progress {
         }
     }
 
-    /// Shows `done` of the total, with a message (at most every [`REDRAW`]).
+    /// Shows `done` of the total, with a message (at most every 100 ms).
     pub fn update(&mut self, done: usize, msg: &str) {
         let now = Instant::now();
         let elapsed = now - self.start;
@@ -76,7 +76,7 @@ pub fn line(label: &str, done: usize, total: usize, secs: f64, msg: &str) -> Str
 }
 
 /// Runs `work` while a bar follows a render's `progress` (its stage, and done of total where
-/// the stage counts), drawn from a watcher thread that wakes every [`REDRAW`] (and at once
+/// the stage counts), drawn from a watcher thread that wakes every 100 ms (and at once
 /// when the work ends); on a non-terminal no thread is started at all.
 pub fn follow<T: Send>(
     progress: &kepler_hsr::Progress,

@@ -209,10 +209,7 @@ fn is_crease(n1: &V3, n2: &V3, cos_crease: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::PolyMesh;
-    use crate::scene::cleanup::{cleanup, Origin};
     use crate::scene::testing::unit_cube_scene;
-    use crate::scene::{Object, Scene};
     use crate::view::Camera;
 
     fn count(edges: &[Edge], kind: EdgeKind) -> usize {
@@ -244,24 +241,7 @@ mod tests {
 
     #[test]
     fn open_square_has_four_borders() {
-        let raw = PolyMesh::new(
-            vec![
-                P3::new(0., 0., 0.),
-                P3::new(1., 0., 0.),
-                P3::new(1., 1., 0.),
-                P3::new(0., 1., 0.),
-            ],
-            vec![vec![0, 1, 2], vec![0, 2, 3]],
-        );
-        let origin = Origin {
-            file: std::path::Path::new("t"),
-            face_pos: &[],
-        };
-        let mesh = cleanup(&raw, &origin, &mut Vec::new()).unwrap();
-        let scene = Scene::new(
-            Object::group("", vec![Object::from_mesh("sq", mesh)]),
-            "t".into(),
-        );
+        let scene = crate::scene::testing::unit_square_scene(vec![vec![0, 1, 2], vec![0, 2, 3]]);
         let view = View::new(&scene, Camera::three_quarter());
         let world = WorldFaces::build(&scene);
         let opts = EdgeOptions {

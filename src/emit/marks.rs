@@ -31,8 +31,7 @@ pub fn face_marks(scene: &Scene, view: &View, vis: &Visibility) -> Vec<Stroke> {
                 .iter()
                 .map(|&v| leaf.mesh.vertices[v as usize])
                 .collect();
-            let Some(frame) = TextureFrame::of_plane(&local[0], &newell(&local))
-            else {
+            let Some(frame) = TextureFrame::of_plane(&local[0], &newell(&local)) else {
                 continue;
             };
             let world = |i: u32| {

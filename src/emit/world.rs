@@ -61,30 +61,10 @@ fn bbox(pts: &[P3]) -> [[f64; 3]; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::PolyMesh;
-    use crate::scene::cleanup::{cleanup, Origin};
-    use crate::scene::Object;
 
     #[test]
     fn square_face_in_world() {
-        let raw = PolyMesh::new(
-            vec![
-                P3::new(0., 0., 0.),
-                P3::new(1., 0., 0.),
-                P3::new(1., 1., 0.),
-                P3::new(0., 1., 0.),
-            ],
-            vec![vec![0, 1, 2, 3]],
-        );
-        let origin = Origin {
-            file: std::path::Path::new("t"),
-            face_pos: &[],
-        };
-        let mesh = cleanup(&raw, &origin, &mut Vec::new()).unwrap();
-        let scene = Scene::new(
-            Object::group("", vec![Object::from_mesh("sq", mesh)]),
-            "t".into(),
-        );
+        let scene = crate::scene::testing::unit_square_scene(vec![vec![0, 1, 2, 3]]);
         let w = WorldFaces::build(&scene);
         assert_eq!(w.faces.len(), 1);
         assert_eq!(w.faces[0].normal, V3::new(0., 0., 2.));

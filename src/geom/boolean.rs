@@ -69,10 +69,7 @@ pub fn union<'a>(rings: impl IntoIterator<Item = &'a Ring>, rect: &Rect) -> Mult
 /// Area of the union of multipolygons, on one grid over all of them.
 pub fn union_area(parts: &[&MultiPolygon]) -> f64 {
     let rect = Rect::of_points(parts.iter().flat_map(|m| m.iter().flatten().flatten()));
-    multipolygon_area(&union(
-        parts.iter().flat_map(|m| m.iter().flatten()),
-        &rect,
-    ))
+    multipolygon_area(&union(parts.iter().flat_map(|m| m.iter().flatten()), &rect))
 }
 
 /// Area of the symmetric difference of two multipolygons (even-odd rings), on one grid over

@@ -78,7 +78,11 @@ mod tests {
         assert!(orient2d([0., 0.], [1., 0.], [0., -1.]) < 0.0);
         // Collinear in exact arithmetic, although naive floating point says otherwise.
         assert_eq!(orient2d([0.1, 0.1], [0.3, 0.3], [0.7, 0.7]), 0.0);
-        let (a, b, c) = (P3::new(0., 0., 0.), P3::new(1., 0., 0.), P3::new(0., 1., 0.));
+        let (a, b, c) = (
+            P3::new(0., 0., 0.),
+            P3::new(1., 0., 0.),
+            P3::new(0., 1., 0.),
+        );
         assert!(orient3d(&a, &b, &c, &P3::new(0., 0., -1.)) > 0.0);
         assert!(orient3d(&a, &b, &c, &P3::new(0., 0., 1.)) < 0.0);
         assert_eq!(orient3d_refs(&[a, b, c], &P3::new(0.3, 0.7, 0.)), 0.0);

@@ -149,7 +149,13 @@ impl Rect {
         let mut cur: Vec<Pt2> = ring.to_vec();
         for (axis, hi) in [(0, false), (0, true), (1, false), (1, true)] {
             let bound = self.bound(axis, hi);
-            let inside = |p: &Pt2| if hi { p[axis] <= bound } else { p[axis] >= bound };
+            let inside = |p: &Pt2| {
+                if hi {
+                    p[axis] <= bound
+                } else {
+                    p[axis] >= bound
+                }
+            };
             if cur.iter().all(inside) {
                 continue;
             }

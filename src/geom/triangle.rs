@@ -51,7 +51,11 @@ mod tests {
 
     #[test]
     fn every_voronoi_region() {
-        let (a, b, c) = (P3::new(0., 0., 0.), P3::new(2., 0., 0.), P3::new(0., 2., 0.));
+        let (a, b, c) = (
+            P3::new(0., 0., 0.),
+            P3::new(2., 0., 0.),
+            P3::new(0., 2., 0.),
+        );
         let at = |x, y, z| closest_on_triangle(&P3::new(x, y, z), &a, &b, &c);
         assert_eq!(at(-1., -1., 5.), a);
         assert_eq!(at(3., -1., 0.), b);

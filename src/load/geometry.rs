@@ -9,9 +9,9 @@ use super::args::{integer, quoted_list, Node};
 use super::mesh_file::{load_mesh, MeshFile};
 use super::transform::mirrors;
 use crate::error::{Error, Location, Pos, Result, Warning, Warnings};
+use crate::geom::MAX_COORD;
 use crate::geom::{Box3, PolyMesh, M4, P3};
 use crate::primitives;
-use crate::geom::MAX_COORD;
 use crate::scene::cleanup::{cleanup, FaceShape, Origin};
 use crate::scene::{Mesh, Object, Texture, TextureFrame};
 

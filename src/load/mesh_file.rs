@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 use crate::error::{Error, Location, Pos, Result};
 use crate::geom::{PolyMesh, MAX_COORD};
 
-
 /// One named group of faces from a mesh file (an OBJ `o`/`g` group, or the whole file).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeshGroup {

@@ -15,8 +15,8 @@ use super::geometry::{self, is_geometry, GeomCtx, MeshCache};
 use super::source::Source;
 use super::transform::{compose, is_transform, transform_box};
 use crate::error::{Error, Location, Result, Warning, Warnings};
-use crate::geom::{Box3, M4, P3};
 use crate::geom::MAX_COORD;
+use crate::geom::{Box3, M4, P3};
 use crate::scene::{CameraSpec, Object, Scene};
 
 /// The nodes allowed at the top level of a scene file.

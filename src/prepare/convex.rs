@@ -16,7 +16,7 @@ const CONVEX_TOL: f64 = 1e-9;
 const SHRINKS: [f64; 4] = [1e-9, 1e-7, 1e-5, 1e-3];
 
 /// True when every vertex of every face sharing a vertex with a face lies on or behind that
-/// face's plane (within [`CONVEX_TOL`]): local convexity, which for a closed, consistently
+/// face's plane (within `CONVEX_TOL`): local convexity, which for a closed, consistently
 /// oriented surface means convexity.
 pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
     let cbox = Box3::from_points(mesh.vertices.iter());

@@ -1,7 +1,6 @@
 //! Geometry of a closed mesh shared by the inbox methods: orientation, fan triangles, face
 //! planes, and the exact test that a box lies on the inner side of every face.
 
-
 use crate::geom::{orient3d_refs, Box3, P3, V3};
 use crate::scene::Mesh;
 

@@ -119,17 +119,58 @@ impl Scene {
 #[cfg(test)]
 pub(crate) mod testing {
     use super::{Object, Scene};
-    use crate::geom::P3;
+    use crate::geom::{PolyMesh, P3};
     use crate::scene::cleanup::{cleanup, Origin};
 
-    /// The unit cube [0, 1]^3 as a closed leaf named "cube".
-    pub(crate) fn unit_cube() -> Object {
-        let raw = crate::primitives::cuboid(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
+    /// A leaf object from a raw mesh, through the loader's cleanup.
+    pub(crate) fn leaf(name: &str, raw: &PolyMesh) -> Object {
         let origin = Origin {
             file: std::path::Path::new("t"),
             face_pos: &[],
         };
-        Object::from_mesh("cube", cleanup(&raw, &origin, &mut Vec::new()).unwrap())
+        Object::from_mesh(name, cleanup(raw, &origin, &mut Vec::new()).unwrap())
+    }
+
+    /// A scene of one open leaf "sq": the unit square [0, 1]^2 at z = 0, cut into `faces`
+    /// (indices of its corners (0,0), (1,0), (1,1), (0,1)).
+    pub(crate) fn unit_square_scene(faces: Vec<Vec<u32>>) -> Scene {
+        let corners = [[0., 0.], [1., 0.], [1., 1.], [0., 1.]].map(|c| P3::new(c[0], c[1], 0.));
+        let sq = leaf("sq", &PolyMesh::new(corners.to_vec(), faces));
+        Scene::new(Object::group("", vec![sq]), "t".into())
+    }
+
+    /// A closed box as a leaf.
+    pub(crate) fn cuboid(name: &str, lo: [f64; 3], hi: [f64; 3]) -> Object {
+        let raw = crate::primitives::cuboid(P3::from(lo), P3::from(hi));
+        leaf(name, &raw)
+    }
+
+    /// The unit cube [0, 1]^3 as a closed leaf named "cube".
+    pub(crate) fn unit_cube() -> Object {
+        cuboid("cube", [0., 0., 0.], [1., 1., 1.])
+    }
+
+    /// A scene whose face and piece numbers differ: `warped` (face 0, a quad bent out of its
+    /// plane, two planar pieces) at z = 0, then the closed box `wall` (faces 1-6) in front of
+    /// it at z in [1, 2], then the closed box `hidden` (faces 7-12) behind the wall at
+    /// z in [-3, -2], then `beside` (faces 13-18) off to the side. Seen along -z.
+    pub(crate) fn warped_scene() -> Scene {
+        let bent = PolyMesh::new(
+            vec![
+                P3::new(-4., -4., 0.),
+                P3::new(-3., -4., 0.),
+                P3::new(-3., -3., 0.1),
+                P3::new(-4., -3., 0.),
+            ],
+            vec![vec![0, 1, 2, 3]],
+        );
+        let objects = vec![
+            leaf("warped", &bent),
+            cuboid("wall", [-2., -2., 1.], [2., 2., 2.]),
+            cuboid("hidden", [-1., -1., -3.], [1., 1., -2.]),
+            cuboid("beside", [5., 5., -1.], [6., 6., 0.]),
+        ];
+        Scene::new(Object::group("", objects), "t".into())
     }
 
     /// A scene of the unit cube alone.

@@ -30,7 +30,7 @@ impl Face {
 pub struct Mesh {
     /// The paper's (VERTi): no two share coordinates.
     pub vertices: Vec<P3>,
-    /// The paper's [FACEi].
+    /// The paper's \[FACEi\].
     pub faces: Vec<Face>,
     /// True when every edge is shared by exactly two faces traversing it in opposite
     /// directions: a closed, consistently oriented solid.
@@ -156,15 +156,6 @@ impl Object {
     /// The paper's FACE: the faces (empty unless a leaf).
     pub fn faces(&self) -> &[Face] {
         self.mesh().map_or(&[], |m| &m.faces)
-    }
-
-    /// The paper's VF(A, i, j) for all j: the corner positions of face `i`.
-    pub fn face_vertices(&self, i: usize) -> impl Iterator<Item = &P3> + '_ {
-        let verts = self.vertices();
-        self.faces()[i]
-            .vertices
-            .iter()
-            .map(move |&k| &verts[k as usize])
     }
 
     /// Number of faces in the whole subtree, instances expanded.

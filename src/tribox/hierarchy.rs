@@ -606,5 +606,4 @@ mod tests {
         assert_eq!(h.nodes.len(), 1, "splitting a box cannot reduce its area");
         assert!(h.nodes[0].error < 1e-12);
     }
-
 }

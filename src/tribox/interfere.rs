@@ -146,7 +146,10 @@ fn plane_axes(t: &[P3; 3]) -> (usize, usize) {
 
 /// Closed segment pq against closed triangle t.
 fn segment_meets_triangle(p: &P3, q: &P3, t: &[P3; 3]) -> bool {
-    let (sp, sq) = (orient3d(&t[0], &t[1], &t[2], p), orient3d(&t[0], &t[1], &t[2], q));
+    let (sp, sq) = (
+        orient3d(&t[0], &t[1], &t[2], p),
+        orient3d(&t[0], &t[1], &t[2], q),
+    );
     if (sp > 0.0 && sq > 0.0) || (sp < 0.0 && sq < 0.0) {
         return false;
     }

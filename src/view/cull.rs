@@ -222,3 +222,50 @@ impl<'a> Walker<'a, '_> {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::V3;
+    use crate::scene::testing::warped_scene;
+    use crate::view::{PieceId, View};
+
+    #[test]
+    fn a_box_behind_the_wall_is_hidden_and_later_faces_keep_their_ids() {
+        let mut scene = warped_scene();
+        crate::prepare::prepare(&mut scene);
+        let camera = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
+        let cull = Cull::new(&scene, &camera);
+        assert_eq!(cull.hidden.len(), 1);
+        let h = cull.hidden[0];
+        assert_eq!(
+            (h.object.name.as_str(), h.first_face, h.face_count),
+            ("hidden", FaceId(7), 6)
+        );
+        assert_eq!(cull.leaves.len(), 3);
+        assert_eq!(cull.face_count, 19);
+        let view = View::from_cull(&scene, camera, &cull);
+        let sf = &view.screen;
+        // The hidden box's faces have no pieces; the faces after it keep their global ids
+        // while their pieces close up (2 for the bent quad + 6 for the wall = 8 before them).
+        assert_eq!(sf.face_count(), 19);
+        assert!((7..13).all(|f| sf.pieces_of(FaceId(f)).count() == 0));
+        assert_eq!(sf.pieces.len(), 14);
+        for f in 13..19 {
+            let p: Vec<PieceId> = sf.pieces_of(FaceId(f)).collect();
+            assert_eq!(p, [PieceId(f - 5)]);
+            assert_eq!(sf.piece(p[0]).face, FaceId(f));
+            assert_eq!(sf.leaf_of_face(FaceId(f)).path, "beside");
+        }
+        let hidden = view.tree.object("hidden").unwrap();
+        assert_eq!(hidden.faces, FaceId(7)..FaceId(13));
+        assert!(
+            matches!(&view.tree.nodes[hidden.node as usize].kind, super::super::tree::NodeKind::Leaf(r) if r.is_empty())
+        );
+        assert_eq!(
+            view.tree.object("beside").unwrap().faces,
+            FaceId(13)..FaceId(19)
+        );
+        assert_eq!(view.culled.faces, 6);
+    }
+}

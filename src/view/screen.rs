@@ -159,7 +159,10 @@ impl ScreenFaces {
     }
 
     /// The pieces of the faces in `faces`, in order.
-    pub fn pieces_in(&self, faces: Range<FaceId>) -> impl ExactSizeIterator<Item = PieceId> + Clone {
+    pub fn pieces_in(
+        &self,
+        faces: Range<FaceId>,
+    ) -> impl ExactSizeIterator<Item = PieceId> + Clone {
         let r = self.piece_span(faces);
         (r.start as u32..r.end as u32).map(PieceId)
     }

@@ -373,3 +373,69 @@ fn empty_node() -> Node {
         inbox: None,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::V3;
+    use crate::scene::testing::warped_scene;
+
+    /// Every piece below node `n`, in walk order.
+    fn pieces_below(tree: &ViewTree, n: u32) -> Vec<PieceId> {
+        match &tree.nodes[n as usize].kind {
+            NodeKind::Leaf(r) => tree.pieces[r.start as usize..r.end as usize].to_vec(),
+            NodeKind::Inner(r) => tree.children[r.start as usize..r.end as usize]
+                .iter()
+                .flat_map(|&c| pieces_below(tree, c))
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn faces_and_pieces_are_told_apart() {
+        let scene = warped_scene();
+        let camera = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
+        let sf = ScreenFaces::build(&scene, &camera);
+        // The bent quad is one face but two planar pieces: every later face's piece is one on.
+        assert_eq!((sf.face_count(), sf.pieces.len()), (19, 20));
+        assert_eq!(sf.pieces_of(FaceId(0)).count(), 2);
+        for f in 1..19 {
+            let p: Vec<PieceId> = sf.pieces_of(FaceId(f)).collect();
+            assert_eq!(p, [PieceId(f + 1)]);
+            assert_eq!(sf.piece(p[0]).face, FaceId(f));
+        }
+        let tree = ViewTree::build(&scene, &camera, &sf, &[]);
+        // The leaf lists hold pieces; their bounds name the pieces' faces.
+        for (p, b) in tree.pieces.iter().zip(&tree.piece_bounds) {
+            assert_eq!(b.face, sf.piece(*p).face);
+            assert_eq!(b.rect, sf.piece(*p).rect);
+        }
+        // Objects hold face ranges of the global order, not piece ranges.
+        let ranges: Vec<(&str, u32, u32)> = tree
+            .objects
+            .iter()
+            .map(|o| (o.path.as_str(), o.faces.start.0, o.faces.end.0))
+            .collect();
+        assert_eq!(
+            ranges,
+            [
+                ("warped", 0, 1),
+                ("wall", 1, 7),
+                ("hidden", 7, 13),
+                ("beside", 13, 19)
+            ]
+        );
+        // Seen along -z the wall shows one face (its top at z = 2, face 1 + 1): back face
+        // culled, sides edge-on. Its node holds that face's piece, numbered one on.
+        let wall = tree.object("wall").unwrap();
+        let below = pieces_below(&tree, wall.node);
+        assert_eq!(below.len(), 1);
+        let face = sf.piece(below[0]).face;
+        assert!(FaceId::each(&wall.faces).any(|f| f == face));
+        assert_eq!(below[0], PieceId(face.0 + 1));
+        assert_eq!(sf.world_pts(below[0])[0].z, 2.0);
+        // Both pieces of the bent quad are occluders of the warped object's node.
+        let warped = tree.object("warped").unwrap();
+        assert_eq!(pieces_below(&tree, warped.node), [PieceId(0), PieceId(1)]);
+    }
+}

@@ -1,8 +1,8 @@
 //! A face's VTP read in the face's own texture coordinates (the paper's second use of texture).
 
+use crate::geom::newell;
 use crate::geom::poly2::MultiPolygon;
 use crate::geom::P3;
-use crate::geom::newell;
 use crate::scene::{FaceId, TextureFrame};
 use crate::view::View;
 

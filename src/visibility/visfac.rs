@@ -62,13 +62,7 @@ pub fn inbox_hides(ib: &ScreenInbox, rect: &Rect, zmax: f64, ring: &[Pt2]) -> bo
 
 /// VISFAC(A, F): the VTP of piece `f` against the subtree at node `a` (the whole scene when
 /// `a` is the root). `f` must be able to show something (not edge-on, clipped or culled).
-pub fn visfac(
-    view: &View,
-    a: u32,
-    f: PieceId,
-    scratch: &mut Scratch,
-    stats: &mut Counters,
-) -> Vtp {
+pub fn visfac(view: &View, a: u32, f: PieceId, scratch: &mut Scratch, stats: &mut Counters) -> Vtp {
     let target = Target::new(&view.screen, f);
     scratch.occluders.clear();
     stats.faces_walked += 1;

@@ -32,8 +32,7 @@ pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<FaceId>) -> PointVisibi
     while let Some(n) = stack.pop() {
         let node = &tree.nodes[n as usize];
         // 1. Not hidden by CBOX: the point is outside its outline, or in front of all of it.
-        if !node.rect.contains_rect(&Rect::new(q[0], q[1], q[0], q[1])) || node.zmax < s[2]
-        {
+        if !node.rect.contains_rect(&Rect::new(q[0], q[1], q[0], q[1])) || node.zmax < s[2] {
             continue;
         }
         // 2. Hidden by INBOX.

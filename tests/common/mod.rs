@@ -9,7 +9,7 @@ use kepler_hsr::scene::cleanup::{cleanup, Origin};
 use kepler_hsr::scene::{Mesh, Object, Scene};
 use kepler_hsr::view::{Camera, View};
 use kepler_hsr::visibility::Visibility;
-use kepler_hsr::{render, RenderOptions};
+use kepler_hsr::{render, Drawing, LineOptions, Outputs, RenderOptions};
 
 /// A cleaned mesh from points and faces.
 pub(crate) fn mesh(pts: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
@@ -85,6 +85,23 @@ pub(crate) fn run(scene: &Scene, camera: Camera) -> (View, Visibility) {
     };
     let r = render(scene, &camera, &opts).expect("in-memory render");
     (View::new(scene, camera), r.visibility)
+}
+
+/// The line drawing of a scene through the one pipeline, with its view (tree kept).
+pub(crate) fn drawing(scene: &Scene, camera: Camera, lines: LineOptions) -> (View, Drawing) {
+    let opts = RenderOptions {
+        lines,
+        outputs: Outputs {
+            drawing: true,
+            ..Outputs::default()
+        },
+        ..RenderOptions::default()
+    };
+    let r = render(scene, &camera, &opts).expect("in-memory render");
+    (
+        View::new(scene, camera),
+        r.drawing.expect("drawing asked for"),
+    )
 }
 
 /// Areas of every face's VTP.

@@ -261,7 +261,8 @@ pub fn render_with<'s>(
     let mut stats = RenderStats::default();
     let scene = match &opts.lod {
         Some(lod) => {
-            let (mut s, lod_stats) = stats.timed(Stage::Lod, progress, || substitute(scene, camera, lod));
+            let (mut s, lod_stats) =
+                stats.timed(Stage::Lod, progress, || substitute(scene, camera, lod));
             stats.lod = Some(lod_stats);
             stats.timed(Stage::Prepare, progress, || crate::prepare::prepare(&mut s));
             Cow::Owned(s)
@@ -276,7 +277,9 @@ pub fn render_with<'s>(
             Cull::new(&scene, camera)
         }
     });
-    let mut view = stats.timed(Stage::View, progress, || View::from_cull(&scene, *camera, &cull));
+    let mut view = stats.timed(Stage::View, progress, || {
+        View::from_cull(&scene, *camera, &cull)
+    });
     drop(cull);
     let pass = PassOptions {
         use_inbox: !opts.no_inbox,
@@ -293,7 +296,9 @@ pub fn render_with<'s>(
     let out = &opts.outputs;
     let pictures = out.svg || out.png;
     let drawing = (pictures || out.drawing || (out.json && out.json_lines)).then(|| {
-        stats.timed(Stage::Lines, progress, || draw(&scene, &view, &visibility, &opts.lines))
+        stats.timed(Stage::Lines, progress, || {
+            draw(&scene, &view, &visibility, &opts.lines)
+        })
     });
     let mut r = Rendered {
         scene,
