@@ -86,3 +86,18 @@ pub fn component_inboxes(tree: &mut ObjectTree, mesh: &Mesh) {
         tree.nodes[k].inbox = grown_inbox_in(&tris, &n.cbox.clone(), &centroid, scale);
     }
 }
+
+/// The object tree of every leaf of `scene`, in [`crate::scene::Scene::leaves`] order (None
+/// for meshes without one).
+pub fn leaf_trees(scene: &crate::scene::Scene) -> Vec<Option<Arc<ObjectTree>>> {
+    fn walk(o: &Object, out: &mut Vec<Option<Arc<ObjectTree>>>) {
+        match &o.content {
+            Content::Mesh(_) => out.push(o.tree.clone()),
+            Content::Subobjects(subs) => subs.iter().for_each(|s| walk(s, out)),
+            Content::Instance(i) => walk(&i.prototype, out),
+        }
+    }
+    let mut out = Vec::new();
+    walk(&scene.root, &mut out);
+    out
+}
