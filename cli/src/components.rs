@@ -54,11 +54,20 @@ pub(crate) fn components_svg(scene: &Scene, camera: &Camera, size: u32) -> Resul
         let n = newell(&r.view.screen.face_world_pts(id));
         let n = camera.matrix.fixed_view::<3, 3>(0, 0) * n;
         let shade = 0.45 + 0.55 * n.try_normalize(0.0).map_or(0.0, |n| n.dot(&light).abs());
-        let rgb = colour(colour_of.get(id.index()).copied().unwrap_or(u32::MAX), shade);
+        let rgb = colour(
+            colour_of.get(id.index()).copied().unwrap_or(u32::MAX),
+            shade,
+        );
         let mut d = String::new();
         for ring in f.visible.iter().flatten() {
             for (k, p) in ring.iter().enumerate() {
-                let _ = write!(d, "{}{} {}", if k == 0 { "M" } else { "L" }, num(p[0]), num(-p[1]));
+                let _ = write!(
+                    d,
+                    "{}{} {}",
+                    if k == 0 { "M" } else { "L" },
+                    num(p[0]),
+                    num(-p[1])
+                );
             }
             d.push('Z');
         }

@@ -39,7 +39,10 @@ pub(crate) fn run(a: InfoArgs) -> Result<ExitCode> {
     let scene = load(&a.scene, a.quiet)?;
     if let Some(f) = &a.components {
         let camera = a.camera.camera(&scene)?;
-        super::write(f, super::components::components_svg(&scene, &camera, a.size)?)?;
+        super::write(
+            f,
+            super::components::components_svg(&scene, &camera, a.size)?,
+        )?;
     }
     if a.json {
         out(&object_json(&scene.root, "scene"));
@@ -138,7 +141,10 @@ const MAX_COMPONENT_LINES: usize = 40;
 fn tree_of(o: &Object, m: &Mesh) -> (Arc<ObjectTree>, bool) {
     match &o.tree {
         Some(t) => (t.clone(), true),
-        None => (Arc::new(ObjectTree::build(m, HierarchyKind::Simplify)), false),
+        None => (
+            Arc::new(ObjectTree::build(m, HierarchyKind::Simplify)),
+            false,
+        ),
     }
 }
 
@@ -164,7 +170,10 @@ fn print_hierarchy(o: &Object, m: &Mesh, indent: &str) {
     while let Some((k, d)) = stack.pop() {
         let node = &c.nodes[k as usize];
         if lines == MAX_COMPONENT_LINES {
-            out(&format!("{indent}    ... ({} components in all)", c.nodes.len()));
+            out(&format!(
+                "{indent}    ... ({} components in all)",
+                c.nodes.len()
+            ));
             break;
         }
         out(&format!(

@@ -90,7 +90,11 @@ pub fn grown_inbox_in(tris: &Triangles, region: &Box3, centroid: &P3, scale: f64
     };
     let field = Field {
         tris: &near,
-        boxes: near.tris.iter().map(|t| Box3::from_points(t.iter())).collect(),
+        boxes: near
+            .tris
+            .iter()
+            .map(|t| Box3::from_points(t.iter()))
+            .collect(),
         margin,
         region: Some(*region),
     };

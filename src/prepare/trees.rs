@@ -27,7 +27,12 @@ pub fn attach_trees(root: &mut Object, kind: HierarchyKind, inboxes: bool) {
     attach(root, kind, inboxes, &mut done);
 }
 
-fn attach(obj: &mut Object, kind: HierarchyKind, inboxes: bool, done: &mut HashMap<usize, Arc<Object>>) {
+fn attach(
+    obj: &mut Object,
+    kind: HierarchyKind,
+    inboxes: bool,
+    done: &mut HashMap<usize, Arc<Object>>,
+) {
     match &mut obj.content {
         Content::Mesh(m) => {
             if obj.tree.is_none() && m.faces.len() >= MIN_FACES {

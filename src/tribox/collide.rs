@@ -75,7 +75,10 @@ pub struct Placed<'a> {
 impl Placed<'_> {
     /// World triangle `t` (world coordinates as [`crate::scene::Leaf::world_vertex`] gives them).
     fn triangle(&self, t: &[u32; 3]) -> [P3; 3] {
-        t.map(|v| self.transform.transform_point(&self.mesh.vertices[v as usize]))
+        t.map(|v| {
+            self.transform
+                .transform_point(&self.mesh.vertices[v as usize])
+        })
     }
 
     /// Node `n`'s CBOX in the world: centre and three half-edge vectors.
@@ -84,7 +87,9 @@ impl Placed<'_> {
         let half = (b.hi - b.lo) * 0.5;
         let l = self.transform.fixed_view::<3, 3>(0, 0);
         Oriented {
-            centre: self.transform.transform_point(&P3::from((b.lo.coords + b.hi.coords) * 0.5)),
+            centre: self
+                .transform
+                .transform_point(&P3::from((b.lo.coords + b.hi.coords) * 0.5)),
             axes: [0, 1, 2].map(|k| l.column(k) * half[k]),
         }
     }
@@ -167,6 +172,48 @@ pub fn collide(a: &Placed, b: &Placed, stats: &mut CollideStats) -> bool {
                     stack.extend([(r, nb), (l, nb)]);
                 } else {
                     stack.extend([(na, q), (na, p)]);
+                }
+            }
+        }
+    }
+    false
+}
+
+/// The same answer as [`collide`] without trees, for checking: every world triangle of each
+/// mesh that meets the other's world CBOX, swept along x, each overlapping pair tested exactly.
+pub fn collide_brute(a: &Placed, b: &Placed, stats: &mut CollideStats) -> bool {
+    let world = |p: &Placed| -> Vec<([P3; 3], Box3)> {
+        p.tris
+            .tris
+            .iter()
+            .map(|t| p.triangle(t))
+            .filter(proper)
+            .map(|t| (t, Box3::from_points(t.iter())))
+            .collect()
+    };
+    let (ta, tb) = (world(a), world(b));
+    let hull = |v: &[([P3; 3], Box3)]| v.iter().fold(Box3::empty(), |h, t| h.union(&t.1));
+    let meets = |x: &Box3, y: &Box3| (0..3).all(|k| x.lo[k] <= y.hi[k] && y.lo[k] <= x.hi[k]);
+    let (ha, hb) = (hull(&ta), hull(&tb));
+    let near = |v: Vec<([P3; 3], Box3)>, other: &Box3| {
+        let mut v: Vec<_> = v.into_iter().filter(|t| meets(&t.1, other)).collect();
+        v.sort_by(|x, y| x.1.lo.x.total_cmp(&y.1.lo.x));
+        v
+    };
+    let (na, nb) = (near(ta, &hb), near(tb, &ha));
+    let mut start = 0;
+    for (t, bt) in &na {
+        while start < nb.len() && nb[start].1.hi.x < bt.lo.x {
+            start += 1;
+        }
+        for (u, bu) in &nb[start..] {
+            if bu.lo.x > bt.hi.x {
+                break;
+            }
+            if meets(bt, bu) {
+                stats.triangle_tests += 1;
+                if triangles_intersect(t, u) {
+                    return true;
                 }
             }
         }
@@ -266,6 +313,14 @@ mod tests {
         // Turned about z, 2.5 apart: each lies within 1 of its centre.
         assert!(!collide(&at(0., 0.), &at(2.5, 0.3), &mut s));
         assert!(s.bv_tests > 0 && s.triangle_tests > 0);
+        for (x, r) in [(1.5, 0.), (2., 0.), (2.0001, 0.), (2.5, 0.3), (1.9, 1.0)] {
+            let (p, q) = (at(0., 0.), at(x, r));
+            assert_eq!(
+                collide(&p, &q, &mut s),
+                collide_brute(&p, &q, &mut s),
+                "{x} {r}"
+            );
+        }
     }
 
     #[test]
@@ -280,8 +335,14 @@ mod tests {
         // A cube turned 45° about z reaches √2 along x: at 2.4 it meets, at 2.42 not.
         let r = std::f64::consts::FRAC_1_SQRT_2;
         let turned = [V3::new(r, r, 0.), V3::new(-r, r, 0.), V3::z()];
-        assert!(!apart(&unit([0., 0., 0.], id), &unit([2.4, 0., 0.], turned)));
-        assert!(apart(&unit([0., 0., 0.], id), &unit([2.42, 0., 0.], turned)));
+        assert!(!apart(
+            &unit([0., 0., 0.], id),
+            &unit([2.4, 0., 0.], turned)
+        ));
+        assert!(apart(
+            &unit([0., 0., 0.], id),
+            &unit([2.42, 0., 0.], turned)
+        ));
         // Scaled axes (a placement with scaling): half-widths 2 along x.
         let wide = [V3::x() * 2.0, V3::y(), V3::z()];
         assert!(!apart(&unit([0., 0., 0.], wide), &unit([3., 0., 0.], id)));

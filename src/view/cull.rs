@@ -86,7 +86,11 @@ impl<'a> Cull<'a> {
     /// Faces in hidden subtrees and hidden components.
     pub fn hidden_faces(&self) -> u64 {
         self.hidden.iter().map(|h| h.face_count as u64).sum::<u64>()
-            + self.hidden_parts.iter().map(|p| p.len() as u64).sum::<u64>()
+            + self
+                .hidden_parts
+                .iter()
+                .map(|p| p.len() as u64)
+                .sum::<u64>()
     }
 
     /// The hidden faces (local indices, ascending) of leaf `k`.

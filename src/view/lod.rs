@@ -313,8 +313,11 @@ fn concat(meshes: &[PolyMesh]) -> PolyMesh {
     for m in meshes {
         let base = out.vertices.len() as u32;
         out.vertices.extend(&m.vertices);
-        out.faces
-            .extend(m.faces.iter().map(|f| f.iter().map(|&v| v + base).collect()));
+        out.faces.extend(
+            m.faces
+                .iter()
+                .map(|f| f.iter().map(|&v| v + base).collect()),
+        );
     }
     out
 }

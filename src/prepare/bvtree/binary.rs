@@ -1,10 +1,10 @@
 //! From C(T) to the binary BV-tree B(T) (paper 002 section 4.3): the children of every
 //! component are combined bottom-up, like a Huffman code tree, always merging the pair whose
 //! merged bounding volume is smallest; below the leaf components a traditional top-down
-//! split completes the tree. The top-down split is kepler's median split (the rule the view
+//! split completes the tree ([`TopDown`]): the surface-area heuristic (Goldsmith and Salmon,
+//! the paper's reference for top-down building), or kepler's median split (the rule the view
 //! tree used per view: the axis along which the faces' centres spread most, cut at the
-//! median, at most [`LEAF_FACES`] faces per leaf), so that the two hierarchies differ only in
-//! their upper levels.
+//! median). Either way at most [`LEAF_FACES`] faces per leaf.
 //!
 //! Bounding volume: the CBOX (axis-aligned box in the mesh's frame), the box Franklin's
 //! database and kepler's cull use; the merge criterion is its volume (then its area, for flat
@@ -135,15 +135,18 @@ impl Arena {
         }
     }
 
-    /// The traditional top-down split of every pending leaf below `root` (median split).
-    pub(super) fn split_leaves(&mut self, root: usize) {
+    /// The traditional top-down split of every pending leaf below `root`, by `rule`.
+    pub(super) fn split_leaves(&mut self, root: usize, rule: TopDown) {
         let mut stack = vec![root];
         while let Some(n) = stack.pop() {
             match &mut self.nodes[n].build {
                 Build::Pair(a, b) => stack.extend([*a, *b]),
                 Build::Faces(f) if f.len() > LEAF_FACES => {
                     let faces = std::mem::take(f);
-                    let (l, r) = self.median_halves(faces);
+                    let (l, r) = match rule {
+                        TopDown::Median => self.median_halves(faces),
+                        TopDown::Area => self.area_halves(faces),
+                    };
                     let (a, b) = (self.leaf(l, false), self.leaf(r, false));
                     self.nodes[n].build = Build::Pair(a, b);
                     stack.extend([a, b]);
@@ -151,6 +154,61 @@ impl Arena {
                 Build::Faces(_) => {}
             }
         }
+    }
+
+    /// The split of `faces` (by their centres, along one axis, at one of [`AREA_BINS`] - 1
+    /// evenly spaced planes) whose two boxes' areas, each times its face count, add up least
+    /// (the surface-area heuristic of Goldsmith and Salmon); the median split when no plane
+    /// separates anything.
+    fn area_halves(&self, faces: Vec<u32>) -> (Vec<u32>, Vec<u32>) {
+        let c = &self.centres;
+        let mut best: Option<(f64, usize, f64)> = None;
+        for axis in 0..3 {
+            let (lo, hi) = faces
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| {
+                    let x = c[f as usize][axis];
+                    (lo.min(x), hi.max(x))
+                });
+            if !(hi > lo) {
+                continue;
+            }
+            let bin =
+                |x: f64| (((x - lo) / (hi - lo) * AREA_BINS as f64) as usize).min(AREA_BINS - 1);
+            let mut boxes = [Box3::empty(); AREA_BINS];
+            let mut counts = [0usize; AREA_BINS];
+            for &f in &faces {
+                let b = bin(c[f as usize][axis]);
+                boxes[b] = boxes[b].union(&self.face_boxes[f as usize]);
+                counts[b] += 1;
+            }
+            // Areas and counts of every prefix and suffix of bins.
+            let mut right = vec![(Box3::empty(), 0usize); AREA_BINS + 1];
+            for b in (0..AREA_BINS).rev() {
+                right[b] = (right[b + 1].0.union(&boxes[b]), right[b + 1].1 + counts[b]);
+            }
+            let mut left = (Box3::empty(), 0usize);
+            for b in 0..AREA_BINS - 1 {
+                left = (left.0.union(&boxes[b]), left.1 + counts[b]);
+                let r = &right[b + 1];
+                if left.1 == 0 || r.1 == 0 {
+                    continue;
+                }
+                let cost = area(&left.0) * left.1 as f64 + area(&r.0) * r.1 as f64;
+                if best.is_none_or(|(bc, _, _)| cost < bc) {
+                    let at = lo + (hi - lo) * (b + 1) as f64 / AREA_BINS as f64;
+                    best = Some((cost, axis, at));
+                }
+            }
+        }
+        let Some((_, axis, at)) = best else {
+            return self.median_halves(faces);
+        };
+        let (l, r): (Vec<u32>, Vec<u32>) = faces.iter().partition(|&&f| c[f as usize][axis] < at);
+        if l.is_empty() || r.is_empty() {
+            return self.median_halves(faces);
+        }
+        (l, r)
     }
 
     /// The median split of `faces` along the axis their centres spread most on.
@@ -179,6 +237,24 @@ impl Arena {
     }
 }
 
+/// Candidate planes per axis of the area split, plus one.
+pub const AREA_BINS: usize = 16;
+
+/// The traditional top-down split used below the leaf components.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TopDown {
+    /// At the median of the faces' centres along the axis they spread most on.
+    Median,
+    /// Where the two halves' box areas weighted by their face counts add up least.
+    Area,
+}
+
+/// Surface area of a box (half of it: only comparisons matter).
+fn area(b: &Box3) -> f64 {
+    let s = b.size();
+    s[0] * s[1] + s[1] * s[2] + s[2] * s[0]
+}
+
 /// A pair that could be merged, ordered so that the heap pops the smallest merged box first.
 #[derive(Debug, Clone, Copy)]
 struct Candidate {
@@ -190,12 +266,7 @@ struct Candidate {
 
 impl Candidate {
     fn key(&self) -> impl Ord {
-        (
-            Total(self.volume),
-            Total(self.area),
-            self.a,
-            self.b,
-        )
+        (Total(self.volume), Total(self.area), self.a, self.b)
     }
 }
 

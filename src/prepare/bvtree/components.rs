@@ -3,6 +3,7 @@
 //! sub-components by the parts of the next finer model, looking only at the elements its own
 //! faces simplify to; and so on down the levels.
 
+use crate::geom::Box3;
 use crate::scene::Mesh;
 
 use super::fcs::{cell_order, cluster, grades};
@@ -72,6 +73,11 @@ impl ComponentTree {
                 for (&f, &p) in t.nodes[c as usize].faces.iter().zip(&parts) {
                     groups[p as usize].push(f);
                 }
+                let groups = absorb_small(groups, mesh);
+                if groups.len() <= 1 {
+                    next.push(c);
+                    continue;
+                }
                 for faces in groups {
                     let id = t.nodes.len() as u32;
                     t.nodes.push(Component {
@@ -117,26 +123,85 @@ impl ComponentTree {
     }
 }
 
+/// Least faces of a component, absolute and as a share of the component it divides.
+pub const MIN_FACES: usize = 16;
+/// Least share of the divided component's faces.
+pub const MIN_SHARE: f64 = 0.02;
+
+/// The parts of a component with the small ones (under [`MIN_FACES`] faces or [`MIN_SHARE`]
+/// of the component) each given to the large part whose CBOX it grows least: a few faces
+/// scattered over the surface (a point part of a vertex where parts meet) would otherwise
+/// become a node whose box prunes nothing. The paper stops short of single polygons too.
+/// One group or none left means the component is not divided.
+fn absorb_small(groups: Vec<Vec<u32>>, mesh: &Mesh) -> Vec<Vec<u32>> {
+    let total: usize = groups.iter().map(Vec::len).sum();
+    let least = MIN_FACES.max((MIN_SHARE * total as f64).ceil() as usize);
+    let cbox = |faces: &[u32]| {
+        Box3::from_points(
+            faces
+                .iter()
+                .flat_map(|&f| &mesh.faces[f as usize].vertices)
+                .map(|&v| &mesh.vertices[v as usize]),
+        )
+    };
+    let (mut large, small): (Vec<Vec<u32>>, Vec<Vec<u32>>) =
+        groups.into_iter().partition(|g| g.len() >= least);
+    if large.len() <= 1 {
+        return Vec::new();
+    }
+    let mut boxes: Vec<Box3> = large.iter().map(|g| cbox(g)).collect();
+    for g in small {
+        let b = cbox(&g);
+        // Growth of volume, then of area (flat parts have no volume).
+        let area = |b: &Box3| {
+            let s = b.size();
+            s[0] * s[1] + s[1] * s[2] + s[2] * s[0]
+        };
+        let grow = |k: usize| {
+            let u = boxes[k].union(&b);
+            (u.volume() - boxes[k].volume(), area(&u) - area(&boxes[k]))
+        };
+        let k = (0..large.len())
+            .min_by(|&x, &y| {
+                let (a, b) = (grow(x), grow(y));
+                a.0.total_cmp(&b.0)
+                    .then(a.1.total_cmp(&b.1))
+                    .then(x.cmp(&y))
+            })
+            .unwrap_or(0);
+        boxes[k] = boxes[k].union(&b);
+        large[k].extend(g);
+    }
+    for g in &mut large {
+        g.sort_unstable();
+    }
+    large
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::geom::P3;
     use crate::scene::Face;
 
-    /// Two squares of 2 triangles each, far apart, and a long thin strip joining nothing.
+    /// Two flat 4 × 4 grids of unit squares (32 triangles each), 100 apart.
     fn two_islands() -> Mesh {
         let mut vertices = Vec::new();
         let mut faces = Vec::new();
         for x0 in [0.0, 100.0] {
             let k = vertices.len() as u32;
-            vertices.extend([
-                P3::new(x0, 0., 0.),
-                P3::new(x0 + 1., 0., 0.),
-                P3::new(x0 + 1., 1., 0.),
-                P3::new(x0, 1., 0.),
-            ]);
-            faces.push(Face::new(vec![k, k + 1, k + 2]));
-            faces.push(Face::new(vec![k, k + 2, k + 3]));
+            for j in 0..5 {
+                for i in 0..5 {
+                    vertices.push(P3::new(x0 + i as f64, j as f64, 0.));
+                }
+            }
+            let at = |i: u32, j: u32| k + j * 5 + i;
+            for j in 0..4 {
+                for i in 0..4 {
+                    faces.push(Face::new(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]));
+                    faces.push(Face::new(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]));
+                }
+            }
         }
         Mesh {
             vertices,
@@ -148,15 +213,31 @@ mod tests {
     #[test]
     fn separate_islands_become_components_and_partition_the_faces() {
         let m = two_islands();
-        // Width 5: each island collapses to a point; two points of no triangle: two parts (C1).
-        let t = ComponentTree::with_widths(&m, vec![5.0, 0.5]);
+        // Width 20: each island is within one ball around its first corner and collapses to
+        // a point: two points of no triangle, two parts (C1).
+        let t = ComponentTree::with_widths(&m, vec![20.0, 0.5]);
         assert_eq!(t.per_level, vec![2, 0]);
-        assert_eq!(t.clusters, vec![2, 8]);
+        assert_eq!(t.clusters, vec![2, 50]);
         assert_eq!(t.nodes[0].children, vec![1, 2]);
-        assert_eq!(t.nodes[1].faces, vec![0, 1]);
-        assert_eq!(t.nodes[2].faces, vec![2, 3]);
-        // At width 0.5 each island is two triangles sharing a side: one part, no split.
+        assert_eq!(t.nodes[1].faces, (0..32).collect::<Vec<u32>>());
+        assert_eq!(t.nodes[2].faces, (32..64).collect::<Vec<u32>>());
+        // At width 0.5 every vertex is its own cluster: each island stays one part.
         assert_eq!(t.leaves(), vec![1, 2]);
-        assert_eq!(t.face_component(4), vec![0, 0, 1, 1]);
+        let fc = t.face_component(64);
+        assert!(fc[..32].iter().all(|&c| c == 0) && fc[32..].iter().all(|&c| c == 1));
+    }
+
+    #[test]
+    fn small_parts_join_the_large_part_they_grow_least() {
+        let m = two_islands();
+        let big: Vec<u32> = (0..32).collect();
+        let other: Vec<u32> = (32..60).collect();
+        // Two faces of the far island alone are too small a part: they join that island's
+        // large part, whose box they do not grow.
+        let g = absorb_small(vec![big.clone(), other.clone(), vec![60, 61]], &m);
+        assert_eq!(g.len(), 2);
+        assert_eq!(g[1], (32..62).collect::<Vec<u32>>());
+        // A single large part: no division.
+        assert!(absorb_small(vec![big, vec![62, 63]], &m).is_empty());
     }
 }

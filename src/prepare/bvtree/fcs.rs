@@ -210,7 +210,10 @@ mod tests {
         assert_eq!(element(&[0, 1, 0], &rep), Element::Point(0));
         assert_eq!(element(&[0, 1, 2], &rep), Element::Edge(0, 2));
         assert_eq!(element(&[4, 3, 0], &rep), Element::Triangle(vec![0, 2, 3]));
-        assert_eq!(element(&[0, 2, 1, 3], &rep), Element::Triangle(vec![0, 2, 3]));
+        assert_eq!(
+            element(&[0, 2, 1, 3], &rep),
+            Element::Triangle(vec![0, 2, 3])
+        );
         assert_eq!(sides(&[4, 3, 1], &rep), vec![(2, 3), (0, 3), (0, 2)]);
     }
 }

@@ -23,6 +23,7 @@ use std::time::{Duration, Instant};
 use crate::geom::Box3;
 use crate::scene::Mesh;
 
+pub use binary::TopDown;
 use binary::{Arena, Build};
 pub use components::ComponentTree;
 
@@ -102,8 +103,19 @@ pub struct ObjectTree {
 }
 
 impl ObjectTree {
-    /// The tree of `kind` over the faces of `mesh`.
+    /// The tree of `kind` over the faces of `mesh`: below the leaf components of the
+    /// simplify tree the area split, the median split for the median tree.
     pub fn build(mesh: &Mesh, kind: HierarchyKind) -> ObjectTree {
+        let below = match kind {
+            HierarchyKind::Simplify => TopDown::Area,
+            HierarchyKind::Median => TopDown::Median,
+        };
+        Self::build_with(mesh, kind, below)
+    }
+
+    /// The tree of `kind` with the top-down split `below` under its leaf components (all of
+    /// the tree for the median kind): for measuring what each part brings.
+    pub fn build_with(mesh: &Mesh, kind: HierarchyKind, below: TopDown) -> ObjectTree {
         let mut arena = Arena::new(mesh);
         let mut times = BuildTimes::default();
         let (components, root) = match kind {
@@ -122,7 +134,7 @@ impl ObjectTree {
             }
         };
         let t = Instant::now();
-        arena.split_leaves(root);
+        arena.split_leaves(root, below);
         let mut tree = ObjectTree {
             kind,
             nodes: Vec::with_capacity(arena.nodes.len()),
@@ -195,7 +207,11 @@ fn upper(arena: &mut Arena, c: &ComponentTree, k: u32) -> usize {
     if node.children.is_empty() {
         return arena.leaf(node.faces.clone(), true);
     }
-    let kids: Vec<usize> = node.children.iter().map(|&ch| upper(arena, c, ch)).collect();
+    let kids: Vec<usize> = node
+        .children
+        .iter()
+        .map(|&ch| upper(arena, c, ch))
+        .collect();
     arena.merge_bottom_up(&kids)
 }
 
@@ -205,16 +221,16 @@ mod tests {
     use crate::geom::P3;
     use crate::scene::Face;
 
-    /// A grid of `n` × `n` unit squares (2 triangles each) at z = 0, and a far one-triangle
-    /// island, and a second grid far the other way.
+    /// Two grids of `n` × `n` unit squares (2 triangles each, gently curved) 50 apart, and
+    /// a 3 × 3 island far from both.
     fn scene_mesh(n: u32) -> Mesh {
         let mut vertices = Vec::new();
         let mut faces = Vec::new();
-        for x0 in [0.0, 50.0] {
+        for (x0, y0, n) in [(0.0, 0.0, n), (50.0, 0.0, n), (25.0, 30.0, 3)] {
             let base = vertices.len() as u32;
             for j in 0..=n {
                 for i in 0..=n {
-                    vertices.push(P3::new(x0 + i as f64, j as f64, 0.1 * (i * j) as f64));
+                    vertices.push(P3::new(x0 + i as f64, y0 + j as f64, 0.1 * (i * j) as f64));
                 }
             }
             let at = |i: u32, j: u32| base + j * (n + 1) + i;
@@ -225,9 +241,6 @@ mod tests {
                 }
             }
         }
-        let k = vertices.len() as u32;
-        vertices.extend([P3::new(25., 30., 0.), P3::new(26., 30., 0.), P3::new(25., 31., 0.)]);
-        faces.push(Face::new(vec![k, k + 1, k + 2]));
         Mesh {
             vertices,
             faces,
@@ -276,19 +289,23 @@ mod tests {
         let m = scene_mesh(6);
         let t = ObjectTree::build(&m, HierarchyKind::Simplify);
         // The two grids and the island are apart at the coarsest level.
-        assert!(t.components.per_level[0] >= 3, "{:?}", t.components.per_level);
+        assert!(
+            t.components.per_level[0] >= 3,
+            "{:?}",
+            t.components.per_level
+        );
         // The smallest merged box first: the two grids merge (a box 56 x 6 x 3.6) before
-        // either takes the island (26 x 31 x 3.6), so the island is a child of the root.
+        // either takes the island (a box 28 x 33 x 3.6), so the island is a child of the root.
         let [l, r] = t.nodes[0].children.unwrap();
         assert!(t.nodes[l as usize].component && t.nodes[r as usize].component);
         let sizes = [l, r].map(|c| t.nodes[c as usize].faces.len());
-        assert!(sizes.contains(&144) && sizes.contains(&1), "{sizes:?}");
+        assert!(sizes.contains(&144) && sizes.contains(&18), "{sizes:?}");
         // The median tree cuts the island's side at the median instead.
         let med = ObjectTree::build(&m, HierarchyKind::Median);
         assert!(med.components.nodes.is_empty());
         assert_eq!(med.shape().component_nodes, 0);
         let [l, r] = med.nodes[0].children.unwrap();
         let sizes = [l, r].map(|c| med.nodes[c as usize].faces.len());
-        assert_eq!(sizes, [72, 73]);
+        assert_eq!(sizes, [81, 81]);
     }
 }

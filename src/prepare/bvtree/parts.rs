@@ -191,7 +191,12 @@ mod tests {
 
     /// Faces given straight as representative lists (identity clustering).
     fn mesh(faces: &[&[u32]]) -> (Mesh, Vec<u32>) {
-        let n = 1 + faces.iter().flat_map(|f| f.iter()).max().copied().unwrap_or(0);
+        let n = 1 + faces
+            .iter()
+            .flat_map(|f| f.iter())
+            .max()
+            .copied()
+            .unwrap_or(0);
         let m = Mesh {
             vertices: (0..n).map(|i| P3::new(i as f64, 0., 0.)).collect(),
             faces: faces.iter().map(|f| Face::new(f.to_vec())).collect(),
@@ -208,16 +213,16 @@ mod tests {
         // stray edge with a lone end point (B1, B2); a point where a triangle and a stray
         // edge of different parts meet (C1).
         let faces: Vec<&[u32]> = vec![
-            &[0, 1, 2],    // T1
-            &[1, 2, 3],    // T2 shares side 1-2
-            &[1, 2, 1],    // E1: side 1-2
-            &[0, 3, 0],    // E2: stray, both ends on part 1
-            &[0, 0, 0],    // P1 at vertex 0
-            &[3, 4, 5],    // T7 shares only vertex 3 with part 1
-            &[5, 5, 5],    // P5 on T7 only
-            &[6, 7, 6],    // E4: stray edge
-            &[7, 7, 7],    // P6: end of E4 only
-            &[3, 3, 3],    // P4: on triangles of two parts
+            &[0, 1, 2], // T1
+            &[1, 2, 3], // T2 shares side 1-2
+            &[1, 2, 1], // E1: side 1-2
+            &[0, 3, 0], // E2: stray, both ends on part 1
+            &[0, 0, 0], // P1 at vertex 0
+            &[3, 4, 5], // T7 shares only vertex 3 with part 1
+            &[5, 5, 5], // P5 on T7 only
+            &[6, 7, 6], // E4: stray edge
+            &[7, 7, 7], // P6: end of E4 only
+            &[3, 3, 3], // P4: on triangles of two parts
         ];
         let (m, rep) = mesh(&faces);
         let all: Vec<u32> = (0..faces.len() as u32).collect();

@@ -110,7 +110,11 @@ mod tests {
         for i in 0..40 {
             let k = vertices.len() as u32;
             let x = 200.0 + 2.0 * i as f64;
-            vertices.extend([P3::new(x, 0., 0.), P3::new(x + 1., 0., 0.), P3::new(x, 1., 0.)]);
+            vertices.extend([
+                P3::new(x, 0., 0.),
+                P3::new(x + 1., 0., 0.),
+                P3::new(x, 1., 0.),
+            ]);
             faces.push(Face::new(vec![k, k + 1, k + 2]));
         }
         let m = Mesh {
