@@ -144,8 +144,8 @@ impl Arena {
                 Build::Faces(f) if f.len() > LEAF_FACES => {
                     let faces = std::mem::take(f);
                     let (l, r) = match rule {
-                        TopDown::Median => self.median_halves(faces),
                         TopDown::Area => self.area_halves(faces),
+                        TopDown::Median => self.median_halves(faces),
                     };
                     let (a, b) = (self.leaf(l, false), self.leaf(r, false));
                     self.nodes[n].build = Build::Pair(a, b);

@@ -3,6 +3,8 @@
 //! sub-components by the parts of the next finer model, looking only at the elements its own
 //! faces simplify to; and so on down the levels.
 
+use rayon::prelude::*;
+
 use crate::geom::Box3;
 use crate::scene::Mesh;
 
@@ -54,8 +56,13 @@ impl ComponentTree {
             }],
         };
         let mut leaves = vec![0u32];
-        for level in 1..=t.widths.len() {
-            let rep = cluster(&mesh.vertices, &order, t.widths[level - 1]);
+        // The simplified models are independent of each other: made in parallel.
+        let reps: Vec<Vec<u32>> = t
+            .widths
+            .par_iter()
+            .map(|&w| cluster(&mesh.vertices, &order, w))
+            .collect();
+        for (level, rep) in (1..=t.widths.len()).zip(reps) {
             let mut reps: Vec<u32> = rep.clone();
             reps.sort_unstable();
             reps.dedup();
