@@ -106,3 +106,115 @@ pub fn leaf_trees(scene: &crate::scene::Scene) -> Vec<Option<Arc<ObjectTree>>> {
     walk(&scene.root, &mut out);
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{PolyMesh, V3};
+    use crate::pipeline::{render, Outputs, RenderOptions};
+    use crate::prepare::{prepare_with, PrepareOptions};
+    use crate::scene::testing::leaf;
+    use crate::scene::Scene;
+    use crate::tribox::interfere::{interfere_with, Method};
+    use crate::view::Camera;
+
+    /// A closed, bumpy latitude-longitude sphere of radius about `r` at `c`: `n` rings of
+    /// `2n` quads, split into triangles, triangle fans at the poles.
+    fn sphere(n: u32, r: f64, c: V3) -> PolyMesh {
+        let m = 2 * n;
+        let mut v = vec![
+            P3::from(c + V3::new(0., 0., r)),
+            P3::from(c - V3::new(0., 0., r)),
+        ];
+        for i in 1..n {
+            for j in 0..m {
+                let (th, ph) = (
+                    std::f64::consts::PI * f64::from(i) / f64::from(n),
+                    std::f64::consts::TAU * f64::from(j) / f64::from(m),
+                );
+                let rr = r * (1.0 + 0.15 * (3.0 * ph).sin() * th.sin());
+                v.push(P3::from(
+                    c + V3::new(th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()) * rr,
+                ));
+            }
+        }
+        let at = |i: u32, j: u32| 2 + (i - 1) * m + (j % m);
+        let mut f = Vec::new();
+        for j in 0..m {
+            f.push(vec![0, at(1, j), at(1, j + 1)]);
+            f.push(vec![1, at(n - 1, j + 1), at(n - 1, j)]);
+        }
+        for i in 1..n - 1 {
+            for j in 0..m {
+                f.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                f.push(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        PolyMesh::new(v, f)
+    }
+
+    /// Three spheres of 2208 faces overlapping in depth and on the screen.
+    fn spheres() -> Scene {
+        let objs = (0..3)
+            .map(|k| {
+                let c = V3::new(0.8 * f64::from(k), 0.3 * f64::from(k), -1.5 * f64::from(k));
+                leaf(&format!("s{k}"), &sphere(24, 1.0, c))
+            })
+            .collect();
+        Scene::new(Object::group("", objs), "t".into())
+    }
+
+    fn prepared(kind: HierarchyKind) -> Scene {
+        let mut s = spheres();
+        prepare_with(&mut s, &PrepareOptions { hierarchy: kind });
+        s
+    }
+
+    #[test]
+    fn trees_are_prepared_once_per_mesh_and_answers_do_not_change() {
+        let simplify = prepared(HierarchyKind::Simplify);
+        let median = prepared(HierarchyKind::Median);
+        let trees = leaf_trees(&simplify);
+        assert_eq!(trees.len(), 3);
+        for t in &trees {
+            let t = t.as_ref().expect("a tree for every large mesh");
+            assert_eq!(t.kind, HierarchyKind::Simplify);
+            assert_eq!(t.faces.len(), 2208);
+        }
+        assert!(leaf_trees(&median).iter().all(Option::is_none));
+        let json = |s: &Scene| {
+            let outputs = Outputs {
+                json: true,
+                ..Outputs::default()
+            };
+            let cam = Camera::orthographic(V3::new(0.2, -0.1, -1.0), V3::y()).unwrap();
+            let r = render(
+                s,
+                &cam,
+                &RenderOptions {
+                    outputs,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            assert!(r.stats.counters.nodes_visited > 0);
+            r.json.unwrap()
+        };
+        // The walk order differs; the visible-polygon sets are the same bytes.
+        let (a, b) = (json(&simplify), json(&median));
+        assert!(a.len() > 1000);
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn interference_is_the_same_by_every_method() {
+        let s = prepared(HierarchyKind::Simplify);
+        let brute = interfere_with(&s, Method::Brute);
+        assert!(brute.tribox_meet.iter().any(|p| p.2), "{brute:?}");
+        for kind in [HierarchyKind::Simplify, HierarchyKind::Median] {
+            let t = interfere_with(&s, Method::Tree(kind));
+            assert_eq!(t.tribox_meet, brute.tribox_meet);
+            assert!(t.bv_tests > 0);
+        }
+    }
+}
