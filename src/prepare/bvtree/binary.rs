@@ -162,45 +162,12 @@ impl Arena {
     /// separates anything.
     fn area_halves(&self, faces: Vec<u32>) -> (Vec<u32>, Vec<u32>) {
         let c = &self.centres;
-        let mut best: Option<(f64, usize, f64)> = None;
-        for axis in 0..3 {
-            let (lo, hi) = faces
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| {
-                    let x = c[f as usize][axis];
-                    (lo.min(x), hi.max(x))
-                });
-            if !(hi > lo) {
-                continue;
-            }
-            let bin =
-                |x: f64| (((x - lo) / (hi - lo) * AREA_BINS as f64) as usize).min(AREA_BINS - 1);
-            let mut boxes = [Box3::empty(); AREA_BINS];
-            let mut counts = [0usize; AREA_BINS];
-            for &f in &faces {
-                let b = bin(c[f as usize][axis]);
-                boxes[b] = boxes[b].union(&self.face_boxes[f as usize]);
-                counts[b] += 1;
-            }
-            // Areas and counts of every prefix and suffix of bins.
-            let mut right = vec![(Box3::empty(), 0usize); AREA_BINS + 1];
-            for b in (0..AREA_BINS).rev() {
-                right[b] = (right[b + 1].0.union(&boxes[b]), right[b + 1].1 + counts[b]);
-            }
-            let mut left = (Box3::empty(), 0usize);
-            for b in 0..AREA_BINS - 1 {
-                left = (left.0.union(&boxes[b]), left.1 + counts[b]);
-                let r = &right[b + 1];
-                if left.1 == 0 || r.1 == 0 {
-                    continue;
-                }
-                let cost = area(&left.0) * left.1 as f64 + area(&r.0) * r.1 as f64;
-                if best.is_none_or(|(bc, _, _)| cost < bc) {
-                    let at = lo + (hi - lo) * (b + 1) as f64 / AREA_BINS as f64;
-                    best = Some((cost, axis, at));
-                }
-            }
-        }
+        let best = (0..3)
+            .filter_map(|axis| {
+                self.best_plane(&faces, axis)
+                    .map(|(cost, at)| (cost, axis, at))
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let Some((_, axis, at)) = best else {
             return self.median_halves(faces);
         };
@@ -209,6 +176,46 @@ impl Arena {
             return self.median_halves(faces);
         }
         (l, r)
+    }
+
+    /// The least cost of a plane normal to `axis` through `faces` and where it lies.
+    fn best_plane(&self, faces: &[u32], axis: usize) -> Option<(f64, f64)> {
+        let x = |f: u32| self.centres[f as usize][axis];
+        let (lo, hi) = faces
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| {
+                (lo.min(x(f)), hi.max(x(f)))
+            });
+        if hi <= lo {
+            return None;
+        }
+        let bin = |v: f64| (((v - lo) / (hi - lo) * AREA_BINS as f64) as usize).min(AREA_BINS - 1);
+        let mut boxes = [Box3::empty(); AREA_BINS];
+        let mut counts = [0usize; AREA_BINS];
+        for &f in faces {
+            let b = bin(x(f));
+            boxes[b] = boxes[b].union(&self.face_boxes[f as usize]);
+            counts[b] += 1;
+        }
+        // Boxes and counts of every suffix of bins, then prefixes as the plane moves.
+        let mut right = vec![(Box3::empty(), 0usize); AREA_BINS + 1];
+        for b in (0..AREA_BINS).rev() {
+            right[b] = (right[b + 1].0.union(&boxes[b]), right[b + 1].1 + counts[b]);
+        }
+        let mut left = (Box3::empty(), 0usize);
+        let mut best: Option<(f64, f64)> = None;
+        for b in 0..AREA_BINS - 1 {
+            left = (left.0.union(&boxes[b]), left.1 + counts[b]);
+            let r = &right[b + 1];
+            if left.1 == 0 || r.1 == 0 {
+                continue;
+            }
+            let cost = area(&left.0) * left.1 as f64 + area(&r.0) * r.1 as f64;
+            if best.is_none_or(|(bc, _)| cost < bc) {
+                best = Some((cost, lo + (hi - lo) * (b + 1) as f64 / AREA_BINS as f64));
+            }
+        }
+        best
     }
 
     /// The median split of `faces` along the axis their centres spread most on.
