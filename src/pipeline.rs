@@ -32,8 +32,8 @@ pub struct RenderOptions {
     /// Replace small objects by their triboxes first ("model no more than a scene needs").
     pub lod: Option<LodOptions>,
     /// The object tree the substitutes of `lod` are prepared with (the caller prepares the
-    /// scene itself: [`crate::prepare::prepare_with`]).
-    pub hierarchy: HierarchyKind,
+    /// scene itself: [`crate::prepare::prepare_with`]); None: the default choice.
+    pub hierarchy: Option<HierarchyKind>,
 }
 
 /// The outputs [`render`] emits (each into memory, in [`Rendered`]).

@@ -4,10 +4,9 @@ use clap::{Args, ValueEnum};
 use kepler_hsr::prepare::{HierarchyKind, PrepareOptions};
 
 /// `--hierarchy` values.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum HierarchyArg {
     /// Paper 002: components of simplified models, merged bottom-up (prepared once).
-    #[default]
     Simplify,
     /// The median split (made per view for rendering; in 3D for --interfere).
     Median,
@@ -17,17 +16,27 @@ pub(crate) enum HierarchyArg {
 #[derive(Args, Debug, Clone, Copy, Default)]
 pub(crate) struct HierarchyArgs {
     /// Object tree of flat meshes: simplify (paper 002) or median; answers are identical.
-    #[arg(long, value_enum, value_name = "KIND", default_value = "simplify")]
-    pub(crate) hierarchy: HierarchyArg,
+    /// Default, the faster as measured: for render, simplify for meshes placed more than
+    /// once and median for a mesh drawn once; for --interfere, simplify.
+    #[arg(long, value_enum, value_name = "KIND")]
+    pub(crate) hierarchy: Option<HierarchyArg>,
 }
 
 impl HierarchyArgs {
-    /// The kind asked for.
-    pub(crate) fn kind(&self) -> HierarchyKind {
-        match self.hierarchy {
+    /// The kind asked for (None: the default choice).
+    pub(crate) fn kind(&self) -> Option<HierarchyKind> {
+        self.hierarchy.map(|h| match h {
             HierarchyArg::Simplify => HierarchyKind::Simplify,
             HierarchyArg::Median => HierarchyKind::Median,
-        }
+        })
+    }
+
+    /// The name of the choice, for --stats.
+    pub(crate) fn name(&self) -> &'static str {
+        self.kind().map_or(
+            "default (simplify for shared prototypes, else median)",
+            HierarchyKind::name,
+        )
     }
 
     /// The prepare options for it.

@@ -155,7 +155,11 @@ fn print_hierarchy(o: &Object, m: &Mesh, indent: &str) {
     out(&format!(
         "{indent}  hierarchy {}{}: {} nodes, depth {}, {} leaves, {} upper nodes; {} levels, cell widths [{}], clusters [{}], components per level [{}]",
         t.kind.name(),
-        if prepared { "" } else { " (not prepared: too small)" },
+        if prepared {
+            ""
+        } else {
+            " (built here: the view splits this mesh per view)"
+        },
         s.nodes,
         s.depth,
         s.leaves,

@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use anyhow::{anyhow, bail, Result};
 use clap::Args;
 use kepler_hsr::geom::{M4, P3};
+use kepler_hsr::prepare::HierarchyKind;
 use kepler_hsr::tribox::interfere::Method;
 use kepler_hsr::view::View;
 use kepler_hsr::visibility::{include, visobj, visp, Inclusion, PointVisibility, Verdict};
@@ -61,7 +62,7 @@ pub(crate) fn run(a: QueryArgs) -> Result<ExitCode> {
         let method = if a.brute {
             Method::Brute
         } else {
-            Method::Tree(a.hierarchy.kind())
+            Method::Tree(a.hierarchy.kind().unwrap_or(HierarchyKind::Simplify))
         };
         out(&super::tribox::interfere_report(&scene, method, a.stats));
         return Ok(ExitCode::SUCCESS);

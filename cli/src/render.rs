@@ -146,7 +146,7 @@ pub(crate) fn run(a: RenderArgs) -> Result<ExitCode> {
     let written = t.elapsed();
     if a.stats {
         eprintln!("faces: {}", scene.face_count());
-        eprintln!("hierarchy: {}", a.hierarchy.kind().name());
+        eprintln!("hierarchy: {}", a.hierarchy.name());
         if let Some(l) = &r.stats.lod {
             eprintln!("{}", super::tribox::lod_report(l));
         }

@@ -19,8 +19,12 @@ use crate::scene::Scene;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct PrepareOptions {
     /// The object tree flat meshes get: with [`HierarchyKind::Median`] none is prepared and
-    /// the view splits each mesh at the median per view, as before paper 002.
-    pub hierarchy: HierarchyKind,
+    /// the view splits each mesh at the median per view, as before paper 002. None (the
+    /// default) is the better one as measured: paper 002's tree for the meshes of prototypes
+    /// placed more than once (one tree instead of one median split per placement and view),
+    /// the median split per view for a mesh drawn once (building a tree costs more than one
+    /// view saves: NOTES-issue12.md).
+    pub hierarchy: Option<HierarchyKind>,
 }
 
 /// The prepare stage for a whole scene with the default options.
@@ -36,7 +40,11 @@ pub fn prepare_with(scene: &mut Scene, opts: &PrepareOptions) {
     if several {
         compute_inboxes(&mut scene.root);
     }
-    if opts.hierarchy == HierarchyKind::Simplify {
-        trees::attach_trees(&mut scene.root, opts.hierarchy, several);
+    match opts.hierarchy {
+        Some(HierarchyKind::Simplify) => {
+            trees::attach_trees(&mut scene.root, HierarchyKind::Simplify, several, false)
+        }
+        Some(HierarchyKind::Median) => {}
+        None => trees::attach_trees(&mut scene.root, HierarchyKind::Simplify, several, true),
     }
 }

@@ -20,47 +20,80 @@ pub const INBOX_MIN_FACES: usize = 64;
 /// Least share of the mesh's faces for a component to get an INBOX.
 pub const INBOX_SHARE: f64 = 1.0 / 64.0;
 
-/// Attaches a tree of `kind` to every leaf mesh of at least [`MIN_FACES`] faces that has none;
-/// with `inboxes`, closed meshes' large components get inboxes too.
-pub fn attach_trees(root: &mut Object, kind: HierarchyKind, inboxes: bool) {
-    let mut done = HashMap::new();
-    attach(root, kind, inboxes, &mut done);
+/// Attaches a tree of `kind` to every leaf mesh of at least [`MIN_FACES`] faces that has none
+/// (with `shared_only`, only to meshes of prototypes placed more than once); with `inboxes`,
+/// closed meshes' large components get inboxes too.
+pub fn attach_trees(root: &mut Object, kind: HierarchyKind, inboxes: bool, shared_only: bool) {
+    let mut placements = HashMap::new();
+    count_placements(root, &mut placements);
+    let mut w = Attach {
+        kind,
+        inboxes,
+        shared_only,
+        placements,
+        done: HashMap::new(),
+    };
+    w.attach(root, false);
 }
 
-fn attach(
-    obj: &mut Object,
+/// How often each prototype (by address) is placed.
+fn count_placements(obj: &Object, out: &mut HashMap<usize, usize>) {
+    match &obj.content {
+        Content::Mesh(_) => {}
+        Content::Subobjects(subs) => subs.iter().for_each(|s| count_placements(s, out)),
+        Content::Instance(i) => {
+            let n = out.entry(Arc::as_ptr(&i.prototype) as usize).or_default();
+            *n += 1;
+            if *n == 1 {
+                count_placements(&i.prototype, out);
+            }
+        }
+    }
+}
+
+/// The walk attaching trees, with the prototypes already prepared (by address).
+struct Attach {
     kind: HierarchyKind,
     inboxes: bool,
-    done: &mut HashMap<usize, Arc<Object>>,
-) {
-    match &mut obj.content {
-        Content::Mesh(m) => {
-            if obj.tree.is_none() && m.faces.len() >= MIN_FACES {
-                let mut t = ObjectTree::build(m, kind);
-                if inboxes && m.closed {
-                    component_inboxes(&mut t, m);
+    shared_only: bool,
+    placements: HashMap<usize, usize>,
+    done: HashMap<usize, Arc<Object>>,
+}
+
+impl Attach {
+    /// Attaches below `obj`; `shared` tells whether it lies in a prototype placed more than once.
+    fn attach(&mut self, obj: &mut Object, shared: bool) {
+        match &mut obj.content {
+            Content::Mesh(m) => {
+                let wanted = shared || !self.shared_only;
+                if obj.tree.is_none() && m.faces.len() >= MIN_FACES && wanted {
+                    let mut t = ObjectTree::build(m, self.kind);
+                    if self.inboxes && m.closed {
+                        component_inboxes(&mut t, m);
+                    }
+                    obj.tree = Some(Arc::new(t));
                 }
-                obj.tree = Some(Arc::new(t));
             }
-        }
-        Content::Subobjects(subs) => {
-            for s in subs {
-                attach(s, kind, inboxes, done);
-            }
-        }
-        Content::Instance(i) => {
-            let key = Arc::as_ptr(&i.prototype) as usize;
-            let p = match done.get(&key) {
-                Some(p) => p.clone(),
-                None => {
-                    let mut copy = (*i.prototype).clone();
-                    attach(&mut copy, kind, inboxes, done);
-                    let p = Arc::new(copy);
-                    done.insert(key, p.clone());
-                    p
+            Content::Subobjects(subs) => {
+                for s in subs {
+                    self.attach(s, shared);
                 }
-            };
-            i.prototype = p;
+            }
+            Content::Instance(i) => {
+                let key = Arc::as_ptr(&i.prototype) as usize;
+                let p = match self.done.get(&key) {
+                    Some(p) => p.clone(),
+                    None => {
+                        let many = self.placements.get(&key).is_some_and(|&n| n >= 2);
+                        let mut copy = (*i.prototype).clone();
+                        self.attach(&mut copy, shared || many);
+                        let p = Arc::new(copy);
+                        self.done.insert(key, p.clone());
+                        p
+                    }
+                };
+                i.prototype = p;
+            }
         }
     }
 }
@@ -166,7 +199,12 @@ mod tests {
 
     fn prepared(kind: HierarchyKind) -> Scene {
         let mut s = spheres();
-        prepare_with(&mut s, &PrepareOptions { hierarchy: kind });
+        prepare_with(
+            &mut s,
+            &PrepareOptions {
+                hierarchy: Some(kind),
+            },
+        );
         s
     }
 
@@ -182,6 +220,10 @@ mod tests {
             assert_eq!(t.faces.len(), 2208);
         }
         assert!(leaf_trees(&median).iter().all(Option::is_none));
+        // By default a mesh drawn once keeps the per-view median split.
+        let mut auto = spheres();
+        prepare_with(&mut auto, &PrepareOptions::default());
+        assert!(leaf_trees(&auto).iter().all(Option::is_none));
         let json = |s: &Scene| {
             let outputs = Outputs {
                 json: true,
