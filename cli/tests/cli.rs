@@ -133,7 +133,7 @@ fn info_json_gives_every_mesh_a_hierarchy_and_both_trees_render_the_same_bytes()
     };
     let o = kepler(&["info", s(&cow), "-q"]);
     let text = String::from_utf8_lossy(&o.stdout);
-    assert!(text.contains("hierarchy simplify:") && text.contains("component 0 (level 0)"));
+    assert!(text.contains("hierarchy simplify") && text.contains("component 0 (level 0)"));
     let json = |h: &str| {
         let f = d.join(format!("cow-{h}.json"));
         let o = kepler(&["render", s(&cow), "--json", s(&f), "--hierarchy", h, "-q"]);
