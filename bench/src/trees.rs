@@ -342,34 +342,14 @@ pub fn run_tables(
 mod tests {
     use super::*;
 
-    /// A closed octahedron of 8 faces, scaled: small enough for a quick box.
+    /// The closed octahedron of the primitives, cleaned.
     fn octahedron() -> Mesh {
-        let v = [
-            [1., 0., 0.],
-            [-1., 0., 0.],
-            [0., 1., 0.],
-            [0., -1., 0.],
-            [0., 0., 1.],
-            [0., 0., -1.],
-        ];
-        let f: [[u32; 3]; 8] = [
-            [0, 2, 4],
-            [2, 1, 4],
-            [1, 3, 4],
-            [3, 0, 4],
-            [2, 0, 5],
-            [1, 2, 5],
-            [3, 1, 5],
-            [0, 3, 5],
-        ];
-        Mesh {
-            vertices: v
-                .iter()
-                .map(|c| kepler_hsr::geom::P3::new(c[0], c[1], c[2]))
-                .collect(),
-            faces: f.iter().map(|t| Face::new(t.to_vec())).collect(),
-            closed: true,
-        }
+        let raw = kepler_hsr::primitives::by_name("octahedron").unwrap();
+        let origin = kepler_hsr::scene::cleanup::Origin {
+            file: Path::new("octahedron"),
+            face_pos: &[],
+        };
+        kepler_hsr::scene::cleanup::cleanup(&raw, &origin, &mut Vec::new()).unwrap()
     }
 
     #[test]

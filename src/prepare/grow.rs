@@ -49,22 +49,7 @@ pub fn grown_inbox(tris: &Triangles, cbox: &Box3, centroid: &P3) -> Option<Box3>
     };
     let mut points = seed_points(cbox, centroid);
     points.extend(ray_seeds(tris, RAY_SEEDS));
-    let mut seeds: Vec<(f64, P3)> = points
-        .into_iter()
-        .map(|p| (field.clearance(&p), p))
-        .filter(|(r, _)| *r > 0.0)
-        .collect();
-    seeds.sort_by(|a, b| b.0.total_cmp(&a.0));
-
-    seeds
-        .iter()
-        .filter_map(|(r, p)| {
-            let b = cube(p, 0.99 * r);
-            (field.free(&b) && inside(tris, p)).then_some(b)
-        })
-        .take(GROWN_SEEDS)
-        .map(|b| field.grow(b, cbox))
-        .max_by(|a, b| a.volume().total_cmp(&b.volume()))
+    field.grow_seeds(points, tris, cbox)
 }
 
 /// An INBOX within `region` (a part of the closed mesh's CBOX, such as a component's CBOX):
@@ -98,22 +83,11 @@ pub fn grown_inbox_in(tris: &Triangles, region: &Box3, centroid: &P3, scale: f64
         margin,
         region: Some(*region),
     };
-    let mut seeds: Vec<(f64, P3)> = seed_points(region, centroid)
+    let points = seed_points(region, centroid)
         .into_iter()
         .filter(|p| region.contains(p))
-        .map(|p| (field.clearance(&p), p))
-        .filter(|(r, _)| *r > 0.0)
         .collect();
-    seeds.sort_by(|a, b| b.0.total_cmp(&a.0));
-    seeds
-        .iter()
-        .filter_map(|(r, p)| {
-            let b = cube(p, 0.99 * r);
-            (field.free(&b) && inside(tris, p)).then_some(b)
-        })
-        .take(GROWN_SEEDS)
-        .map(|b| field.grow(b, region))
-        .max_by(|a, b| a.volume().total_cmp(&b.volume()))
+    field.grow_seeds(points, tris, region)
 }
 
 fn cube(p: &P3, r: f64) -> Box3 {
@@ -198,6 +172,26 @@ fn solid_angle(a: &V3, b: &V3, c: &V3) -> f64 {
 }
 
 impl Field<'_> {
+    /// The largest box grown within `cbox` from the clearest seeds inside the solid of `all`
+    /// (the winding number is taken over every triangle, not only the field's).
+    fn grow_seeds(&self, points: Vec<P3>, all: &Triangles, cbox: &Box3) -> Option<Box3> {
+        let mut seeds: Vec<(f64, P3)> = points
+            .into_iter()
+            .map(|p| (self.clearance(&p), p))
+            .filter(|(r, _)| *r > 0.0)
+            .collect();
+        seeds.sort_by(|a, b| b.0.total_cmp(&a.0));
+        seeds
+            .iter()
+            .filter_map(|(r, p)| {
+                let b = cube(p, 0.99 * r);
+                (self.free(&b) && inside(all, p)).then_some(b)
+            })
+            .take(GROWN_SEEDS)
+            .map(|b| self.grow(b, cbox))
+            .max_by(|a, b| a.volume().total_cmp(&b.volume()))
+    }
+
     /// A lower bound of the L∞ distance from `p` to every face, less the margin: per face
     /// the larger of the L∞ distance to its bounding box and its Euclidean distance / √3.
     fn clearance(&self, p: &P3) -> f64 {
