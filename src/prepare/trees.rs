@@ -259,4 +259,43 @@ mod tests {
             assert!(t.bv_tests > 0);
         }
     }
+
+    #[test]
+    fn lod_draws_a_mesh_of_two_far_parts_as_a_tribox_per_part() {
+        let mut two = sphere(12, 1.0, V3::zeros());
+        let far = sphere(12, 1.0, V3::new(10., 0., 0.));
+        let base = two.vertices.len() as u32;
+        two.vertices.extend(far.vertices);
+        two.faces.extend(
+            far.faces
+                .into_iter()
+                .map(|f| f.into_iter().map(|v| v + base).collect()),
+        );
+        let mut s = Scene::new(Object::group("", vec![leaf("two", &two)]), "t".into());
+        prepare_with(
+            &mut s,
+            &PrepareOptions {
+                hierarchy: Some(HierarchyKind::Simplify),
+            },
+        );
+        let cam = Camera::three_quarter();
+        let (out, stats) =
+            crate::view::substitute(&s, &cam, &crate::view::LodOptions::new(1e9, 100));
+        assert_eq!(stats.objects_replaced, 1);
+        // One tribox would span the gap between the spheres; the components' do not.
+        assert!(stats.triboxes >= 2, "{stats:?}");
+        let sub = &out.root.subobjects()[0];
+        assert!(sub.vertices().iter().all(|v| v.x < 1.5 || v.x > 8.5));
+        // Without a tree: one tribox.
+        let mut bare = Scene::new(Object::group("", vec![leaf("two", &two)]), "t".into());
+        prepare_with(
+            &mut bare,
+            &PrepareOptions {
+                hierarchy: Some(HierarchyKind::Median),
+            },
+        );
+        let (_, one) =
+            crate::view::substitute(&bare, &cam, &crate::view::LodOptions::new(1e9, 100));
+        assert_eq!(one.triboxes, 1);
+    }
 }

@@ -126,10 +126,9 @@ impl Arena {
 
     fn candidate(&self, a: usize, b: usize) -> Candidate {
         let u = self.nodes[a].cbox.union(&self.nodes[b].cbox);
-        let s = u.size();
         Candidate {
             volume: u.volume(),
-            area: s[0] * s[1] + s[1] * s[2] + s[2] * s[0],
+            area: area(&u),
             a: a.min(b),
             b: a.max(b),
         }
@@ -257,7 +256,7 @@ pub enum TopDown {
 }
 
 /// Surface area of a box (half of it: only comparisons matter).
-fn area(b: &Box3) -> f64 {
+pub(super) fn area(b: &Box3) -> f64 {
     let s = b.size();
     s[0] * s[1] + s[1] * s[2] + s[2] * s[0]
 }

@@ -8,6 +8,7 @@ use rayon::prelude::*;
 use crate::geom::Box3;
 use crate::scene::Mesh;
 
+use super::binary::area;
 use super::fcs::{cell_order, cluster, grades};
 use super::parts::face_parts;
 use super::widths::cell_widths;
@@ -160,10 +161,6 @@ fn absorb_small(groups: Vec<Vec<u32>>, mesh: &Mesh) -> Vec<Vec<u32>> {
     for g in small {
         let b = cbox(&g);
         // Growth of volume, then of area (flat parts have no volume).
-        let area = |b: &Box3| {
-            let s = b.size();
-            s[0] * s[1] + s[1] * s[2] + s[2] * s[0]
-        };
         let grow = |k: usize| {
             let u = boxes[k].union(&b);
             (u.volume() - boxes[k].volume(), area(&u) - area(&boxes[k]))
@@ -188,33 +185,10 @@ fn absorb_small(groups: Vec<Vec<u32>>, mesh: &Mesh) -> Vec<Vec<u32>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::P3;
-    use crate::scene::Face;
 
     /// Two flat 4 × 4 grids of unit squares (32 triangles each), 100 apart.
     fn two_islands() -> Mesh {
-        let mut vertices = Vec::new();
-        let mut faces = Vec::new();
-        for x0 in [0.0, 100.0] {
-            let k = vertices.len() as u32;
-            for j in 0..5 {
-                for i in 0..5 {
-                    vertices.push(P3::new(x0 + i as f64, j as f64, 0.));
-                }
-            }
-            let at = |i: u32, j: u32| k + j * 5 + i;
-            for j in 0..4 {
-                for i in 0..4 {
-                    faces.push(Face::new(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]));
-                    faces.push(Face::new(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]));
-                }
-            }
-        }
-        Mesh {
-            vertices,
-            faces,
-            closed: false,
-        }
+        super::super::grids(&[(0.0, 0.0, 4), (100.0, 0.0, 4)], 0.0)
     }
 
     #[test]

@@ -215,37 +215,44 @@ fn upper(arena: &mut Arena, c: &ComponentTree, k: u32) -> usize {
     arena.merge_bottom_up(&kids)
 }
 
+/// Grids of unit squares (2 triangles each) with corners at (x0, y0) and `n` squares a
+/// side, at z = `bend` · i · j (0: flat), as one mesh: test data for the tree's modules.
+#[cfg(test)]
+pub(crate) fn grids(specs: &[(f64, f64, u32)], bend: f64) -> Mesh {
+    use crate::geom::P3;
+    use crate::scene::Face;
+    let mut vertices = Vec::new();
+    let mut faces = Vec::new();
+    for &(x0, y0, n) in specs {
+        let base = vertices.len() as u32;
+        for j in 0..=n {
+            for i in 0..=n {
+                vertices.push(P3::new(x0 + i as f64, y0 + j as f64, bend * (i * j) as f64));
+            }
+        }
+        let at = |i: u32, j: u32| base + j * (n + 1) + i;
+        for j in 0..n {
+            for i in 0..n {
+                faces.push(Face::new(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]));
+                faces.push(Face::new(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]));
+            }
+        }
+    }
+    Mesh {
+        vertices,
+        faces,
+        closed: false,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::P3;
-    use crate::scene::Face;
 
-    /// Two grids of `n` × `n` unit squares (2 triangles each, gently curved) 50 apart, and
-    /// a 3 × 3 island far from both.
+    /// Two grids of `n` × `n` unit squares (gently curved) 50 apart, and a 3 × 3 island
+    /// far from both.
     fn scene_mesh(n: u32) -> Mesh {
-        let mut vertices = Vec::new();
-        let mut faces = Vec::new();
-        for (x0, y0, n) in [(0.0, 0.0, n), (50.0, 0.0, n), (25.0, 30.0, 3)] {
-            let base = vertices.len() as u32;
-            for j in 0..=n {
-                for i in 0..=n {
-                    vertices.push(P3::new(x0 + i as f64, y0 + j as f64, 0.1 * (i * j) as f64));
-                }
-            }
-            let at = |i: u32, j: u32| base + j * (n + 1) + i;
-            for j in 0..n {
-                for i in 0..n {
-                    faces.push(Face::new(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]));
-                    faces.push(Face::new(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]));
-                }
-            }
-        }
-        Mesh {
-            vertices,
-            faces,
-            closed: false,
-        }
+        grids(&[(0.0, 0.0, n), (50.0, 0.0, n), (25.0, 30.0, 3)], 0.1)
     }
 
     /// Every node's faces are its children's, its CBOX holds its faces, leaves hold at most
