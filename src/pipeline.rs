@@ -13,6 +13,7 @@ use crate::emit::picture::{picture, Picture};
 use crate::emit::png::to_png;
 use crate::emit::svg::to_svg;
 use crate::error::Result;
+use crate::prepare::{HierarchyKind, PrepareOptions};
 use crate::scene::Scene;
 use crate::view::{substitute, Camera, Cull, LodOptions, LodStats, View};
 use crate::visibility::{solve_counted, Counters, PassOptions, Visibility};
@@ -30,6 +31,9 @@ pub struct RenderOptions {
     pub no_inbox: bool,
     /// Replace small objects by their triboxes first ("model no more than a scene needs").
     pub lod: Option<LodOptions>,
+    /// The object tree the substitutes of `lod` are prepared with (the caller prepares the
+    /// scene itself: [`crate::prepare::prepare_with`]); None: the default choice.
+    pub hierarchy: Option<HierarchyKind>,
 }
 
 /// The outputs [`render`] emits (each into memory, in [`Rendered`]).
@@ -264,7 +268,12 @@ pub fn render_with<'s>(
             let (mut s, lod_stats) =
                 stats.timed(Stage::Lod, progress, || substitute(scene, camera, lod));
             stats.lod = Some(lod_stats);
-            stats.timed(Stage::Prepare, progress, || crate::prepare::prepare(&mut s));
+            let prep = PrepareOptions {
+                hierarchy: opts.hierarchy,
+            };
+            stats.timed(Stage::Prepare, progress, || {
+                crate::prepare::prepare_with(&mut s, &prep)
+            });
             Cow::Owned(s)
         }
         None => Cow::Borrowed(scene),

@@ -10,6 +10,7 @@ pub mod rays;
 pub mod report;
 pub mod suite;
 pub mod town;
+pub mod trees;
 pub mod zbuffer;
 
 use std::io::Write as _;
@@ -47,6 +48,10 @@ pub struct BenchArgs {
     /// 10,30,100 with --quick).
     #[arg(long, value_name = "N,...", value_delimiter = ',')]
     pub town: Option<Vec<usize>>,
+    /// Only paper 002's tables (object trees: preprocessing, and interference in boxes of
+    /// moving instances over this many steps), written to OUT/trees.md.
+    #[arg(long, value_name = "STEPS")]
+    pub trees: Option<usize>,
     /// Internal: run one case once in this process and print its peak memory and stage
     /// times (every timed run is such a fresh process).
     #[arg(long, hide = true, value_name = "CASE/VIEW")]
@@ -286,6 +291,12 @@ pub fn run(a: BenchArgs) -> Result<ExitCode> {
     let models = models_dir(&a);
     if let Some(spec) = &a.child {
         return child(spec, &models);
+    }
+    if let Some(steps) = a.trees {
+        std::fs::create_dir_all(&a.out).with_context(|| format!("{}", a.out.display()))?;
+        let doc = trees::run_tables(&models, &a.out, steps, &suite::MODELS)?;
+        println!("{doc}");
+        return Ok(ExitCode::SUCCESS);
     }
     let plan = Plan::of(&a);
     std::fs::create_dir_all(&a.out).with_context(|| format!("{}", a.out.display()))?;

@@ -7,7 +7,9 @@ use anyhow::Result;
 use clap::Args;
 use kepler_hsr::emit::json::{json_string, num};
 use kepler_hsr::geom::Box3;
-use kepler_hsr::scene::{Content, Object};
+use kepler_hsr::prepare::{HierarchyKind, ObjectTree};
+use kepler_hsr::scene::{Content, Mesh, Object};
+use std::sync::Arc;
 
 use super::{load, out};
 
@@ -19,6 +21,14 @@ pub(crate) struct InfoArgs {
     /// Print JSON instead of the tree.
     #[arg(long)]
     pub(crate) json: bool,
+    /// Write a picture of each mesh's components, one colour per leaf component (SVG).
+    #[arg(long, value_name = "F")]
+    pub(crate) components: Option<PathBuf>,
+    /// Pixels along the longer side of the --components picture.
+    #[arg(long, value_name = "PX", default_value_t = 800)]
+    pub(crate) size: u32,
+    #[command(flatten)]
+    pub(crate) camera: super::CameraArgs,
     /// Do not print warnings.
     #[arg(long, short)]
     pub(crate) quiet: bool,
@@ -27,6 +37,13 @@ pub(crate) struct InfoArgs {
 /// Runs `kepler info`.
 pub(crate) fn run(a: InfoArgs) -> Result<ExitCode> {
     let scene = load(&a.scene, a.quiet)?;
+    if let Some(f) = &a.components {
+        let camera = a.camera.camera(&scene)?;
+        super::write(
+            f,
+            super::components::components_svg(&scene, &camera, a.size)?,
+        )?;
+    }
     if a.json {
         out(&object_json(&scene.root, "scene"));
     } else {
@@ -108,9 +125,94 @@ fn print_tree(o: &Object, name: &str, depth: usize) {
             100.0 * ratio
         ));
     }
+    if let Content::Mesh(m) = &o.content {
+        print_hierarchy(o, m, &indent);
+    }
     for s in o.subobjects() {
         print_tree(s, &s.name, depth + 1);
     }
+}
+
+/// Most component lines printed per mesh.
+const MAX_COMPONENT_LINES: usize = 40;
+
+/// The object tree of a mesh: the prepared one, or one built here for a mesh too small to
+/// get one (the view splits those at the median per view).
+fn tree_of(o: &Object, m: &Mesh) -> (Arc<ObjectTree>, bool) {
+    match &o.tree {
+        Some(t) => (t.clone(), true),
+        None => (
+            Arc::new(ObjectTree::build(m, HierarchyKind::Simplify)),
+            false,
+        ),
+    }
+}
+
+fn print_hierarchy(o: &Object, m: &Mesh, indent: &str) {
+    let (t, prepared) = tree_of(o, m);
+    let s = t.shape();
+    let c = &t.components;
+    out(&format!(
+        "{indent}  hierarchy {}{}: {} nodes, depth {}, {} leaves, {} upper nodes; {} levels, cell widths [{}], clusters [{}], components per level [{}]",
+        t.kind.name(),
+        if prepared {
+            ""
+        } else {
+            " (built here: the view splits this mesh per view)"
+        },
+        s.nodes,
+        s.depth,
+        s.leaves,
+        s.component_nodes,
+        c.widths.len(),
+        c.widths.iter().map(|w| g(*w)).collect::<Vec<_>>().join(", "),
+        c.clusters.iter().map(usize::to_string).collect::<Vec<_>>().join(", "),
+        c.per_level.iter().map(usize::to_string).collect::<Vec<_>>().join(", "),
+    ));
+    let mut lines = 0;
+    let mut stack = vec![(0u32, 0usize)];
+    while let Some((k, d)) = stack.pop() {
+        let node = &c.nodes[k as usize];
+        if lines == MAX_COMPONENT_LINES {
+            out(&format!(
+                "{indent}    ... ({} components in all)",
+                c.nodes.len()
+            ));
+            break;
+        }
+        out(&format!(
+            "{indent}    {}component {k} (level {}): {} faces",
+            "  ".repeat(d),
+            node.level,
+            node.faces.len()
+        ));
+        lines += 1;
+        stack.extend(node.children.iter().rev().map(|&ch| (ch, d + 1)));
+    }
+}
+
+fn hierarchy_json(o: &Object) -> String {
+    let Content::Mesh(m) = &o.content else {
+        return String::new();
+    };
+    let (t, prepared) = tree_of(o, m);
+    let s = t.shape();
+    let c = &t.components;
+    let list = |v: Vec<String>| v.join(",");
+    format!(
+        ",\"hierarchy\":{{\"kind\":{},\"prepared\":{},\"nodes\":{},\"depth\":{},\"leaves\":{},\"upper_nodes\":{},\"levels\":{},\"cell_widths\":[{}],\"clusters\":[{}],\"components_per_level\":[{}],\"leaf_components\":{}}}",
+        json_string(t.kind.name()),
+        prepared,
+        s.nodes,
+        s.depth,
+        s.leaves,
+        s.component_nodes,
+        c.widths.len(),
+        list(c.widths.iter().map(|w| num(*w)).collect()),
+        list(c.clusters.iter().map(usize::to_string).collect()),
+        list(c.per_level.iter().map(usize::to_string).collect()),
+        c.leaves().len(),
+    )
 }
 
 fn box_json(b: &Box3) -> String {
@@ -136,7 +238,7 @@ fn object_json(o: &Object, name: &str) -> String {
         .map(|s| object_json(s, &s.name))
         .collect();
     format!(
-        "{{\"name\":{},\"kind\":{},\"faces\":{},\"vertices\":{},\"closed\":{},\"cbox\":{},\"inbox\":{},\"subobjects\":[{}]}}",
+        "{{\"name\":{},\"kind\":{},\"faces\":{},\"vertices\":{},\"closed\":{},\"cbox\":{},\"inbox\":{}{},\"subobjects\":[{}]}}",
         json_string(name),
         json_string(&kind(o)),
         o.face_count(),
@@ -144,6 +246,7 @@ fn object_json(o: &Object, name: &str) -> String {
         o.is_closed(),
         box_json(&o.cbox),
         o.inbox.as_ref().map_or("null".into(), box_json),
+        hierarchy_json(o),
         subs.join(",")
     )
 }

@@ -3,7 +3,9 @@
 
 mod camera_args;
 mod check;
+mod components;
 mod flatten;
+mod hierarchy_arg;
 mod info;
 pub mod progress;
 mod query;
@@ -55,10 +57,20 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
     }
 }
 
-/// Loads a scene and runs the prepare stage (INBOXes), printing warnings to standard error.
+/// Loads a scene and runs the prepare stage (INBOXes, object trees), printing warnings to
+/// standard error.
 fn load(path: &Path, quiet: bool) -> Result<Scene> {
+    load_with(path, quiet, &kepler_hsr::prepare::PrepareOptions::default())
+}
+
+/// [`load`] with the prepare stage's options.
+fn load_with(
+    path: &Path,
+    quiet: bool,
+    opts: &kepler_hsr::prepare::PrepareOptions,
+) -> Result<Scene> {
     let mut scene = load_only(path, quiet)?;
-    kepler_hsr::prepare(&mut scene);
+    kepler_hsr::prepare::prepare_with(&mut scene, opts);
     Ok(scene)
 }
 

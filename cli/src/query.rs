@@ -6,11 +6,13 @@ use std::process::ExitCode;
 use anyhow::{anyhow, bail, Result};
 use clap::Args;
 use kepler_hsr::geom::{M4, P3};
+use kepler_hsr::prepare::HierarchyKind;
+use kepler_hsr::tribox::interfere::Method;
 use kepler_hsr::view::View;
 use kepler_hsr::visibility::{include, visobj, visp, Inclusion, PointVisibility, Verdict};
 
 use super::camera_args::parse_vec3;
-use super::{load, out, CameraArgs};
+use super::{load_with, out, CameraArgs};
 
 /// Arguments of `kepler query`.
 #[derive(Args, Debug)]
@@ -30,6 +32,15 @@ pub(crate) struct QueryArgs {
     /// included) or APART, then a summary.
     #[arg(long)]
     pub(crate) interfere: bool,
+    /// With --interfere: compare faces without trees (every pair of leaf triangles near the
+    /// other object), for checking.
+    #[arg(long, requires = "interfere")]
+    pub(crate) brute: bool,
+    /// With --interfere: print the work done (BV nodes traversed, triangle tests).
+    #[arg(long)]
+    pub(crate) stats: bool,
+    #[command(flatten)]
+    pub(crate) hierarchy: super::hierarchy_arg::HierarchyArgs,
     #[command(flatten)]
     pub(crate) camera: CameraArgs,
     /// Do not print warnings.
@@ -39,7 +50,7 @@ pub(crate) struct QueryArgs {
 
 /// Runs `kepler query`.
 pub(crate) fn run(a: QueryArgs) -> Result<ExitCode> {
-    let scene = load(&a.scene, a.quiet)?;
+    let scene = load_with(&a.scene, a.quiet, &a.hierarchy.prepare())?;
     let asked = a.include.is_some() as u8
         + a.visp.is_some() as u8
         + a.visobj.is_some() as u8
@@ -48,7 +59,12 @@ pub(crate) fn run(a: QueryArgs) -> Result<ExitCode> {
         bail!("give exactly one of --include, --visp, --visobj, --interfere");
     }
     if a.interfere {
-        out(&super::tribox::interfere_report(&scene));
+        let method = if a.brute {
+            Method::Brute
+        } else {
+            Method::Tree(a.hierarchy.kind().unwrap_or(HierarchyKind::Simplify))
+        };
+        out(&super::tribox::interfere_report(&scene, method, a.stats));
         return Ok(ExitCode::SUCCESS);
     }
     if let Some(p) = &a.include {

@@ -58,6 +58,8 @@ pub(crate) struct RenderArgs {
     pub(crate) no_inbox: bool,
     #[command(flatten)]
     pub(crate) lod: super::tribox::LodArgs,
+    #[command(flatten)]
+    pub(crate) hierarchy: super::hierarchy_arg::HierarchyArgs,
     /// Do not print warnings.
     #[arg(long, short)]
     pub(crate) quiet: bool,
@@ -110,6 +112,7 @@ impl RenderArgs {
             },
             no_inbox: self.no_inbox,
             lod: self.lod.options(self.size)?,
+            hierarchy: self.hierarchy.kind(),
         })
     }
 }
@@ -122,7 +125,7 @@ pub(crate) fn run(a: RenderArgs) -> Result<ExitCode> {
     let mut scene = load_only(&a.scene, a.quiet)?;
     let load = t.elapsed();
     let t = Instant::now();
-    kepler_hsr::prepare(&mut scene);
+    kepler_hsr::prepare::prepare_with(&mut scene, &a.hierarchy.prepare());
     let prepare = t.elapsed();
     let camera = a.camera.camera(&scene)?;
     let progress = Progress::new();
@@ -143,6 +146,7 @@ pub(crate) fn run(a: RenderArgs) -> Result<ExitCode> {
     let written = t.elapsed();
     if a.stats {
         eprintln!("faces: {}", scene.face_count());
+        eprintln!("hierarchy: {}", a.hierarchy.name());
         if let Some(l) = &r.stats.lod {
             eprintln!("{}", super::tribox::lod_report(l));
         }

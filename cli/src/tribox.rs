@@ -293,9 +293,15 @@ fn render_svg(parts: &[(String, PolyMesh)], original: &Scene, a: &TriboxArgs) ->
 }
 
 /// `kepler query --interfere`: the pairs of objects whose triboxes meet, each with whether
-/// their faces really intersect, then a summary line.
-pub(crate) fn interfere_report(scene: &Scene) -> String {
-    let r = kepler_hsr::tribox::interfere::interfere(scene);
+/// their faces really intersect, then a summary line (with `stats`, the work done too).
+pub(crate) fn interfere_report(
+    scene: &Scene,
+    method: kepler_hsr::tribox::interfere::Method,
+    stats: bool,
+) -> String {
+    let t = Instant::now();
+    let r = kepler_hsr::tribox::interfere::interfere_with(scene, method);
+    let time = t.elapsed();
     let mut lines: Vec<String> = r
         .tribox_meet
         .iter()
@@ -310,13 +316,21 @@ pub(crate) fn interfere_report(scene: &Scene) -> String {
         .collect();
     let hits = r.tribox_meet.iter().filter(|p| p.2).count();
     lines.push(format!(
-        "objects {}, pairs {}, CBOXes meet {}, triboxes meet {}, faces intersect {} ({} exact triangle tests)",
+        "objects {}, pairs {}, CBOXes meet {}, triboxes meet {}, faces intersect {}",
         r.objects.len(),
         r.pairs,
         r.cbox_meet,
         r.tribox_meet.len(),
         hits,
-        r.triangle_tests
     ));
+    if stats {
+        lines.push(format!(
+            "method {:?}: {} BV nodes traversed, {} exact triangle tests, {:.3} ms",
+            method,
+            r.bv_tests,
+            r.triangle_tests,
+            time.as_secs_f64() * 1e3
+        ));
+    }
     lines.join("\n")
 }

@@ -102,3 +102,63 @@ fn json_carries_lines_when_edges_are_asked_for() {
     assert!(!b["lines"]["visible"].as_array().unwrap().is_empty());
     assert!(!b["lines"]["hidden"].as_array().unwrap().is_empty());
 }
+
+/// The shared meshes directory, if present.
+fn shared_model(name: &str) -> Option<PathBuf> {
+    let dir = std::env::var_os("KEPLER_MODELS")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/models"));
+    let p = dir.join(name);
+    if p.is_file() {
+        Some(p)
+    } else {
+        eprintln!("skipped: {} not found", p.display());
+        None
+    }
+}
+
+#[test]
+fn info_json_gives_every_mesh_a_hierarchy_and_both_trees_render_the_same_bytes() {
+    let d = temp_dir("hierarchy");
+    let obj = d.join("cubes.obj");
+    std::fs::write(&obj, CUBES).unwrap();
+    let o = kepler(&["info", s(&obj), "--json", "-q"]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    for key in ["\"hierarchy\":{", "\"nodes\":", "\"depth\":", "\"leaves\":"] {
+        assert!(text.contains(key), "{key} missing: {text}");
+    }
+    let Some(cow) = shared_model("cow.obj") else {
+        return;
+    };
+    let o = kepler(&["info", s(&cow), "-q"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("hierarchy simplify") && text.contains("component 0 (level 0)"));
+    let json = |h: &str| {
+        let f = d.join(format!("cow-{h}.json"));
+        let o = kepler(&["render", s(&cow), "--json", s(&f), "--hierarchy", h, "-q"]);
+        assert!(o.status.success());
+        std::fs::read(&f).unwrap()
+    };
+    assert_eq!(json("simplify"), json("median"));
+}
+
+#[test]
+fn interfere_answers_alike_with_both_trees_and_brute_force() {
+    let d = temp_dir("interfere");
+    let obj = d.join("cubes.obj");
+    // Two cubes sharing a face and a square apart.
+    std::fs::write(&obj, format!("{CUBES}o b\nv 1 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 0 1\nv 2 0 1\nv 2 1 1\nv 1 1 1\nf 13 16 15 14\nf 17 18 19 20\nf 13 14 18 17\nf 14 15 19 18\nf 15 16 20 19\nf 16 13 17 20\n")).unwrap();
+    let run = |extra: &[&str]| {
+        let mut args = vec!["query", s(&obj), "--interfere", "-q"];
+        args.extend_from_slice(extra);
+        let o = kepler(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stdout).into_owned()
+    };
+    let brute = run(&["--brute"]);
+    assert!(brute.contains("INTERSECT"), "{brute}");
+    assert_eq!(run(&["--hierarchy", "simplify"]), brute);
+    assert_eq!(run(&["--hierarchy", "median"]), brute);
+    assert!(run(&["--stats"]).contains("BV nodes traversed"));
+}

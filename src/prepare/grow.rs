@@ -29,6 +29,8 @@ struct Field<'a> {
     tris: &'a Triangles,
     boxes: Vec<Box3>,
     margin: f64,
+    /// Where boxes must stay (then `tris` need only hold the triangles meeting it).
+    region: Option<Box3>,
 }
 
 /// The largest box a search finds inside the closed mesh with triangles `tris`, among boxes
@@ -43,25 +45,49 @@ pub fn grown_inbox(tris: &Triangles, cbox: &Box3, centroid: &P3) -> Option<Box3>
             .map(|t| Box3::from_points(t.iter()))
             .collect(),
         margin: MARGIN * scale,
+        region: None,
     };
     let mut points = seed_points(cbox, centroid);
     points.extend(ray_seeds(tris, RAY_SEEDS));
-    let mut seeds: Vec<(f64, P3)> = points
-        .into_iter()
-        .map(|p| (field.clearance(&p), p))
-        .filter(|(r, _)| *r > 0.0)
-        .collect();
-    seeds.sort_by(|a, b| b.0.total_cmp(&a.0));
+    field.grow_seeds(points, tris, cbox)
+}
 
-    seeds
-        .iter()
-        .filter_map(|(r, p)| {
-            let b = cube(p, 0.99 * r);
-            (field.free(&b) && inside(tris, p)).then_some(b)
-        })
-        .take(GROWN_SEEDS)
-        .map(|b| field.grow(b, cbox))
-        .max_by(|a, b| a.volume().total_cmp(&b.volume()))
+/// An INBOX within `region` (a part of the closed mesh's CBOX, such as a component's CBOX):
+/// the largest box grown inside `region` from seeds on a grid over it and at `centroid`,
+/// touching no face. Only the faces meeting `region` can touch such a box, so only they are
+/// tested; the seed's winding number is taken over every triangle. `scale` is the mesh's size
+/// (the clearance margin is relative to it).
+pub fn grown_inbox_in(tris: &Triangles, region: &Box3, centroid: &P3, scale: f64) -> Option<Box3> {
+    let margin = MARGIN * scale;
+    let m = V3::new(3.0 * margin, 3.0 * margin, 3.0 * margin);
+    let reach = Box3::new(region.lo - m, region.hi + m);
+    let near = Triangles {
+        tris: tris
+            .tris
+            .iter()
+            .filter(|t| {
+                let b = Box3::from_points(t.iter());
+                (0..3).all(|i| b.lo[i] <= reach.hi[i] && b.hi[i] >= reach.lo[i])
+            })
+            .copied()
+            .collect(),
+        flipped: tris.flipped,
+    };
+    let field = Field {
+        tris: &near,
+        boxes: near
+            .tris
+            .iter()
+            .map(|t| Box3::from_points(t.iter()))
+            .collect(),
+        margin,
+        region: Some(*region),
+    };
+    let points = seed_points(region, centroid)
+        .into_iter()
+        .filter(|p| region.contains(p))
+        .collect();
+    field.grow_seeds(points, tris, region)
 }
 
 fn cube(p: &P3, r: f64) -> Box3 {
@@ -146,6 +172,26 @@ fn solid_angle(a: &V3, b: &V3, c: &V3) -> f64 {
 }
 
 impl Field<'_> {
+    /// The largest box grown within `cbox` from the clearest seeds inside the solid of `all`
+    /// (the winding number is taken over every triangle, not only the field's).
+    fn grow_seeds(&self, points: Vec<P3>, all: &Triangles, cbox: &Box3) -> Option<Box3> {
+        let mut seeds: Vec<(f64, P3)> = points
+            .into_iter()
+            .map(|p| (self.clearance(&p), p))
+            .filter(|(r, _)| *r > 0.0)
+            .collect();
+        seeds.sort_by(|a, b| b.0.total_cmp(&a.0));
+        seeds
+            .iter()
+            .filter_map(|(r, p)| {
+                let b = cube(p, 0.99 * r);
+                (self.free(&b) && inside(all, p)).then_some(b)
+            })
+            .take(GROWN_SEEDS)
+            .map(|b| self.grow(b, cbox))
+            .max_by(|a, b| a.volume().total_cmp(&b.volume()))
+    }
+
     /// A lower bound of the L∞ distance from `p` to every face, less the margin: per face
     /// the larger of the L∞ distance to its bounding box and its Euclidean distance / √3.
     fn clearance(&self, p: &P3) -> f64 {
@@ -165,6 +211,9 @@ impl Field<'_> {
 
     /// True when no triangle meets `b` grown by the margin.
     fn free(&self, b: &Box3) -> bool {
+        if self.region.is_some_and(|r| !r.contains_box(b)) {
+            return false;
+        }
         let m = V3::new(self.margin, self.margin, self.margin);
         let e = Box3::new(b.lo - m, b.hi + m);
         let c = e.center();

@@ -1,21 +1,50 @@
-//! The prepare stage: view-independent bounds computed once after loading — INBOXes.
+//! The prepare stage: view-independent bounds computed once after loading — INBOXes, and
+//! object trees for flat meshes (paper 002).
 
+pub mod bvtree;
 pub mod convex;
 pub mod grow;
 pub mod halfspace;
 pub mod inbox;
 pub mod place;
 pub mod solid;
+pub mod trees;
 
+pub use bvtree::{HierarchyKind, ObjectTree};
 pub use inbox::{compute_inboxes, mesh_inbox};
 
 use crate::scene::Scene;
 
-/// The prepare stage for a whole scene: INBOXes for every object lacking one. A scene of one
-/// leaf object is left alone: an inbox prunes only other objects, so there is nothing for it
-/// to do ("model no more than a scene needs").
+/// What the prepare stage builds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PrepareOptions {
+    /// The object tree flat meshes get: with [`HierarchyKind::Median`] none is prepared and
+    /// the view splits each mesh at the median per view, as before paper 002. None (the
+    /// default) is the better one as measured: paper 002's tree for the meshes of prototypes
+    /// placed more than once (one tree instead of one median split per placement and view),
+    /// the median split per view for a mesh drawn once (building a tree costs more than one
+    /// view saves: NOTES-issue12.md).
+    pub hierarchy: Option<HierarchyKind>,
+}
+
+/// The prepare stage for a whole scene with the default options.
 pub fn prepare(scene: &mut Scene) {
-    if scene.leaves().len() >= 2 {
+    prepare_with(scene, &PrepareOptions::default());
+}
+
+/// The prepare stage for a whole scene: INBOXes for every object lacking one, and an object
+/// tree for every large leaf mesh. A scene of one leaf object gets no inboxes: an inbox prunes
+/// only other objects, so there is nothing for it to do ("model no more than a scene needs").
+pub fn prepare_with(scene: &mut Scene, opts: &PrepareOptions) {
+    let several = scene.leaves().len() >= 2;
+    if several {
         compute_inboxes(&mut scene.root);
+    }
+    match opts.hierarchy {
+        Some(HierarchyKind::Simplify) => {
+            trees::attach_trees(&mut scene.root, HierarchyKind::Simplify, several, false)
+        }
+        Some(HierarchyKind::Median) => {}
+        None => trees::attach_trees(&mut scene.root, HierarchyKind::Simplify, several, true),
     }
 }

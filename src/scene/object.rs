@@ -3,6 +3,7 @@
 use std::sync::Arc;
 
 use crate::geom::{Box3, M4, P3};
+use crate::prepare::bvtree::ObjectTree;
 
 use super::texture::Texture;
 
@@ -85,6 +86,8 @@ pub struct Object {
     /// Faces in the subtree, instances expanded (kept so that culling can skip a subtree in
     /// constant time).
     faces: usize,
+    /// The object tree of a leaf mesh (paper 002), built by the prepare stage.
+    pub tree: Option<Arc<ObjectTree>>,
 }
 
 impl Object {
@@ -97,6 +100,7 @@ impl Object {
             inbox: None,
             faces: mesh.faces.len(),
             content: Content::Mesh(mesh),
+            tree: None,
         }
     }
 
@@ -109,6 +113,7 @@ impl Object {
             inbox: None,
             faces: subs.iter().map(|s| s.faces).sum(),
             content: Content::Subobjects(subs),
+            tree: None,
         }
     }
 
@@ -129,6 +134,7 @@ impl Object {
                 prototype,
                 transform,
             }),
+            tree: None,
         }
     }
 

@@ -3,11 +3,16 @@
 //!
 //! Faces are closed sets: objects that touch (a shared vertex, an edge on a face) intersect.
 
-use crate::geom::{newell, orient2d, orient3d, P3, V3};
-use crate::scene::triangulate::ear_clip;
-use crate::scene::Scene;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use crate::geom::{orient2d, orient3d, P3, V3};
+use crate::prepare::bvtree::{HierarchyKind, ObjectTree};
+use crate::prepare::trees::leaf_trees;
+use crate::scene::{Leaf, Mesh, Scene};
 
 use super::bounds::Tribox;
+use super::collide::{collide, CollideStats, FaceTriangles, Placed};
 
 /// The answer for one scene.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -22,6 +27,18 @@ pub struct Interference {
     pub tribox_meet: Vec<(usize, usize, bool)>,
     /// Exact triangle-triangle tests made.
     pub triangle_tests: u64,
+    /// Pairs of tree nodes whose bounding volumes were tested (tree walks only).
+    pub bv_tests: u64,
+}
+
+/// How the faces of two objects whose triboxes meet are compared.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// No tree: the triangles of each near the other's tribox, swept along x (every pair of
+    /// leaf triangles that could meet).
+    Brute,
+    /// Walk the two objects' trees of this kind at once ([`collide`]).
+    Tree(HierarchyKind),
 }
 
 /// A world triangle of an object with its tribox.
@@ -30,27 +47,36 @@ struct Tri {
     t: Tribox,
 }
 
-/// Interference of every pair of leaf objects of `scene`.
+/// Interference of every pair of leaf objects of `scene`, without trees.
 pub fn interfere(scene: &Scene) -> Interference {
+    interfere_with(scene, Method::Brute)
+}
+
+/// Interference of every pair of leaf objects of `scene`, faces compared by `method`. The
+/// answers are the same whatever the method: both test the same triangles exactly.
+pub fn interfere_with(scene: &Scene, method: Method) -> Interference {
     let leaves = scene.leaves();
+    let trees = object_trees(scene, &leaves, method);
+    let mut triangles: HashMap<usize, FaceTriangles> = HashMap::new();
+    for l in &leaves {
+        triangles
+            .entry(l.mesh as *const Mesh as usize)
+            .or_insert_with(|| FaceTriangles::of(l.mesh));
+    }
+    let tri_of = |l: &Leaf| &triangles[&(l.mesh as *const Mesh as usize)];
     let tris: Vec<Vec<Tri>> = leaves
         .iter()
         .map(|l| {
-            let mut out = Vec::new();
-            for f in &l.mesh.faces {
-                let pts: Vec<P3> = f.vertices.iter().map(|&v| l.world_vertex(v)).collect();
-                let n = newell(&pts);
-                for [a, b, c] in ear_clip(&pts, &n) {
-                    let p = [pts[a], pts[b], pts[c]];
-                    if (p[1] - p[0]).cross(&(p[2] - p[0])) != V3::zeros() {
-                        out.push(Tri {
-                            p,
-                            t: Tribox::from_points(p.iter()),
-                        });
-                    }
-                }
-            }
-            out
+            tri_of(l)
+                .tris
+                .iter()
+                .map(|t| t.map(|v| l.world_vertex(v)))
+                .filter(|p| (p[1] - p[0]).cross(&(p[2] - p[0])) != V3::zeros())
+                .map(|p| Tri {
+                    p,
+                    t: Tribox::from_points(p.iter()),
+                })
+                .collect()
         })
         .collect();
     let boxes: Vec<Tribox> = tris
@@ -61,6 +87,14 @@ pub fn interfere(scene: &Scene) -> Interference {
         objects: leaves.iter().map(|l| l.path.clone()).collect(),
         ..Interference::default()
     };
+    let placed = |k: usize| {
+        trees.get(k).map(|t| Placed {
+            mesh: leaves[k].mesh,
+            tree: t,
+            tris: tri_of(&leaves[k]),
+            transform: leaves[k].transform,
+        })
+    };
     for i in 0..leaves.len() {
         for j in i + 1..leaves.len() {
             r.pairs += 1;
@@ -69,12 +103,41 @@ pub fn interfere(scene: &Scene) -> Interference {
                 r.cbox_meet += 1;
             }
             if a.interferes(b) {
-                let hit = faces_intersect(&tris[i], &tris[j], a, b, &mut r.triangle_tests);
+                let hit = match (placed(i), placed(j)) {
+                    (Some(pa), Some(pb)) => {
+                        let mut s = CollideStats::default();
+                        let hit = collide(&pa, &pb, &mut s);
+                        r.bv_tests += s.bv_tests;
+                        r.triangle_tests += s.triangle_tests;
+                        hit
+                    }
+                    _ => faces_intersect(&tris[i], &tris[j], a, b, &mut r.triangle_tests),
+                };
                 r.tribox_meet.push((i, j, hit));
             }
         }
     }
     r
+}
+
+/// The object tree of every leaf for a tree method (the prepared one when it is of the
+/// kind asked for, else one built here once per mesh); empty for [`Method::Brute`].
+fn object_trees(scene: &Scene, leaves: &[Leaf], method: Method) -> Vec<Arc<ObjectTree>> {
+    let Method::Tree(kind) = method else {
+        return Vec::new();
+    };
+    let mut by_mesh: HashMap<usize, Arc<ObjectTree>> = HashMap::new();
+    leaves
+        .iter()
+        .zip(leaf_trees(scene))
+        .map(|(l, t)| match t.filter(|t| t.kind == kind) {
+            Some(t) => t,
+            None => by_mesh
+                .entry(l.mesh as *const Mesh as usize)
+                .or_insert_with(|| Arc::new(ObjectTree::build(l.mesh, kind)))
+                .clone(),
+        })
+        .collect()
 }
 
 /// True when some triangle of `a` meets some triangle of `b`.

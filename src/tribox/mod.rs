@@ -8,9 +8,11 @@
 //! - [`hierarchy`]: section 4's hierarchical triboxes and levels of detail.
 //! - [`hull`]: convex hulls, to compare tribox volumes with.
 //! - [`interfere`]: exact face-face intersection of objects whose triboxes meet.
+//! - [`collide`]: the same question by walking two object trees at once (paper 002).
 
 pub mod boundary;
 pub mod bounds;
+pub mod collide;
 pub mod combos;
 pub mod hierarchy;
 pub mod hull;

@@ -18,6 +18,7 @@
 use crate::geom::hull2::{convex_hull, covers_convex};
 use crate::geom::poly2::Pt2;
 use crate::geom::{Box3, Rect, M4};
+use crate::prepare::bvtree::{HierarchyKind, ObjectTree};
 use crate::scene::{Content, FaceId, Leaf, Object, Scene};
 
 use super::camera::{Camera, Projection};
@@ -45,6 +46,11 @@ pub struct Cull<'a> {
     pub leaves: Vec<Leaf<'a>>,
     /// Hidden objects, in global face order (disjoint: a hidden object's parts are not listed).
     pub hidden: Vec<HiddenObject<'a>>,
+    /// For each leaf in `leaves`, its faces (local indices, ascending) in components of its
+    /// object tree found HIDDEN (paper 002's components as subobjects); empty when none.
+    pub hidden_parts: Vec<Vec<u32>>,
+    /// Components found HIDDEN.
+    pub components_hidden: u64,
     /// Number of faces in the scene.
     pub face_count: u32,
     /// Objects whose CBOX was tested against occluders.
@@ -57,6 +63,8 @@ impl<'a> Cull<'a> {
         Cull {
             leaves: scene.leaves(),
             hidden: Vec::new(),
+            hidden_parts: Vec::new(),
+            components_hidden: 0,
             face_count: scene.face_count() as u32,
             objects_tested: 0,
         }
@@ -75,9 +83,19 @@ impl<'a> Cull<'a> {
         w.out
     }
 
-    /// Faces in hidden subtrees.
+    /// Faces in hidden subtrees and hidden components.
     pub fn hidden_faces(&self) -> u64 {
-        self.hidden.iter().map(|h| h.face_count as u64).sum()
+        self.hidden.iter().map(|h| h.face_count as u64).sum::<u64>()
+            + self
+                .hidden_parts
+                .iter()
+                .map(|p| p.len() as u64)
+                .sum::<u64>()
+    }
+
+    /// The hidden faces (local indices, ascending) of leaf `k`.
+    pub fn hidden_in_leaf(&self, k: usize) -> &[u32] {
+        self.hidden_parts.get(k).map_or(&[], Vec::as_slice)
     }
 }
 
@@ -112,12 +130,17 @@ impl<'a> Walker<'a, '_> {
     fn object(&mut self, obj: &'a Object, xf: &M4, first: u32) -> u32 {
         match &obj.content {
             Content::Mesh(m) => {
+                let hidden = match obj.tree.as_deref() {
+                    Some(t) if t.kind == HierarchyKind::Simplify => self.components(t, xf),
+                    _ => Vec::new(),
+                };
                 self.out.leaves.push(Leaf {
                     path: self.path.join("/"),
                     mesh: m,
                     transform: *xf,
                     first_face: first as usize,
                 });
+                self.out.hidden_parts.push(hidden);
                 m.faces.len() as u32
             }
             Content::Instance(i) => self.object(&i.prototype, &(xf * i.transform), first),
@@ -161,10 +184,16 @@ impl<'a> Walker<'a, '_> {
             (None, Content::Instance(i)) => (i.prototype.inbox?, xf * i.transform),
             _ => return None,
         };
+        self.occluder_of(&b, &m, owner)
+    }
+
+    /// Box `b` placed by `m` as an occluder (None when it has no interior or a corner is not
+    /// in front of the near plane).
+    fn occluder_of(&self, b: &Box3, m: &M4, owner: usize) -> Option<Occluder> {
         if !b.has_interior() {
             return None;
         }
-        let p = self.project(&b, &m)?;
+        let p = self.project(b, m)?;
         let hull = convex_hull(p.corners.to_vec());
         if hull.len() < 3 {
             return None;
@@ -181,20 +210,26 @@ impl<'a> Walker<'a, '_> {
 
     /// True when the CBOX of child `k` lies behind and inside an occluder of some level.
     fn is_hidden(&mut self, s: &Object, xf: &M4, k: usize) -> bool {
-        if s.cbox.is_empty() {
+        self.box_hidden(&s.cbox, xf, Some(k))
+    }
+
+    /// True when box `b` placed by `xf` lies behind and inside an occluder of some level (not
+    /// one of the innermost level's owned by `own`).
+    fn box_hidden(&mut self, b: &Box3, xf: &M4, own: Option<usize>) -> bool {
+        if b.is_empty() {
             return false;
         }
-        let Some(p) = self.project(&s.cbox, xf) else {
+        let Some(p) = self.project(b, xf) else {
             return false;
         };
         self.out.objects_tested += 1;
         let need = p.rect.area();
-        let innermost = self.levels.len() - 1;
+        let innermost = self.levels.len().wrapping_sub(1);
         self.levels.iter().enumerate().any(|(li, level)| {
             level
                 .iter()
                 .take_while(|o| o.area >= need)
-                .filter(|o| !(li == innermost && o.owner == k))
+                .filter(|o| !(li == innermost && Some(o.owner) == own))
                 .take(MAX_TESTS_PER_LEVEL)
                 .any(|o| {
                     p.zmax < o.zmin
@@ -202,6 +237,41 @@ impl<'a> Walker<'a, '_> {
                         && covers_convex(&o.hull, &p.corners)
                 })
         })
+    }
+
+    /// The faces (local, ascending) of the components of a mesh's object tree whose CBOX is
+    /// HIDDEN by an inbox: those of other objects on the path and the components' own (any
+    /// box inside the closed solid hides what lies behind it, the solid's own faces too).
+    /// Only the upper BV-tree (components and their merges) is tested.
+    fn components(&mut self, t: &ObjectTree, xf: &M4) -> Vec<u32> {
+        let mut own: Vec<Occluder> = t
+            .nodes
+            .iter()
+            .filter_map(|n| n.inbox)
+            .filter_map(|b| self.occluder_of(&b, xf, usize::MAX))
+            .collect();
+        own.sort_by(|a, b| b.area.total_cmp(&a.area));
+        if own.is_empty() && self.levels.iter().all(Vec::is_empty) {
+            return Vec::new();
+        }
+        self.levels.push(own);
+        let mut hidden = Vec::new();
+        let mut stack: Vec<u32> = t.nodes[0].children.map_or(Vec::new(), |c| c.to_vec());
+        while let Some(n) = stack.pop() {
+            let node = &t.nodes[n as usize];
+            if !node.component {
+                continue;
+            }
+            if self.box_hidden(&node.cbox, xf, None) {
+                hidden.extend_from_slice(t.faces_of(n));
+                self.out.components_hidden += 1;
+            } else if let Some(c) = node.children {
+                stack.extend(c);
+            }
+        }
+        self.levels.pop();
+        hidden.sort_unstable();
+        hidden
     }
 
     /// The 8 corners of `b` placed by `m`, projected, with their bounds; None when a corner is

@@ -8,6 +8,9 @@
 //! vertex) framed with its margin, `size` pixels along the longer side ([`Frame`]). An object's projected size is the longer
 //! side of the screen rectangle of its vertices.
 //!
+//! A mesh with an object tree (paper 002) is drawn as the triboxes of a cut through its
+//! components where they are tighter than its one tribox (a cow's legs apart from its body).
+//!
 //! An object is replaced only when its substitute has fewer faces than it (a box stays a
 //! box). Triboxes are taken in the frame of the object's parent (the frame of its CBOX), merged up
 //! the tree for groups; an instance gets its prototype's tribox transformed (conservative,
@@ -204,7 +207,17 @@ impl Substituter<'_> {
                 if t.is_empty() {
                     return None;
                 }
-                (t.simplified(simplify).boundary().mesh(), 1)
+                match component_triboxes(obj, &t) {
+                    Some(parts) => {
+                        let n = parts.len();
+                        let meshes: Vec<PolyMesh> = parts
+                            .iter()
+                            .map(|p| p.simplified(simplify).boundary().mesh())
+                            .collect();
+                        (concat(&meshes), n)
+                    }
+                    None => (t.simplified(simplify).boundary().mesh(), 1),
+                }
             }
         };
         let mesh = clean(&poly)?;
@@ -238,6 +251,75 @@ impl Substituter<'_> {
             }
         }
     }
+}
+
+/// Most triboxes in a component-aware substitute.
+pub const MAX_COMPONENT_TRIBOXES: usize = 8;
+/// A component-aware substitute is used when its triboxes' volumes add up to at most this
+/// share of the single tribox's volume.
+pub const COMPONENT_GAIN: f64 = 0.8;
+
+/// Component-aware substitute of a mesh with an object tree (paper 002): the triboxes of a
+/// cut through the upper BV-tree (the components and their merges), grown from the root by
+/// splitting the node of largest tribox volume, at most [`MAX_COMPONENT_TRIBOXES`]; the cut
+/// whose volumes add up least is kept when it is tighter than the single tribox `whole`
+/// (at most [`COMPONENT_GAIN`] of its volume). Together the cut's triboxes hold every face.
+fn component_triboxes(obj: &Object, whole: &Tribox) -> Option<Vec<Tribox>> {
+    let (Content::Mesh(m), Some(t)) = (&obj.content, obj.tree.as_deref()) else {
+        return None;
+    };
+    let tribox = |n: u32| {
+        let mut b = Tribox::empty();
+        for &f in t.faces_of(n) {
+            for &v in &m.faces[f as usize].vertices {
+                b.add_point(&m.vertices[v as usize]);
+            }
+        }
+        b
+    };
+    let volume = |b: &Tribox| b.boundary().volume();
+    let whole_volume = volume(whole);
+    let mut cut: Vec<(u32, Tribox, f64)> = vec![(0, *whole, whole_volume)];
+    let mut best: Option<(f64, Vec<Tribox>)> = None;
+    while cut.len() < MAX_COMPONENT_TRIBOXES {
+        let Some(k) = (0..cut.len())
+            .filter(|&k| {
+                t.nodes[cut[k].0 as usize]
+                    .children
+                    .is_some_and(|c| c.iter().all(|&ch| t.nodes[ch as usize].component))
+            })
+            .max_by(|&a, &b| cut[a].2.total_cmp(&cut[b].2).then(b.cmp(&a)))
+        else {
+            break;
+        };
+        let [l, r] = t.nodes[cut[k].0 as usize].children.unwrap_or([0, 0]);
+        cut.swap_remove(k);
+        for ch in [l, r] {
+            let b = tribox(ch);
+            cut.push((ch, b, volume(&b)));
+        }
+        let total: f64 = cut.iter().map(|c| c.2).sum();
+        if best.as_ref().is_none_or(|(v, _)| total < *v) {
+            best = Some((total, cut.iter().map(|c| c.1).collect()));
+        }
+    }
+    let (total, parts) = best?;
+    (total <= COMPONENT_GAIN * whole_volume).then_some(parts)
+}
+
+/// The meshes side by side in one polygon mesh.
+fn concat(meshes: &[PolyMesh]) -> PolyMesh {
+    let mut out = PolyMesh::new(Vec::new(), Vec::new());
+    for m in meshes {
+        let base = out.vertices.len() as u32;
+        out.vertices.extend(&m.vertices);
+        out.faces.extend(
+            m.faces
+                .iter()
+                .map(|f| f.iter().map(|&v| v + base).collect()),
+        );
+    }
+    out
 }
 
 /// Largest stretch of the linear part of `m` (the largest column length: exact for

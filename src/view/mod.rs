@@ -41,7 +41,7 @@ pub struct View {
 /// What the cull did, for the counters.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct CullSummary {
-    /// Subtrees found HIDDEN as a whole.
+    /// Subtrees (objects, and components of object trees) found HIDDEN as a whole.
     pub subtrees: u64,
     /// Faces in them.
     pub faces: u64,
@@ -70,7 +70,7 @@ impl View {
             screen,
             tree,
             culled: CullSummary {
-                subtrees: cull.hidden.len() as u64,
+                subtrees: cull.hidden.len() as u64 + cull.components_hidden,
                 faces: cull.hidden_faces(),
                 tested: cull.objects_tested,
             },

@@ -130,7 +130,7 @@ impl ScreenFaces {
         for (li, leaf) in cull.leaves.iter().enumerate() {
             out.face_starts
                 .resize(leaf.first_face + 1, out.pieces.len() as u32);
-            out.add_leaf(li as u32, leaf, camera);
+            out.add_leaf(li as u32, leaf, camera, cull.hidden_in_leaf(li));
         }
         out.face_starts
             .resize(cull.face_count as usize + 1, out.pieces.len() as u32);
@@ -250,7 +250,9 @@ impl ScreenFaces {
         self.piece(p).refs.map(|k| w[k as usize])
     }
 
-    fn add_leaf(&mut self, li: u32, leaf: &Leaf, camera: &Camera) {
+    /// Projects the faces of a leaf, except its `hidden` ones (local indices, ascending: faces
+    /// of components the cull found HIDDEN get no pieces).
+    fn add_leaf(&mut self, li: u32, leaf: &Leaf, camera: &Camera, hidden: &[u32]) {
         let world: Vec<_> = leaf
             .mesh
             .vertices
@@ -267,7 +269,12 @@ impl ScreenFaces {
             first_face: FaceId(leaf.first_face as u32),
             face_count: leaf.mesh.faces.len() as u32,
         });
+        let mut hidden = hidden.iter().peekable();
         for (k, f) in leaf.mesh.faces.iter().enumerate() {
+            if hidden.next_if_eq(&&(k as u32)).is_some() {
+                self.face_starts.push(self.pieces.len() as u32);
+                continue;
+            }
             let mut idx: Vec<u32> = f.vertices.clone();
             if mirrors {
                 idx.reverse();

@@ -3,12 +3,17 @@
 //!
 //! Node bounds are computed per view from the projected faces (tighter than a projected
 //! world CBOX), and hold only faces that can hide something (not edge-on, not culled).
+//!
+//! A mesh with a prepared object tree (paper 002, built once by the prepare stage) keeps
+//! that tree's structure: the view only bounds its nodes on the screen. Other meshes get a
+//! median split of their pieces by screen position and depth, made for this view.
 
 use std::ops::Range;
 
 use crate::geom::hull2::convex_hull;
 use crate::geom::poly2::Pt2;
 use crate::geom::{Box3, Rect, M4};
+use crate::prepare::bvtree::{HierarchyKind, ObjectTree};
 use crate::scene::{Content, FaceId, Object, Scene};
 
 use super::camera::{Camera, Projection};
@@ -166,13 +171,20 @@ impl Builder<'_> {
         let node = match &obj.content {
             Content::Mesh(m) => {
                 let end = first.offset(m.faces.len() as u32);
-                let ids: Vec<PieceId> = self
-                    .sf
-                    .pieces_in(first..end)
-                    .filter(|&p| self.sf.piece(p).is_occluder())
-                    .collect();
                 self.next_face = end;
-                self.bvh(ids)
+                match obj.tree.as_deref() {
+                    Some(t) if t.kind == HierarchyKind::Simplify => self
+                        .prepared(t, 0, first, xf)
+                        .unwrap_or_else(|| self.push(empty_node())),
+                    _ => {
+                        let ids: Vec<PieceId> = self
+                            .sf
+                            .pieces_in(first..end)
+                            .filter(|&p| self.sf.piece(p).is_occluder())
+                            .collect();
+                        self.bvh(ids)
+                    }
+                }
             }
             Content::Subobjects(subs) => {
                 let kids: Vec<u32> = subs
@@ -307,21 +319,64 @@ impl Builder<'_> {
         self.push(n)
     }
 
+    /// The view's copy of the prepared object tree's node `n` (faces numbered from `first`,
+    /// placed by `xf`): the same structure, with screen bounds of the occluding pieces below
+    /// each node (tight for this view) and the node's INBOX projected. Nodes with no
+    /// occluding piece are left out; None when nothing below occludes.
+    fn prepared(&mut self, t: &ObjectTree, n: u32, first: FaceId, xf: &M4) -> Option<u32> {
+        let node = &t.nodes[n as usize];
+        let id = match node.children {
+            None => {
+                let sf = self.sf;
+                let ids: Vec<PieceId> = t
+                    .faces_of(n)
+                    .iter()
+                    .flat_map(|&f| sf.pieces_of(first.offset(f)))
+                    .filter(|&p| sf.piece(p).is_occluder())
+                    .collect();
+                if ids.is_empty() {
+                    return None;
+                }
+                self.leaf(ids)
+            }
+            Some([l, r]) => {
+                let kids: Vec<u32> = [l, r]
+                    .into_iter()
+                    .filter_map(|c| self.prepared(t, c, first, xf))
+                    .collect();
+                match kids.len() {
+                    0 => return None,
+                    1 => kids[0],
+                    _ => self.inner(kids),
+                }
+            }
+        };
+        if let Some(b) = node.inbox {
+            self.attach_inbox(id, &b, xf);
+        }
+        Some(id)
+    }
+
+    /// A leaf over pieces.
+    fn leaf(&mut self, ids: Vec<PieceId>) -> u32 {
+        let mut n = empty_node();
+        for &p in &ids {
+            let pc = self.sf.piece(p);
+            n.grow(&pc.rect, pc.zmin, pc.zmax);
+        }
+        let start = self.tree.pieces.len() as u32;
+        self.tree
+            .piece_bounds
+            .extend(ids.iter().map(|&p| PieceBound::of(self.sf.piece(p))));
+        self.tree.pieces.extend(ids);
+        n.kind = NodeKind::Leaf(start..self.tree.pieces.len() as u32);
+        self.push(n)
+    }
+
     /// A median-split hierarchy over pieces by their screen rectangles.
     fn bvh(&mut self, mut ids: Vec<PieceId>) -> u32 {
         if ids.len() <= LEAF_PIECES {
-            let mut n = empty_node();
-            for &p in &ids {
-                let pc = self.sf.piece(p);
-                n.grow(&pc.rect, pc.zmin, pc.zmax);
-            }
-            let start = self.tree.pieces.len() as u32;
-            self.tree
-                .piece_bounds
-                .extend(ids.iter().map(|&p| PieceBound::of(self.sf.piece(p))));
-            self.tree.pieces.extend(ids);
-            n.kind = NodeKind::Leaf(start..self.tree.pieces.len() as u32);
-            return self.push(n);
+            return self.leaf(ids);
         }
         let sf = self.sf;
         // Axis 0 and 1 are screen x and y, axis 2 is depth: splitting by depth too separates

@@ -17,6 +17,8 @@ pub struct Counters {
     pub subtrees_tested: u64,
     /// Subtrees found HIDDEN as a whole by an inbox before any face work.
     pub subtrees_hidden: u64,
+    /// Tree nodes visited by the walks (each node popped counts once per face walked).
+    pub nodes_visited: u64,
     /// Tree nodes skipped because their CBOX cannot hide the face.
     pub skipped_by_cbox: u64,
     /// VTPs emptied at once by an INBOX that hides the whole face.
@@ -41,6 +43,7 @@ impl AddAssign for Counters {
         self.faces_in_hidden_subtrees += o.faces_in_hidden_subtrees;
         self.subtrees_tested += o.subtrees_tested;
         self.subtrees_hidden += o.subtrees_hidden;
+        self.nodes_visited += o.nodes_visited;
         self.skipped_by_cbox += o.skipped_by_cbox;
         self.emptied_by_inbox += o.emptied_by_inbox;
         self.emptied_by_face += o.emptied_by_face;
@@ -67,6 +70,7 @@ impl Counters {
             ),
             ("subtrees hidden by inboxes", self.subtrees_hidden),
             ("faces in hidden subtrees", self.faces_in_hidden_subtrees),
+            ("tree nodes visited", self.nodes_visited),
             ("subtrees skipped by CBOX", self.skipped_by_cbox),
             ("VTPs emptied by an INBOX", self.emptied_by_inbox),
             ("VTPs emptied by one covering face", self.emptied_by_face),

@@ -41,7 +41,10 @@ pub enum Vtp {
 #[derive(Debug, Default)]
 pub struct Scratch {
     stack: Vec<u32>,
-    occluders: Vec<Ring>,
+    /// Occluder regions with the piece each came from.
+    occluders: Vec<(PieceId, Ring)>,
+    /// The regions in piece order, for the boolean call.
+    clips: Vec<Ring>,
     sides: Vec<f64>,
     ring: Ring,
 }
@@ -75,7 +78,14 @@ pub fn visfac(view: &View, a: u32, f: PieceId, scratch: &mut Scratch, stats: &mu
     }
     stats.faces_clipped += 1;
     stats.occluders += scratch.occluders.len() as u64;
-    let rest = subtract(&target.ring, &target.rect, &scratch.occluders);
+    // The walk's order depends on the tree; the boolean call gets the occluders in piece
+    // order, so the result is the same bytes whatever tree found them.
+    scratch.occluders.sort_unstable_by_key(|(g, _)| *g);
+    scratch.clips.clear();
+    scratch
+        .clips
+        .extend(scratch.occluders.drain(..).map(|(_, r)| r));
+    let rest = subtract(&target.ring, &target.rect, &scratch.clips);
     if rest.is_empty() {
         Vtp::Empty
     } else {
@@ -90,6 +100,7 @@ fn visfac2(view: &View, a: u32, t: &Target, scratch: &mut Scratch, stats: &mut C
     scratch.stack.push(a);
     while let Some(n) = scratch.stack.pop() {
         let node = &tree.nodes[n as usize];
+        stats.nodes_visited += 1;
         if !node.rect.overlaps(&t.rect) || node.zmax < t.zmin {
             stats.skipped_by_cbox += 1;
             continue;
@@ -160,7 +171,7 @@ fn examine(
     }
     let clipped = t.rect.clip_ring(&region);
     if clipped.len() >= 3 {
-        scratch.occluders.push(clipped);
+        scratch.occluders.push((g, clipped));
     }
     Walk::Open
 }

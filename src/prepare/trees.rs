@@ -1,0 +1,301 @@
+//! Object trees for the flat meshes of a scene (paper 002): every leaf mesh large enough to
+//! need one gets its B(T) once, in its own frame (a prototype's once for all its
+//! placements), and, when the scene has inboxes at all, an INBOX per large component of a
+//! closed mesh: the subobjects Franklin's pruning needs, which a flat mesh lacks.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use crate::geom::{Box3, P3};
+use crate::scene::{Content, Mesh, Object};
+
+use super::bvtree::{HierarchyKind, ObjectTree};
+use super::grow::grown_inbox_in;
+use super::solid::Triangles;
+
+/// Meshes with fewer faces keep the view's median split (a tree would cost more than it saves).
+pub const MIN_FACES: usize = 256;
+/// Components with fewer faces than this (and than [`INBOX_SHARE`] of the mesh) get no INBOX.
+pub const INBOX_MIN_FACES: usize = 64;
+/// Least share of the mesh's faces for a component to get an INBOX.
+pub const INBOX_SHARE: f64 = 1.0 / 64.0;
+
+/// Attaches a tree of `kind` to every leaf mesh of at least [`MIN_FACES`] faces that has none
+/// (with `shared_only`, only to meshes of prototypes placed more than once); with `inboxes`,
+/// closed meshes' large components get inboxes too.
+pub fn attach_trees(root: &mut Object, kind: HierarchyKind, inboxes: bool, shared_only: bool) {
+    let mut placements = HashMap::new();
+    count_placements(root, &mut placements);
+    let mut w = Attach {
+        kind,
+        inboxes,
+        shared_only,
+        placements,
+        done: HashMap::new(),
+    };
+    w.attach(root, false);
+}
+
+/// How often each prototype (by address) is placed.
+fn count_placements(obj: &Object, out: &mut HashMap<usize, usize>) {
+    match &obj.content {
+        Content::Mesh(_) => {}
+        Content::Subobjects(subs) => subs.iter().for_each(|s| count_placements(s, out)),
+        Content::Instance(i) => {
+            let n = out.entry(Arc::as_ptr(&i.prototype) as usize).or_default();
+            *n += 1;
+            if *n == 1 {
+                count_placements(&i.prototype, out);
+            }
+        }
+    }
+}
+
+/// The walk attaching trees, with the prototypes already prepared (by address).
+struct Attach {
+    kind: HierarchyKind,
+    inboxes: bool,
+    shared_only: bool,
+    placements: HashMap<usize, usize>,
+    done: HashMap<usize, Arc<Object>>,
+}
+
+impl Attach {
+    /// Attaches below `obj`; `shared` tells whether it lies in a prototype placed more than once.
+    fn attach(&mut self, obj: &mut Object, shared: bool) {
+        match &mut obj.content {
+            Content::Mesh(m) => {
+                let wanted = shared || !self.shared_only;
+                if obj.tree.is_none() && m.faces.len() >= MIN_FACES && wanted {
+                    let mut t = ObjectTree::build(m, self.kind);
+                    if self.inboxes && m.closed {
+                        component_inboxes(&mut t, m);
+                    }
+                    obj.tree = Some(Arc::new(t));
+                }
+            }
+            Content::Subobjects(subs) => {
+                for s in subs {
+                    self.attach(s, shared);
+                }
+            }
+            Content::Instance(i) => {
+                let key = Arc::as_ptr(&i.prototype) as usize;
+                let p = match self.done.get(&key) {
+                    Some(p) => p.clone(),
+                    None => {
+                        let many = self.placements.get(&key).is_some_and(|&n| n >= 2);
+                        let mut copy = (*i.prototype).clone();
+                        self.attach(&mut copy, shared || many);
+                        let p = Arc::new(copy);
+                        self.done.insert(key, p.clone());
+                        p
+                    }
+                };
+                i.prototype = p;
+            }
+        }
+    }
+}
+
+/// An INBOX for every large component node below the root: a box grown inside the solid
+/// within the component's CBOX.
+pub fn component_inboxes(tree: &mut ObjectTree, mesh: &Mesh) {
+    let Some(tris) = Triangles::of(mesh) else {
+        return;
+    };
+    let s = Box3::from_points(mesh.vertices.iter()).size();
+    let scale = s[0].max(s[1]).max(s[2]);
+    let least = (INBOX_SHARE * mesh.faces.len() as f64).max(INBOX_MIN_FACES as f64) as usize;
+    for k in 1..tree.nodes.len() {
+        let n = &tree.nodes[k];
+        if !n.component || n.faces.len() < least || !n.cbox.has_interior() {
+            continue;
+        }
+        let mut sum = P3::origin().coords;
+        let mut count = 0.0;
+        for &f in tree.faces_of(k as u32) {
+            for &v in &mesh.faces[f as usize].vertices {
+                sum += mesh.vertices[v as usize].coords;
+                count += 1.0;
+            }
+        }
+        let centroid = P3::from(sum / count);
+        tree.nodes[k].inbox = grown_inbox_in(&tris, &n.cbox.clone(), &centroid, scale);
+    }
+}
+
+/// The object tree of every leaf of `scene`, in [`crate::scene::Scene::leaves`] order (None
+/// for meshes without one).
+pub fn leaf_trees(scene: &crate::scene::Scene) -> Vec<Option<Arc<ObjectTree>>> {
+    fn walk(o: &Object, out: &mut Vec<Option<Arc<ObjectTree>>>) {
+        match &o.content {
+            Content::Mesh(_) => out.push(o.tree.clone()),
+            Content::Subobjects(subs) => subs.iter().for_each(|s| walk(s, out)),
+            Content::Instance(i) => walk(&i.prototype, out),
+        }
+    }
+    let mut out = Vec::new();
+    walk(&scene.root, &mut out);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{PolyMesh, V3};
+    use crate::pipeline::{render, Outputs, RenderOptions};
+    use crate::prepare::{prepare_with, PrepareOptions};
+    use crate::scene::testing::leaf;
+    use crate::scene::Scene;
+    use crate::tribox::interfere::{interfere_with, Method};
+    use crate::view::Camera;
+
+    /// A closed, bumpy latitude-longitude sphere of radius about `r` at `c`: `n` rings of
+    /// `2n` quads, split into triangles, triangle fans at the poles.
+    fn sphere(n: u32, r: f64, c: V3) -> PolyMesh {
+        let m = 2 * n;
+        let mut v = vec![
+            P3::from(c + V3::new(0., 0., r)),
+            P3::from(c - V3::new(0., 0., r)),
+        ];
+        for i in 1..n {
+            for j in 0..m {
+                let (th, ph) = (
+                    std::f64::consts::PI * f64::from(i) / f64::from(n),
+                    std::f64::consts::TAU * f64::from(j) / f64::from(m),
+                );
+                let rr = r * (1.0 + 0.15 * (3.0 * ph).sin() * th.sin());
+                v.push(P3::from(
+                    c + V3::new(th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()) * rr,
+                ));
+            }
+        }
+        let at = |i: u32, j: u32| 2 + (i - 1) * m + (j % m);
+        let mut f = Vec::new();
+        for j in 0..m {
+            f.push(vec![0, at(1, j), at(1, j + 1)]);
+            f.push(vec![1, at(n - 1, j + 1), at(n - 1, j)]);
+        }
+        for i in 1..n - 1 {
+            for j in 0..m {
+                f.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                f.push(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        PolyMesh::new(v, f)
+    }
+
+    /// Three spheres of 2208 faces overlapping in depth and on the screen.
+    fn spheres() -> Scene {
+        let objs = (0..3)
+            .map(|k| {
+                let c = V3::new(0.8 * f64::from(k), 0.3 * f64::from(k), -1.5 * f64::from(k));
+                leaf(&format!("s{k}"), &sphere(24, 1.0, c))
+            })
+            .collect();
+        Scene::new(Object::group("", objs), "t".into())
+    }
+
+    fn prepared(kind: HierarchyKind) -> Scene {
+        let mut s = spheres();
+        prepare_with(
+            &mut s,
+            &PrepareOptions {
+                hierarchy: Some(kind),
+            },
+        );
+        s
+    }
+
+    #[test]
+    fn trees_are_prepared_once_per_mesh_and_answers_do_not_change() {
+        let simplify = prepared(HierarchyKind::Simplify);
+        let median = prepared(HierarchyKind::Median);
+        let trees = leaf_trees(&simplify);
+        assert_eq!(trees.len(), 3);
+        for t in &trees {
+            let t = t.as_ref().expect("a tree for every large mesh");
+            assert_eq!(t.kind, HierarchyKind::Simplify);
+            assert_eq!(t.faces.len(), 2208);
+        }
+        assert!(leaf_trees(&median).iter().all(Option::is_none));
+        // By default a mesh drawn once keeps the per-view median split.
+        let mut auto = spheres();
+        prepare_with(&mut auto, &PrepareOptions::default());
+        assert!(leaf_trees(&auto).iter().all(Option::is_none));
+        let json = |s: &Scene| {
+            let outputs = Outputs {
+                json: true,
+                ..Outputs::default()
+            };
+            let cam = Camera::orthographic(V3::new(0.2, -0.1, -1.0), V3::y()).unwrap();
+            let r = render(
+                s,
+                &cam,
+                &RenderOptions {
+                    outputs,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            assert!(r.stats.counters.nodes_visited > 0);
+            r.json.unwrap()
+        };
+        // The walk order differs; the visible-polygon sets are the same bytes.
+        let (a, b) = (json(&simplify), json(&median));
+        assert!(a.len() > 1000);
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn interference_is_the_same_by_every_method() {
+        let s = prepared(HierarchyKind::Simplify);
+        let brute = interfere_with(&s, Method::Brute);
+        assert!(brute.tribox_meet.iter().any(|p| p.2), "{brute:?}");
+        for kind in [HierarchyKind::Simplify, HierarchyKind::Median] {
+            let t = interfere_with(&s, Method::Tree(kind));
+            assert_eq!(t.tribox_meet, brute.tribox_meet);
+            assert!(t.bv_tests > 0);
+        }
+    }
+
+    #[test]
+    fn lod_draws_a_mesh_of_two_far_parts_as_a_tribox_per_part() {
+        let mut two = sphere(12, 1.0, V3::zeros());
+        let far = sphere(12, 1.0, V3::new(10., 0., 0.));
+        let base = two.vertices.len() as u32;
+        two.vertices.extend(far.vertices);
+        two.faces.extend(
+            far.faces
+                .into_iter()
+                .map(|f| f.into_iter().map(|v| v + base).collect()),
+        );
+        let mut s = Scene::new(Object::group("", vec![leaf("two", &two)]), "t".into());
+        prepare_with(
+            &mut s,
+            &PrepareOptions {
+                hierarchy: Some(HierarchyKind::Simplify),
+            },
+        );
+        let cam = Camera::three_quarter();
+        let (out, stats) =
+            crate::view::substitute(&s, &cam, &crate::view::LodOptions::new(1e9, 100));
+        assert_eq!(stats.objects_replaced, 1);
+        // One tribox would span the gap between the spheres; the components' do not.
+        assert!(stats.triboxes >= 2, "{stats:?}");
+        let sub = &out.root.subobjects()[0];
+        assert!(sub.vertices().iter().all(|v| v.x < 1.5 || v.x > 8.5));
+        // Without a tree: one tribox.
+        let mut bare = Scene::new(Object::group("", vec![leaf("two", &two)]), "t".into());
+        prepare_with(
+            &mut bare,
+            &PrepareOptions {
+                hierarchy: Some(HierarchyKind::Median),
+            },
+        );
+        let (_, one) =
+            crate::view::substitute(&bare, &cam, &crate::view::LodOptions::new(1e9, 100));
+        assert_eq!(one.triboxes, 1);
+    }
+}
