@@ -48,7 +48,7 @@ pub struct Piece {
     pub ref_turn: f64,
     /// Orientation toward the viewer.
     pub facing: Facing,
-    /// True for a back face of a closed solid: hidden by the solid itself (a safe cull).
+    /// True for a back face of a proven solid: hidden by the solid itself (a safe cull).
     pub culled: bool,
     /// True when the projected ring is convex (counter-clockwise after orienting).
     pub convex: bool,
@@ -260,7 +260,10 @@ impl ScreenFaces {
         let clip: Vec<[f64; 4]> = world.iter().map(|p| camera.clip_coords(p)).collect();
         let all_in_front = camera.projection == Projection::Orthographic
             || clip.iter().all(|h| h[3] >= camera.near);
-        let may_cull = leaf.mesh.closed && all_in_front;
+        // Back faces hide nothing a front face does not, and are hidden themselves, only on a
+        // proven solid (prepare) seen from outside its convex hull (every vertex in front of
+        // the near plane).
+        let may_cull = leaf.mesh.cullable() && all_in_front;
         let mirrors = leaf.mirrors();
         self.leaves.push(LeafInfo {
             path: leaf.path.clone(),
