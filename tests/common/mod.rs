@@ -174,3 +174,4 @@ pub(crate) fn models() -> Option<std::path::PathBuf> {
         None
     }
 }
+pub(crate) mod strokes;
