@@ -323,11 +323,12 @@ impl ScreenFaces {
     }
 }
 
-/// The planar pieces of a face: itself when its vertices lie exactly on one plane (robust
+/// The planar pieces of a face (the warped-face split rule, shared with the exact check in
+/// [`crate::exact`]): itself when its vertices lie exactly on one plane (robust
 /// orient3d = 0 against three of them), else the triangles of an ear-clipping triangulation.
 /// Exact planarity is what makes "G in front of F's plane" and "F behind G's plane" the same
 /// question, so VTPs and VISP agree by construction; axis-aligned and primitive faces stay whole.
-fn planar_pieces(idx: &[u32], world: &[P3]) -> Vec<Vec<u32>> {
+pub fn planar_pieces(idx: &[u32], world: &[P3]) -> Vec<Vec<u32>> {
     if idx.len() > 3 {
         let pts: Vec<P3> = idx.iter().map(|&k| world[k as usize]).collect();
         if !exactly_planar(&pts) {
