@@ -94,7 +94,11 @@ fn fold_and_inside_out_tetrahedron_match_the_exact_answer() {
     let cases = [
         ("fold", fold(), V3::new(0., 0., -1.)),
         ("fold, oblique", fold(), V3::new(-0.3, -0.5, -1.)),
-        ("inward tetrahedron", inward_tetrahedron(), V3::new(-1., -1., -1.)),
+        (
+            "inward tetrahedron",
+            inward_tetrahedron(),
+            V3::new(-1., -1., -1.),
+        ),
     ];
     for (what, s, dir) in cases {
         let cam = Camera::orthographic(dir, V3::y()).unwrap();
@@ -108,19 +112,27 @@ fn fold_and_inside_out_tetrahedron_match_the_exact_answer() {
             "{what}: culling must be wrong here"
         );
     }
-    assert!(matches!(solidity_of(&fold()), Solidity::SelfIntersecting(_)));
+    assert!(matches!(
+        solidity_of(&fold()),
+        Solidity::SelfIntersecting(_)
+    ));
     assert_eq!(solidity_of(&inward_tetrahedron()), Solidity::InsideOut);
     // Seen from (1, 1, 1) the inward tetrahedron shows its three inner faces at the origin
     // corner, each a right triangle of area 1/2 projected by 1/sqrt(3): sqrt(3)/2 in all.
     let cam = Camera::orthographic(V3::new(-1., -1., -1.), V3::y()).unwrap();
     let rep = prepared_check(inward_tetrahedron(), cam, None);
-    assert!((rep.visible - 3f64.sqrt() / 2.0).abs() < 1e-12, "{}", rep.visible);
+    assert!(
+        (rep.visible - 3f64.sqrt() / 2.0).abs() < 1e-12,
+        "{}",
+        rep.visible
+    );
 }
 
 /// A random convex solid (a primitive) scaled and placed, optionally wound inwards.
 fn solid(rng: &mut Rng, k: usize, inward: bool) -> kepler_hsr::scene::Mesh {
-    let names = kepler_hsr::primitives::names();
-    let raw = kepler_hsr::primitives::by_name(names[k % names.len()]).unwrap();
+    // The three smallest Platonic solids: the check is exact, and slow.
+    let raw =
+        kepler_hsr::primitives::by_name(["tetrahedron", "cube", "octahedron"][k % 3]).unwrap();
     let s = 0.3 + 0.4 * rng.f();
     let t = V3::new(rng.f(), rng.f(), rng.f());
     let faces = raw
@@ -135,7 +147,10 @@ fn solid(rng: &mut Rng, k: usize, inward: bool) -> kepler_hsr::scene::Mesh {
         })
         .collect();
     prim(kepler_hsr::geom::PolyMesh::new(
-        raw.vertices.iter().map(|v| P3::from(v.coords * s + t)).collect(),
+        raw.vertices
+            .iter()
+            .map(|v| P3::from(v.coords * s + t))
+            .collect(),
         faces,
     ))
 }
@@ -149,7 +164,11 @@ fn joined(a: &kepler_hsr::scene::Mesh, b: &kepler_hsr::scene::Mesh) -> kepler_hs
         .faces
         .iter()
         .map(|f| f.vertices.clone())
-        .chain(b.faces.iter().map(|f| f.vertices.iter().map(|v| v + off).collect()))
+        .chain(
+            b.faces
+                .iter()
+                .map(|f| f.vertices.iter().map(|v| v + off).collect()),
+        )
         .collect();
     let refs: Vec<&[u32]> = faces.iter().map(|f| f.as_slice()).collect();
     mesh(&pts, &refs)
@@ -176,10 +195,18 @@ fn random_scene(rng: &mut Rng, kind: usize) -> Scene {
             scene(vec![
                 ("x", cuboid([0., 0., 0.], [3., 0.6, 0.2 + j])),
                 ("y", cuboid([2.3, 0., 0.1], [2.9, 3., 0.4])),
-                ("z", mesh(
-                    &[[3., 2.4, 0.3], [0., 2.4, -0.1], [0., 3., -0.1], [3., 3., 0.3]],
-                    &[&[0, 1, 2, 3]],
-                )),
+                (
+                    "z",
+                    mesh(
+                        &[
+                            [3., 2.4, 0.3],
+                            [0., 2.4, -0.1],
+                            [0., 3., -0.1],
+                            [3., 3., 0.3],
+                        ],
+                        &[&[0, 1, 2, 3]],
+                    ),
+                ),
                 ("w", cuboid([0., 0., -0.3 + j], [0.6, 3., -0.05])),
             ])
         }
@@ -195,7 +222,10 @@ fn random_scene(rng: &mut Rng, kind: usize) -> Scene {
         // Self-intersecting closed solids: overlapping primitives joined into one mesh.
         3 => {
             let (a, b) = (solid(rng, 1, false), solid(rng, 2, false));
-            scene(vec![("joined", joined(&a, &b)), ("other", solid(rng, 3, false))])
+            scene(vec![
+                ("joined", joined(&a, &b)),
+                ("other", solid(rng, 3, false)),
+            ])
         }
         // Inside-out solids, next to a proper one.
         _ => scene(vec![
@@ -209,7 +239,7 @@ fn random_scene(rng: &mut Rng, kind: usize) -> Scene {
 #[test]
 fn random_scenes_of_every_kind_match_the_exact_answer() {
     let mut rng = Rng(11);
-    for round in 0..3 {
+    for round in 0..2 {
         for kind in 0..5 {
             let s = random_scene(&mut rng, kind);
             let b = s.cbox();

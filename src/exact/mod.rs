@@ -88,11 +88,23 @@ impl ExactReport {
 
 /// Checks every face's claimed visible region in `vis` against the exact answer for
 /// `scene` seen by `camera`. Only `faces` when given (ids in global order).
-pub fn check(scene: &Scene, camera: &Camera, vis: &Visibility, faces: Option<&[FaceId]>) -> ExactReport {
+pub fn check(
+    scene: &Scene,
+    camera: &Camera,
+    vis: &Visibility,
+    faces: Option<&[FaceId]>,
+) -> ExactReport {
     let pieces = exact_pieces(scene, camera);
     let scale = pieces
         .iter()
-        .flat_map(|p| [p.rect[0].abs(), p.rect[1].abs(), p.rect[2].abs(), p.rect[3].abs()])
+        .flat_map(|p| {
+            [
+                p.rect[0].abs(),
+                p.rect[1].abs(),
+                p.rect[2].abs(),
+                p.rect[3].abs(),
+            ]
+        })
         .fold(0.0f64, f64::max);
     let all: Vec<FaceId> = (0..scene.face_count() as u32).map(FaceId).collect();
     let ids = faces.unwrap_or(&all);
@@ -107,14 +119,26 @@ pub fn check(scene: &Scene, camera: &Camera, vis: &Visibility, faces: Option<&[F
     }
 }
 
-fn face_check(id: FaceId, pieces: &[ExactPiece], vis: &Visibility, scale: f64) -> Option<FaceCheck> {
+fn face_check(
+    id: FaceId,
+    pieces: &[ExactPiece],
+    vis: &Visibility,
+    scale: f64,
+) -> Option<FaceCheck> {
     let own: Vec<&ExactPiece> = pieces.iter().filter(|p| p.face == id.0).collect();
     let claim: Vec<Vec<QPt>> = vis
         .face(id)
         .visible
         .iter()
         .flatten()
-        .map(|r| r.iter().map(|p| QPt { x: q(p[0]), y: q(p[1]) }).collect())
+        .map(|r| {
+            r.iter()
+                .map(|p| QPt {
+                    x: q(p[0]),
+                    y: q(p[1]),
+                })
+                .collect()
+        })
         .collect();
     if own.is_empty() && claim.is_empty() {
         return None;

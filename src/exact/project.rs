@@ -46,7 +46,8 @@ pub fn exact_pieces(scene: &Scene, camera: &Camera) -> Vec<ExactPiece> {
         for (k, f) in leaf.mesh.faces.iter().enumerate() {
             let face = (leaf.first_face + k) as u32;
             for piece in planar_pieces(&f.vertices, &world) {
-                let mut poly: Vec<[Q; 4]> = piece.iter().map(|&v| clip[v as usize].clone()).collect();
+                let mut poly: Vec<[Q; 4]> =
+                    piece.iter().map(|&v| clip[v as usize].clone()).collect();
                 if persp {
                     poly = clip_near(&poly, &near);
                 }
@@ -72,11 +73,7 @@ pub fn exact_pieces(scene: &Scene, camera: &Camera) -> Vec<ExactPiece> {
 /// M · (p, 1), exactly.
 fn homogeneous(m: &[Vec<Q>], p: &P3) -> [Q; 4] {
     let c = [q(p.x), q(p.y), q(p.z), Q::int(1)];
-    std::array::from_fn(|r| {
-        m[r].iter()
-            .zip(&c)
-            .fold(Q::int(0), |s, (a, b)| s + a * b)
-    })
+    std::array::from_fn(|r| m[r].iter().zip(&c).fold(Q::int(0), |s, (a, b)| s + a * b))
 }
 
 /// The polygon clipped to w ≥ near (Sutherland–Hodgman, exact).

@@ -99,7 +99,12 @@ pub fn box_of<'a>(pts: impl IntoIterator<Item = &'a QPt>) -> [f64; 4] {
     ];
     for p in pts {
         let (x, y) = (bounds(&p.x), bounds(&p.y));
-        b = [b[0].min(x[0]), b[1].max(x[1]), b[2].min(y[0]), b[3].max(y[1])];
+        b = [
+            b[0].min(x[0]),
+            b[1].max(x[1]),
+            b[2].min(y[0]),
+            b[3].max(y[1]),
+        ];
     }
     b
 }
@@ -118,7 +123,7 @@ mod tests {
         let third = q(1.0) / q(3.0);
         let b = bounds(&third);
         assert!(b[0] < 1.0 / 3.0 && 1.0 / 3.0 < b[1]);
-        assert_eq!(q(0.1) * q(10.0) == q(1.0), false, "0.1 is not 1/10 in binary");
+        assert!(q(0.1) * q(10.0) != q(1.0), "0.1 is not 1/10 in binary");
         let p = |x: f64, y: f64| QPt { x: q(x), y: q(y) };
         let sq = [p(0., 0.), p(1., 0.), p(1., 1.), p(0., 1.)];
         assert_eq!(winding(&sq, &p(0.5, 0.5)), 1);

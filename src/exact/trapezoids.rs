@@ -10,7 +10,6 @@
 //! "is f the nearest face" and "does the claim cover it" are constant. Both are decided at
 //! the trapezoid's centre, exactly.
 
-
 use super::project::ExactPiece;
 use super::rational::{bounds, box_of, boxes_meet, q, sign, winding, QPt, Q};
 
@@ -67,11 +66,7 @@ pub struct FaceAreas {
 
 /// The exact areas of face `face` (its pieces `own`) among `pieces`, against the claimed
 /// visible region `claim` (rings with exact coordinates; nonzero winding).
-pub fn face_areas(
-    own: &[&ExactPiece],
-    pieces: &[ExactPiece],
-    claim: &[Vec<QPt>],
-) -> FaceAreas {
+pub fn face_areas(own: &[&ExactPiece], pieces: &[ExactPiece], claim: &[Vec<QPt>]) -> FaceAreas {
     let mut out = FaceAreas::default();
     if own.is_empty() {
         return out;
@@ -105,8 +100,20 @@ pub fn face_areas(
         .filter(|s| boxes_meet(&s.rect, &rect))
         .collect();
     // The claim may reach outside the face: that part is a mismatch too.
-    let xlo = own.iter().flat_map(|p| &p.ring).chain(claim.iter().flatten()).map(|p| &p.x).min().cloned();
-    let xhi = own.iter().flat_map(|p| &p.ring).chain(claim.iter().flatten()).map(|p| &p.x).max().cloned();
+    let xlo = own
+        .iter()
+        .flat_map(|p| &p.ring)
+        .chain(claim.iter().flatten())
+        .map(|p| &p.x)
+        .min()
+        .cloned();
+    let xhi = own
+        .iter()
+        .flat_map(|p| &p.ring)
+        .chain(claim.iter().flatten())
+        .map(|p| &p.x)
+        .max()
+        .cloned();
     let (Some(xlo), Some(xhi)) = (xlo, xhi) else {
         return out;
     };
@@ -135,7 +142,9 @@ pub fn face_areas(
             };
             let pb = [bounds(&p.x), bounds(&p.y)];
             let near = |r: &[f64; 4]| boxes_meet(r, &[pb[0][0], pb[0][1], pb[1][0], pb[1][1]]);
-            let inside = own.iter().any(|o| near(&o.rect) && winding(&o.ring, &p) != 0);
+            let inside = own
+                .iter()
+                .any(|o| near(&o.rect) && winding(&o.ring, &p) != 0);
             let claimed = claim.iter().map(|r| winding(r, &p)).sum::<i32>() != 0;
             if !inside && !claimed {
                 continue;
@@ -270,7 +279,12 @@ fn events(segs: &[Seg], xlo: &Q, xhi: &Q, rect: &[f64; 4]) -> Vec<Q> {
                 break;
             }
             let (a, b) = (&segs[i].rect, &segs[j].rect);
-            let both = [a[0].max(b[0]), a[1].min(b[1]), a[2].max(b[2]), a[3].min(b[3])];
+            let both = [
+                a[0].max(b[0]),
+                a[1].min(b[1]),
+                a[2].max(b[2]),
+                a[3].min(b[3]),
+            ];
             if !(both[0] <= both[1] && both[2] <= both[3] && boxes_meet(&both, rect)) {
                 continue;
             }
@@ -305,5 +319,10 @@ fn crossing_x(s: &Seg, t: &Seg) -> Option<Q> {
 }
 
 fn union(a: &[f64; 4], b: &[f64; 4]) -> [f64; 4] {
-    [a[0].min(b[0]), a[1].max(b[1]), a[2].min(b[2]), a[3].max(b[3])]
+    [
+        a[0].min(b[0]),
+        a[1].max(b[1]),
+        a[2].min(b[2]),
+        a[3].max(b[3]),
+    ]
 }

@@ -250,13 +250,13 @@ fn edge_pieces(mesh: &Mesh) -> Pieces {
     let mut label = vec![u32::MAX; n];
     let mut of_face = vec![0; n];
     let mut count = 0;
-    for k in 0..n {
+    for (k, slot) in of_face.iter_mut().enumerate() {
         let r = find(&mut parent, k as u32) as usize;
         if label[r] == u32::MAX {
             label[r] = count as u32;
             count += 1;
         }
-        of_face[k] = label[r];
+        *slot = label[r];
     }
     Pieces { of_face, count }
 }

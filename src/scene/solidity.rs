@@ -1,5 +1,5 @@
 //! Whether a mesh is a proven solid (its back faces may be culled), or why not; decided in
-//! the prepare stage ([`crate::prepare::solidity`]).
+//! the prepare stage ([`mod@crate::prepare::solidity`]).
 
 /// Whether a mesh is a proven solid, or why not.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
