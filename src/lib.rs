@@ -27,6 +27,7 @@
 
 pub mod emit;
 pub mod error;
+pub mod exact;
 pub mod geom;
 pub mod load;
 pub mod pipeline;

@@ -13,17 +13,6 @@ use kepler_hsr::view::{Camera, Facing, View};
 use kepler_hsr::visibility::{visp, PointVisibility, Visibility};
 use kepler_hsr::FaceId;
 
-/// xorshift64*: a tiny deterministic generator.
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545F4914F6CDD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 fn random_triangles(rng: &mut Rng, n: usize, offset: f64, scale: f64) -> Scene {
     let objs: Vec<(String, Mesh)> = (0..n)
         .map(|i| {
@@ -192,7 +181,9 @@ fn random_interpenetrating_triangles() {
 fn random_closed_solids() {
     let mut rng = Rng(12345);
     for _ in 0..3 {
-        let s = random_solids(&mut rng, 14);
+        let mut s = random_solids(&mut rng, 14);
+        // Prepared: each primitive is proven solid, so its back faces are culled.
+        kepler_hsr::prepare::prepare(&mut s);
         for (ci, cam) in cameras(&mut rng, P3::new(1.0, 1.0, 1.0))
             .into_iter()
             .enumerate()

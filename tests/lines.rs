@@ -137,16 +137,69 @@ fn ico5_visible_length_is_analytic() {
     check_convex(&load(&p), "ico5");
 }
 
-/// Total projected length of the edge set (mesh edges and intersection segments).
+/// Total projected length of the edge set (mesh edges and intersection segments), each
+/// piece of screen line counted once: segments on one line (directions within 1e-9, offsets
+/// within 1e-9 of the extent) are merged as intervals along it, as a plotter strokes them.
 fn projected_total(scene: &Scene, view: &View) -> f64 {
     let world = WorldFaces::build(scene);
     let mut edges = mesh_edges(&world, view, &all_edges(true).edges);
     edges.extend(intersection_edges(&world, |_| true));
-    edges
+    let segs: Vec<[[f64; 2]; 2]> = edges
         .iter()
         .filter_map(|e| project_segment(&view.camera, &e.ends[0], &e.ends[1]))
-        .map(|[p, q]| (q[0] - p[0]).hypot(q[1] - p[1]))
-        .sum()
+        .map(|[p, q]| [[p[0], p[1]], [q[0], q[1]]])
+        .filter(|[p, q]| p != q)
+        .collect();
+    let extent = segs
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    let tol = 1e-9 * extent.max(1.0);
+    // Each segment as (unit direction with x > 0 or x = 0 and y > 0, offset, interval).
+    let lines: Vec<([f64; 2], f64, [f64; 2])> = segs
+        .iter()
+        .map(|[p, q]| {
+            let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+            let l = dx.hypot(dy);
+            let s = if dx > 0.0 || (dx == 0.0 && dy > 0.0) {
+                1.0
+            } else {
+                -1.0
+            };
+            let d = [s * dx / l, s * dy / l];
+            let off = d[0] * p[1] - d[1] * p[0];
+            let (a, b) = (d[0] * p[0] + d[1] * p[1], d[0] * q[0] + d[1] * q[1]);
+            (d, off, [a.min(b), a.max(b)])
+        })
+        .collect();
+    let mut used = vec![false; lines.len()];
+    let mut total = 0.0;
+    for i in 0..lines.len() {
+        if used[i] {
+            continue;
+        }
+        let (d, off, _) = lines[i];
+        let mut ivs: Vec<[f64; 2]> = Vec::new();
+        for j in i..lines.len() {
+            let (e, o, iv) = lines[j];
+            if !used[j] && (d[0] * e[1] - d[1] * e[0]).abs() <= 1e-9 && (off - o).abs() <= tol {
+                used[j] = true;
+                ivs.push(iv);
+            }
+        }
+        ivs.sort_by(|a, b| a[0].total_cmp(&b[0]));
+        let mut cur = ivs[0];
+        for iv in &ivs[1..] {
+            if iv[0] > cur[1] {
+                total += cur[1] - cur[0];
+                cur = *iv;
+            } else {
+                cur[1] = cur[1].max(iv[1]);
+            }
+        }
+        total += cur[1] - cur[0];
+    }
+    total
 }
 
 fn check_complement(scene: &Scene, cam: Camera, name: &str) {

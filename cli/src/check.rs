@@ -1,4 +1,7 @@
-//! `kepler check`: re-render a scene and compare its visible-polygon set with a golden file.
+//! `kepler check`: re-render a scene and compare its visible-polygon set with a golden file,
+//! and/or (`--exact`) with the independent exact answer (`kepler_hsr::exact`: rationals, no
+//! boolean engine, no tolerance in any decision; slow, for small scenes): each face's
+//! symmetric difference must stay within 1e-9 of its projected area plus rounding.
 //!
 //! The camera is chosen exactly as `kepler render` chooses it (flags, then the scene's camera,
 //! then the three-quarter view); a golden made with other camera flags differs everywhere, and
@@ -15,7 +18,8 @@ use anyhow::{anyhow, Result};
 use clap::Args;
 use kepler_hsr::geom::boolean::xor_area;
 use kepler_hsr::geom::poly2::{multipolygon_area, MultiPolygon, Pt2};
-use kepler_hsr::{render, FaceId, Outputs, RenderOptions, View};
+use kepler_hsr::scene::Scene;
+use kepler_hsr::{render, Camera, FaceId, Outputs, RenderOptions, View, Visibility};
 use serde_json::Value;
 
 use super::{load, out, write, CameraArgs};
@@ -26,8 +30,11 @@ pub(crate) struct CheckArgs {
     /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
     pub(crate) scene: PathBuf,
     /// The golden kepler-visible/1 file.
-    #[arg(long, value_name = "F.json")]
-    pub(crate) golden: PathBuf,
+    #[arg(long, value_name = "F.json", required_unless_present = "exact")]
+    pub(crate) golden: Option<PathBuf>,
+    /// Check every face against the independent exact answer (slow: small scenes).
+    #[arg(long)]
+    pub(crate) exact: bool,
     /// Largest allowed change of a face's visible region, relative to its area.
     #[arg(long, value_name = "T", default_value_t = 1e-9)]
     pub(crate) tol: f64,
@@ -63,17 +70,28 @@ pub(crate) fn run(a: CheckArgs) -> Result<ExitCode> {
         ..RenderOptions::default()
     };
     let r = render(&scene, &camera, &opts)?;
+    let mut failed = false;
+    if a.exact {
+        failed |= !exact(&scene, &camera, &r.visibility, &r.view);
+    }
+    let Some(golden_path) = &a.golden else {
+        return Ok(if failed {
+            ExitCode::from(1)
+        } else {
+            ExitCode::SUCCESS
+        });
+    };
     let (view, vis) = (&r.view, &r.visibility);
     let json = r.json.clone().unwrap_or_default();
     if a.update {
-        write(&a.golden, &json)?;
-        out(&format!("wrote {}", a.golden.display()));
+        write(golden_path, &json)?;
+        out(&format!("wrote {}", golden_path.display()));
         return Ok(ExitCode::SUCCESS);
     }
-    let text =
-        std::fs::read_to_string(&a.golden).map_err(|e| anyhow!("{}: {e}", a.golden.display()))?;
+    let text = std::fs::read_to_string(golden_path)
+        .map_err(|e| anyhow!("{}: {e}", golden_path.display()))?;
     let (golden, matrix) =
-        parse_golden(&text).map_err(|e| anyhow!("{}: {e}", a.golden.display()))?;
+        parse_golden(&text).map_err(|e| anyhow!("{}: {e}", golden_path.display()))?;
     let (current, _) = parse_golden(&json).map_err(|e| anyhow!("internal JSON: {e}"))?;
     if matrix != current_matrix(view) {
         out("note: the camera differs from the golden's");
@@ -107,10 +125,40 @@ pub(crate) fn run(a: CheckArgs) -> Result<ExitCode> {
     if changed > 0 {
         out(&format!("{changed} faces changed"));
         Ok(ExitCode::from(1))
+    } else if failed {
+        Ok(ExitCode::from(1))
     } else {
         out("ok");
         Ok(ExitCode::SUCCESS)
     }
+}
+
+/// The render against the exact answer: prints each disagreeing face and a summary; true
+/// when everything agrees.
+fn exact(scene: &Scene, camera: &Camera, vis: &Visibility, view: &View) -> bool {
+    let rep = kepler_hsr::exact::check(scene, camera, vis, None);
+    for f in rep.disagreements() {
+        let object = view
+            .screen
+            .leaves
+            .iter()
+            .find(|l| l.faces().contains(&f.face))
+            .map_or("", |l| l.path.as_str());
+        out(&format!(
+            "face {} ({object}): differs from the exact answer by {:.3e} (allowed {:.3e}); visible {} exact {}",
+            f.face, f.mismatch, f.tolerance, f.claimed, f.visible
+        ));
+    }
+    let bad = rep.disagreements().len();
+    out(&format!(
+        "exact: {} of {} faces agree; visible area {} (exact {}, {:.1e} of the projected area)",
+        rep.faces.len() - bad,
+        rep.faces.len(),
+        rep.claimed(),
+        rep.visible,
+        (rep.claimed() - rep.visible).abs() / rep.projected.max(f64::MIN_POSITIVE)
+    ));
+    rep.agrees()
 }
 
 /// The camera matrix as the JSON writes it (for comparison with the golden's).

@@ -1,4 +1,6 @@
-//! `kepler info`: the object tree with face/vertex counts, CBOX, INBOX and closedness.
+//! `kepler info`: the object tree with face/vertex counts, CBOX, every object's INBOX
+//! (computed here even where a render would skip it, or a reason why there is none), and
+//! whether each mesh is a proven solid whose back faces are culled, or why not.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -8,7 +10,7 @@ use clap::Args;
 use kepler_hsr::emit::json::{json_string, num};
 use kepler_hsr::geom::Box3;
 use kepler_hsr::prepare::{HierarchyKind, ObjectTree};
-use kepler_hsr::scene::{Content, Mesh, Object};
+use kepler_hsr::scene::{Content, Mesh, Object, Solidity};
 use std::sync::Arc;
 
 use super::{load, out};
@@ -36,7 +38,9 @@ pub(crate) struct InfoArgs {
 
 /// Runs `kepler info`.
 pub(crate) fn run(a: InfoArgs) -> Result<ExitCode> {
-    let scene = load(&a.scene, a.quiet)?;
+    let mut scene = load(&a.scene, a.quiet)?;
+    // The render skips INBOXes where they cannot help (one object); info always shows them.
+    kepler_hsr::prepare::compute_inboxes(&mut scene.root);
     if let Some(f) = &a.components {
         let camera = a.camera.camera(&scene)?;
         super::write(
@@ -99,6 +103,41 @@ fn g(x: f64) -> String {
     }
 }
 
+/// The solidity of a leaf (an instance's prototype leaf); None for a group.
+fn leaf_solidity(o: &Object) -> Option<Solidity> {
+    match &o.content {
+        Content::Mesh(m) => m.solidity,
+        Content::Subobjects(_) => None,
+        Content::Instance(i) => leaf_solidity(&i.prototype),
+    }
+}
+
+/// How a leaf's back faces are treated: culled on a proven solid, or why not.
+fn cull_text(o: &Object) -> Option<String> {
+    let s = match &o.content {
+        Content::Subobjects(_) => return None,
+        _ => leaf_solidity(o),
+    };
+    Some(match s {
+        Some(Solidity::Solid) => "solid: back faces culled".into(),
+        Some(s) => format!("back faces not culled: {}", s.reason()),
+        None => "back faces not culled: not prepared".into(),
+    })
+}
+
+/// Why an object has no INBOX.
+fn no_inbox_reason(o: &Object) -> String {
+    match &o.content {
+        Content::Mesh(m) if !m.closed => "open or inconsistent surface: no inside".into(),
+        Content::Mesh(_) => "no box found inside".into(),
+        Content::Subobjects(_) => "no subobject has an INBOX".into(),
+        Content::Instance(i) if i.prototype.inbox.is_none() => {
+            format!("its prototype has none ({})", no_inbox_reason(&i.prototype))
+        }
+        Content::Instance(_) => "no box fits inside the placed prototype's INBOX".into(),
+    }
+}
+
 fn print_tree(o: &Object, name: &str, depth: usize) {
     let indent = "  ".repeat(depth);
     out(&format!(
@@ -112,18 +151,24 @@ fn print_tree(o: &Object, name: &str, depth: usize) {
             "open"
         }
     ));
+    if let Some(c) = cull_text(o) {
+        out(&format!("{indent}  {c}"));
+    }
     out(&format!("{indent}  cbox  {}", fmt_box(&o.cbox)));
-    if let Some(ib) = &o.inbox {
-        let ratio = if o.cbox.volume() > 0.0 {
-            ib.volume() / o.cbox.volume()
-        } else {
-            0.0
-        };
-        out(&format!(
-            "{indent}  inbox {} ({:.1}% of cbox)",
-            fmt_box(ib),
-            100.0 * ratio
-        ));
+    match &o.inbox {
+        Some(ib) => {
+            let ratio = if o.cbox.volume() > 0.0 {
+                ib.volume() / o.cbox.volume()
+            } else {
+                0.0
+            };
+            out(&format!(
+                "{indent}  inbox {} ({:.1}% of cbox)",
+                fmt_box(ib),
+                100.0 * ratio
+            ));
+        }
+        None => out(&format!("{indent}  inbox none: {}", no_inbox_reason(o))),
     }
     if let Content::Mesh(m) = &o.content {
         print_hierarchy(o, m, &indent);
@@ -237,15 +282,26 @@ fn object_json(o: &Object, name: &str) -> String {
         .iter()
         .map(|s| object_json(s, &s.name))
         .collect();
+    let inbox = match &o.inbox {
+        Some(b) => box_json(b),
+        None => format!("null,\"inbox_reason\":{}", json_string(&no_inbox_reason(o))),
+    };
+    let solid = match (&o.content, leaf_solidity(o)) {
+        (Content::Subobjects(_), _) => String::new(),
+        (_, s) => format!(
+            ",\"solidity\":{},\"culled_back_faces\":{}",
+            json_string(s.map_or("unprepared", Solidity::word)),
+            s.is_some_and(Solidity::is_solid)
+        ),
+    };
     format!(
-        "{{\"name\":{},\"kind\":{},\"faces\":{},\"vertices\":{},\"closed\":{},\"cbox\":{},\"inbox\":{}{},\"subobjects\":[{}]}}",
+        "{{\"name\":{},\"kind\":{},\"faces\":{},\"vertices\":{},\"closed\":{}{solid},\"cbox\":{},\"inbox\":{inbox}{},\"subobjects\":[{}]}}",
         json_string(name),
         json_string(&kind(o)),
         o.face_count(),
         o.vertex_count(),
         o.is_closed(),
         box_json(&o.cbox),
-        o.inbox.as_ref().map_or("null".into(), box_json),
         hierarchy_json(o),
         subs.join(",")
     )

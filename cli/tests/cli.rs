@@ -162,3 +162,46 @@ fn interfere_answers_alike_with_both_trees_and_brute_force() {
     assert_eq!(run(&["--hierarchy", "median"]), brute);
     assert!(run(&["--stats"]).contains("BV nodes traversed"));
 }
+
+#[test]
+fn info_merges_signed_zeros_and_says_why_a_mesh_is_not_culled() {
+    let d = temp_dir("info");
+    // A tetrahedron whose vertex 5 is vertex 3 written with -0: 4 vertices, closed, solid.
+    let tet = d.join("tet.obj");
+    std::fs::write(
+        &tet,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv -0 1 0\nf 1 3 2\nf 1 2 4\nf 1 4 5\nf 2 3 4\n",
+    )
+    .unwrap();
+    let o = kepler(&["info", "-q", s(&tet)]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{o:?}");
+    assert!(text.contains("4 faces, 4 vertices, closed solid"), "{text}");
+    assert!(text.contains("solid: back faces culled"), "{text}");
+    // One object: the render skips its INBOX, info computes it.
+    assert!(text.contains("inbox ["), "{text}");
+    // Wound inwards: not culled, and info says why; its INBOX is still proven inside.
+    let inward = d.join("inward.obj");
+    std::fs::write(
+        &inward,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n",
+    )
+    .unwrap();
+    let o = kepler(&["info", "-q", "--json", s(&inward)]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let leaf = &v["subobjects"][0];
+    assert_eq!(leaf["solidity"], "inside-out", "{v}");
+    assert_eq!(leaf["culled_back_faces"], false);
+    assert!(leaf["inbox"].is_object(), "{v}");
+    // An open mesh has no INBOX, with the reason.
+    let open = d.join("open.obj");
+    std::fs::write(&open, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let o = kepler(&["info", "-q", "--json", s(&open)]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["subobjects"][0]["inbox"].is_null());
+    assert!(v["subobjects"][0]["inbox_reason"]
+        .as_str()
+        .unwrap()
+        .contains("open"));
+    assert_eq!(v["subobjects"][0]["solidity"], "open");
+}

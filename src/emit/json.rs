@@ -1,7 +1,8 @@
 //! The `kepler-visible/1` visible-polygon set: canonical JSON (same input, same bytes).
 //!
 //! Faces by id, one per line; rings start at their least point (x, then y); numbers in the
-//! shortest form that reads back to the same f64, with -0 written as 0.
+//! shortest form that reads back to the same f64, with -0 written as 0. A perspective camera
+//! also carries `near` (the near plane, the least w' kept by clipping) and `eye`.
 
 use std::fmt::Write as _;
 
@@ -66,7 +67,16 @@ pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
         let row: Vec<f64> = (0..4).map(|c| view.camera.matrix[(r, c)]).collect();
         list(&mut s, &row, |s, x| s.push_str(&num(*x)));
     }
-    s.push_str("]},\n\"faces\":[");
+    s.push(']');
+    if view.camera.projection == Projection::Perspective {
+        // The near plane (least w') and the eye: the clipping reproduces from the file alone.
+        let _ = write!(s, ",\"near\":{}", num(view.camera.near));
+        if let Some(e) = view.camera.eye {
+            s.push_str(",\"eye\":");
+            list(&mut s, &[e.x, e.y, e.z], |s, x| s.push_str(&num(*x)));
+        }
+    }
+    s.push_str("},\n\"faces\":[");
     let mut first = true;
     for (id, f) in vis.iter() {
         if f.visible.is_empty() {

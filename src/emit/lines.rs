@@ -3,6 +3,8 @@
 //!
 //! An edge is visible where it lies on the closed visible region of a face beside it; its
 //! hidden part is the rest of it. Edge-on faces have empty VTPs, so the other face decides.
+//! Where several edges project onto one screen line, the line is stroked once
+//! ([`super::once`]).
 
 use std::collections::BTreeMap;
 
@@ -19,6 +21,7 @@ use super::clip_segment::{at, complement, intervals_in, union, Interval};
 use super::edges::{mesh_edges, Edge, EdgeKind, EdgeOptions};
 use super::intersect::intersection_edges;
 use super::json::Lines;
+use super::once::{stroke_once, Ranked};
 use super::world::WorldFaces;
 
 /// Options of the line drawing.
@@ -138,16 +141,45 @@ fn edge_pieces(view: &View, vis: &Visibility, e: &Edge, hidden: bool) -> Pieces 
     (vis_pieces, hid_pieces)
 }
 
-/// Clips every edge against the VTPs, then chains and orders the pieces per (leaf, kind).
+/// Clips every edge against the VTPs, strokes every piece of line once ([`stroke_once`]),
+/// then chains and orders the pieces per (leaf, kind).
 pub fn split_edges(view: &View, vis: &Visibility, edges: &[Edge], hidden: bool) -> Drawing {
     let pieces: Vec<Pieces> = edges
         .par_iter()
         .map(|e| edge_pieces(view, vis, e, hidden))
         .collect();
+    // Every piece of line once: shared parts go to the higher-ranked edge, and hidden lines
+    // give way to visible ones.
+    let ranked = |pick: fn(&Pieces) -> &Vec<[Pt2; 2]>| -> Vec<(usize, Ranked)> {
+        edges
+            .iter()
+            .zip(&pieces)
+            .enumerate()
+            .flat_map(|(k, (e, p))| {
+                pick(p).iter().map(move |seg| {
+                    let r = Ranked {
+                        kind: e.kind,
+                        edge: k as u32,
+                        seg: *seg,
+                    };
+                    (k, r)
+                })
+            })
+            .collect()
+    };
+    let vis_ranked = ranked(|p| &p.0);
+    let vis_once = stroke_once(&vis_ranked.iter().map(|x| x.1).collect::<Vec<_>>(), &[]);
+    let hid_ranked = ranked(|p| &p.1);
+    let shown: Vec<[Pt2; 2]> = vis_once.iter().flatten().copied().collect();
+    let hid_once = stroke_once(&hid_ranked.iter().map(|x| x.1).collect::<Vec<_>>(), &shown);
     let mut vis_groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>> = BTreeMap::new();
     let mut hid_groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>> = BTreeMap::new();
-    for (e, (v, h)) in edges.iter().zip(pieces) {
+    for ((k, _), v) in vis_ranked.iter().zip(vis_once) {
+        let e = &edges[*k];
         vis_groups.entry((e.leaf, e.kind)).or_default().extend(v);
+    }
+    for ((k, _), h) in hid_ranked.iter().zip(hid_once) {
+        let e = &edges[*k];
         hid_groups.entry((e.leaf, e.kind)).or_default().extend(h);
     }
     Drawing {

@@ -98,6 +98,7 @@ mod tests {
             ],
             faces: vec![f],
             closed: false,
+            solidity: None,
         };
         let scene = Scene::new(
             Object::group("", vec![Object::from_mesh("sq", mesh)]),

@@ -7,6 +7,7 @@ pub mod intersect;
 pub mod json;
 pub mod lines;
 pub mod marks;
+pub mod once;
 pub mod picture;
 pub mod png;
 pub mod svg;

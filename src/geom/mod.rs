@@ -10,7 +10,9 @@ pub mod poly2;
 pub mod polymesh;
 pub mod predicates;
 pub mod rect;
+pub mod ring_check;
 pub mod solid_angle;
+pub mod tri_intersect;
 pub mod triangle;
 
 pub use box3::Box3;

@@ -1,5 +1,6 @@
-//! The prepare stage: view-independent bounds computed once after loading — INBOXes, and
-//! object trees for flat meshes (paper 002).
+//! The prepare stage: view-independent facts computed once after loading — which meshes are
+//! proven solids (back faces may be culled), INBOXes, and object trees for flat meshes
+//! (paper 002).
 
 pub mod bvtree;
 pub mod convex;
@@ -8,10 +9,12 @@ pub mod halfspace;
 pub mod inbox;
 pub mod place;
 pub mod solid;
+pub mod solidity;
 pub mod trees;
 
 pub use bvtree::{HierarchyKind, ObjectTree};
 pub use inbox::{compute_inboxes, mesh_inbox};
+pub use solidity::{mark_solids, solidity};
 
 use crate::scene::Scene;
 
@@ -32,10 +35,11 @@ pub fn prepare(scene: &mut Scene) {
     prepare_with(scene, &PrepareOptions::default());
 }
 
-/// The prepare stage for a whole scene: INBOXes for every object lacking one, and an object
-/// tree for every large leaf mesh. A scene of one leaf object gets no inboxes: an inbox prunes
+/// The prepare stage for a whole scene: every mesh's solidity (once per prototype), INBOXes
+/// for every object lacking one, and an object tree for every large leaf mesh. A scene of one leaf object gets no inboxes: an inbox prunes
 /// only other objects, so there is nothing for it to do ("model no more than a scene needs").
 pub fn prepare_with(scene: &mut Scene, opts: &PrepareOptions) {
+    mark_solids(&mut scene.root);
     let several = scene.leaves().len() >= 2;
     if several {
         compute_inboxes(&mut scene.root);

@@ -66,6 +66,7 @@ pub fn cleanup(raw: &PolyMesh, origin: &Origin, warnings: &mut Warnings) -> Resu
         vertices,
         faces,
         closed,
+        solidity: None,
     })
 }
 
@@ -101,13 +102,17 @@ fn check_indices(raw: &PolyMesh, origin: &Origin) -> Result<()> {
 /// The paper's FLATTEN step 4: sort the vertex list to find duplicates, combine them, and
 /// return the unique vertices (in order of first occurrence) with the old-to-new index map.
 pub fn merge_duplicate_vertices(verts: &[P3]) -> (Vec<P3>, Vec<u32>) {
-    let key = |p: &P3| [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits); // +0.0 folds -0 into 0
+    // -0.0 and +0.0 are the same coordinate: fold -0 into +0 (x + 0.0) both for sorting and
+    // for grouping, so that equal points always sit next to each other in the sorted order.
+    let folded = |p: &P3| [p.x + 0.0, p.y + 0.0, p.z + 0.0];
+    let key = |p: &P3| folded(p).map(f64::to_bits);
     let mut order: Vec<u32> = (0..verts.len() as u32).collect();
     order.sort_unstable_by(|&a, &b| {
-        let (pa, pb) = (&verts[a as usize], &verts[b as usize]);
-        pa.x.total_cmp(&pb.x)
-            .then(pa.y.total_cmp(&pb.y))
-            .then(pa.z.total_cmp(&pb.z))
+        let (pa, pb) = (folded(&verts[a as usize]), folded(&verts[b as usize]));
+        pa[0]
+            .total_cmp(&pb[0])
+            .then(pa[1].total_cmp(&pb[1]))
+            .then(pa[2].total_cmp(&pb[2]))
             .then(a.cmp(&b))
     });
     // First occurrence of each coordinate value.
@@ -391,5 +396,39 @@ mod tests {
         let (u, remap) = merge_duplicate_vertices(&v);
         assert_eq!(u, vec![P3::new(1., 0., 0.), P3::new(0., 0., 0.)]);
         assert_eq!(remap, vec![0, 1, 0, 1]);
+    }
+
+    #[test]
+    fn signed_zeros_merge_in_every_coordinate() {
+        // The sort must not separate -0 from +0 in x or y with another point between them.
+        let v = [
+            P3::new(0., 0., 0.),
+            P3::new(-0., 0.5, 0.),
+            P3::new(0., 1., 0.),
+            P3::new(-0., 1., 0.),
+            P3::new(0., -0., 2.),
+            P3::new(-0., 0., 2.),
+        ];
+        let (u, remap) = merge_duplicate_vertices(&v);
+        assert_eq!(u.len(), 4, "{u:?}");
+        assert_eq!(remap, vec![0, 1, 2, 2, 3, 3]);
+    }
+
+    #[test]
+    fn tetrahedron_with_a_negative_zero_vertex_is_closed() {
+        // The case: vertex 5 is vertex 3 written as -0.
+        let raw = PolyMesh::new(
+            vec![
+                P3::new(0., 0., 0.),
+                P3::new(1., 0., 0.),
+                P3::new(0., 1., 0.),
+                P3::new(0., 0., 1.),
+                P3::new(-0., 1., 0.),
+            ],
+            vec![vec![0, 2, 1], vec![0, 1, 3], vec![0, 3, 4], vec![1, 2, 3]],
+        );
+        let m = cleanup(&raw, &origin(), &mut Vec::new()).unwrap();
+        assert_eq!(m.vertices.len(), 4);
+        assert!(m.closed);
     }
 }

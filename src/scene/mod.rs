@@ -4,6 +4,7 @@ pub mod cleanup;
 pub mod face_id;
 pub mod flatten;
 pub mod object;
+pub mod solidity;
 pub mod texture;
 pub mod topology;
 pub mod triangulate;
@@ -15,6 +16,7 @@ use crate::geom::{Box3, M4, P3, V3};
 pub use face_id::FaceId;
 pub use flatten::{flatten, FlatMesh};
 pub use object::{Content, Face, Instance, Mesh, Object};
+pub use solidity::Solidity;
 pub use texture::{Texture, TextureFrame};
 
 /// A camera as a scene file states it (the view stage turns it into a matrix).
@@ -190,6 +192,7 @@ mod tests {
             vertices: vec![P3::new(0., 0., z), P3::new(1., 0., z), P3::new(0., 1., z)],
             faces: vec![Face::new(vec![0, 1, 2])],
             closed: false,
+            solidity: None,
         }
     }
 

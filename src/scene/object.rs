@@ -5,6 +5,7 @@ use std::sync::Arc;
 use crate::geom::{Box3, M4, P3};
 use crate::prepare::bvtree::ObjectTree;
 
+use super::solidity::Solidity;
 use super::texture::Texture;
 
 /// A planar polygon of an object, indexing the object's vertex list (the paper's FACE).
@@ -34,8 +35,18 @@ pub struct Mesh {
     /// The paper's \[FACEi\].
     pub faces: Vec<Face>,
     /// True when every edge is shared by exactly two faces traversing it in opposite
-    /// directions: a closed, consistently oriented solid.
+    /// directions: a closed, consistently oriented surface.
     pub closed: bool,
+    /// Whether back faces may be culled, decided exactly by the prepare stage (None until
+    /// then: an unprepared mesh is never culled).
+    pub solidity: Option<Solidity>,
+}
+
+impl Mesh {
+    /// True when the prepare stage proved the mesh a solid whose back faces may be culled.
+    pub fn cullable(&self) -> bool {
+        self.solidity.is_some_and(Solidity::is_solid)
+    }
 }
 
 impl Mesh {

@@ -24,6 +24,46 @@ pub fn is_closed_oriented(faces: &[Face]) -> bool {
         .all(|(&(a, b), &c)| c == 1 && directed.get(&(b, a)) == Some(&1))
 }
 
+/// How the edges of a face set join up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Topology {
+    /// Every edge used by exactly two faces, once in each direction.
+    Closed,
+    /// Some edge used by one face only (and none used inconsistently).
+    Open,
+    /// Some edge used twice in one direction, or by more than two faces.
+    Inconsistent,
+}
+
+/// Classifies the edges of `faces` (an empty set is open).
+pub fn edge_topology(faces: &[Face]) -> Topology {
+    if faces.is_empty() {
+        return Topology::Open;
+    }
+    let mut directed: HashMap<(u32, u32), u32> = HashMap::with_capacity(faces.len() * 4);
+    for f in faces {
+        let n = f.vertices.len();
+        for i in 0..n {
+            *directed
+                .entry((f.vertices[i], f.vertices[(i + 1) % n]))
+                .or_insert(0) += 1;
+        }
+    }
+    let mut open = false;
+    for (&(a, b), &c) in &directed {
+        match (c, directed.get(&(b, a)).copied().unwrap_or(0)) {
+            (1, 1) => {}
+            (1, 0) => open = true,
+            _ => return Topology::Inconsistent,
+        }
+    }
+    if open {
+        Topology::Open
+    } else {
+        Topology::Closed
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -41,5 +81,9 @@ mod tests {
         assert!(is_closed_oriented(&tet(false)));
         assert!(!is_closed_oriented(&tet(true)));
         assert!(!is_closed_oriented(&tet(false)[..3]));
+        assert_eq!(edge_topology(&tet(false)), Topology::Closed);
+        assert_eq!(edge_topology(&tet(true)), Topology::Inconsistent);
+        assert_eq!(edge_topology(&tet(false)[..3]), Topology::Open);
+        assert_eq!(edge_topology(&[]), Topology::Open);
     }
 }

@@ -6,6 +6,16 @@ use crate::geom::{P3, V3};
 /// the dominant axis of `normal`. Returns index triples into `pts`, each counter-clockwise
 /// seen from the side `normal` points to. Falls back to a fan if the polygon is not simple.
 pub fn ear_clip(pts: &[P3], normal: &V3) -> Vec<[usize; 3]> {
+    ear_clip_simple(pts, normal).unwrap_or_else(|| {
+        let (_, _, flip) = projection_axes(normal);
+        fan(pts.len(), flip)
+    })
+}
+
+/// [`ear_clip`], or None where it would fall back to a fan: no ear was found, so the
+/// polygon, projected along the dominant axis of `normal`, is not simple. Every decision is
+/// an exact orient2d on input coordinates.
+pub fn ear_clip_simple(pts: &[P3], normal: &V3) -> Option<Vec<[usize; 3]>> {
     let (ax, ay, flip) = projection_axes(normal);
     let p2: Vec<[f64; 2]> = pts.iter().map(|p| [p[ax], p[ay]]).collect();
     let mut ring: Vec<usize> = (0..pts.len()).collect();
@@ -20,7 +30,7 @@ pub fn ear_clip(pts: &[P3], normal: &V3) -> Vec<[usize; 3]> {
                 tris.push([ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]]);
                 ring.remove(i);
             }
-            None => return fan(pts.len(), flip),
+            None => return None,
         }
     }
     tris.push([ring[0], ring[1], ring[2]]);
@@ -29,7 +39,7 @@ pub fn ear_clip(pts: &[P3], normal: &V3) -> Vec<[usize; 3]> {
             t.swap(1, 2);
         }
     }
-    tris
+    Some(tris)
 }
 
 /// Coordinate axes to project on (dropping the normal's dominant axis), and whether the

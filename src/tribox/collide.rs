@@ -290,6 +290,7 @@ mod tests {
             vertices: v.to_vec(),
             faces: f.iter().map(|t| Face::new(t.to_vec())).collect(),
             closed: true,
+            solidity: None,
         }
     }
 

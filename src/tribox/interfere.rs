@@ -6,7 +6,8 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use crate::geom::{orient2d, orient3d, P3, V3};
+pub use crate::geom::tri_intersect::triangles_intersect;
+use crate::geom::{P3, V3};
 use crate::prepare::bvtree::{HierarchyKind, ObjectTree};
 use crate::prepare::trees::leaf_trees;
 use crate::scene::{Leaf, Mesh, Scene};
@@ -172,99 +173,6 @@ fn faces_intersect(a: &[Tri], b: &[Tri], ta: &Tribox, tb: &Tribox, tests: &mut u
         }
     }
     false
-}
-
-/// Exact closed intersection test of two non-degenerate triangles: they meet exactly when an
-/// edge of one meets the other (non-coplanar), or in the plane's 2D test (coplanar).
-pub fn triangles_intersect(t: &[P3; 3], u: &[P3; 3]) -> bool {
-    let su = t.map(|p| orient3d(&u[0], &u[1], &u[2], &p));
-    if su.iter().all(|&s| s > 0.0) || su.iter().all(|&s| s < 0.0) {
-        return false;
-    }
-    let st = u.map(|p| orient3d(&t[0], &t[1], &t[2], &p));
-    if st.iter().all(|&s| s > 0.0) || st.iter().all(|&s| s < 0.0) {
-        return false;
-    }
-    if su.iter().all(|&s| s == 0.0) {
-        let (x, y) = plane_axes(u);
-        let a = t.map(|p| [p[x], p[y]]);
-        let b = u.map(|p| [p[x], p[y]]);
-        return triangles_2d(&a, &b);
-    }
-    (0..3).any(|i| segment_meets_triangle(&t[i], &t[(i + 1) % 3], u))
-        || (0..3).any(|i| segment_meets_triangle(&u[i], &u[(i + 1) % 3], t))
-}
-
-/// The two coordinates kept when projecting a triangle's plane along its dominant axis.
-fn plane_axes(t: &[P3; 3]) -> (usize, usize) {
-    let n = (t[1] - t[0]).cross(&(t[2] - t[0])).abs();
-    if n.x >= n.y && n.x >= n.z {
-        (1, 2)
-    } else if n.y >= n.z {
-        (2, 0)
-    } else {
-        (0, 1)
-    }
-}
-
-/// Closed segment pq against closed triangle t.
-fn segment_meets_triangle(p: &P3, q: &P3, t: &[P3; 3]) -> bool {
-    let (sp, sq) = (
-        orient3d(&t[0], &t[1], &t[2], p),
-        orient3d(&t[0], &t[1], &t[2], q),
-    );
-    if (sp > 0.0 && sq > 0.0) || (sp < 0.0 && sq < 0.0) {
-        return false;
-    }
-    if sp == 0.0 && sq == 0.0 {
-        let (x, y) = plane_axes(t);
-        let tri = t.map(|v| [v[x], v[y]]);
-        let (a, b) = ([p[x], p[y]], [q[x], q[y]]);
-        return point_in_triangle_2d(a, &tri)
-            || (0..3).any(|i| segments_2d(a, b, tri[i], tri[(i + 1) % 3]));
-    }
-    let s = [
-        orient3d(p, q, &t[0], &t[1]),
-        orient3d(p, q, &t[1], &t[2]),
-        orient3d(p, q, &t[2], &t[0]),
-    ];
-    s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0)
-}
-
-fn point_in_triangle_2d(p: [f64; 2], t: &[[f64; 2]; 3]) -> bool {
-    let s = [
-        orient2d(t[0], t[1], p),
-        orient2d(t[1], t[2], p),
-        orient2d(t[2], t[0], p),
-    ];
-    s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0)
-}
-
-/// Closed segments ab and cd meet.
-fn segments_2d(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
-    let (d1, d2) = (orient2d(c, d, a), orient2d(c, d, b));
-    let (d3, d4) = (orient2d(a, b, c), orient2d(a, b, d));
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
-        return true;
-    }
-    let on = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
-        r[0] >= p[0].min(q[0])
-            && r[0] <= p[0].max(q[0])
-            && r[1] >= p[1].min(q[1])
-            && r[1] <= p[1].max(q[1])
-    };
-    (d1 == 0.0 && on(c, d, a))
-        || (d2 == 0.0 && on(c, d, b))
-        || (d3 == 0.0 && on(a, b, c))
-        || (d4 == 0.0 && on(a, b, d))
-}
-
-fn triangles_2d(a: &[[f64; 2]; 3], b: &[[f64; 2]; 3]) -> bool {
-    (0..3).any(|i| (0..3).any(|j| segments_2d(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3])))
-        || point_in_triangle_2d(a[0], b)
-        || point_in_triangle_2d(b[0], a)
 }
 
 #[cfg(test)]

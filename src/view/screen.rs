@@ -48,7 +48,7 @@ pub struct Piece {
     pub ref_turn: f64,
     /// Orientation toward the viewer.
     pub facing: Facing,
-    /// True for a back face of a closed solid: hidden by the solid itself (a safe cull).
+    /// True for a back face of a proven solid: hidden by the solid itself (a safe cull).
     pub culled: bool,
     /// True when the projected ring is convex (counter-clockwise after orienting).
     pub convex: bool,
@@ -262,7 +262,10 @@ impl ScreenFaces {
         let clip: Vec<[f64; 4]> = world.iter().map(|p| camera.clip_coords(p)).collect();
         let all_in_front = camera.projection == Projection::Orthographic
             || clip.iter().all(|h| h[3] >= camera.near);
-        let may_cull = leaf.mesh.closed && all_in_front;
+        // Back faces hide nothing a front face does not, and are hidden themselves, only on a
+        // proven solid (prepare) seen from outside its convex hull (every vertex in front of
+        // the near plane).
+        let may_cull = leaf.mesh.cullable() && all_in_front;
         let mirrors = leaf.mirrors();
         self.leaves.push(LeafInfo {
             path: leaf.path.clone(),
@@ -327,11 +330,12 @@ impl ScreenFaces {
     }
 }
 
-/// The planar pieces of a face: itself when its vertices lie exactly on one plane (robust
+/// The planar pieces of a face (the warped-face split rule, shared with the exact check in
+/// [`crate::exact`]): itself when its vertices lie exactly on one plane (robust
 /// orient3d = 0 against three of them), else the triangles of an ear-clipping triangulation.
 /// Exact planarity is what makes "G in front of F's plane" and "F behind G's plane" the same
 /// question, so VTPs and VISP agree by construction; axis-aligned and primitive faces stay whole.
-fn planar_pieces(idx: &[u32], world: &[P3]) -> Vec<Vec<u32>> {
+pub fn planar_pieces(idx: &[u32], world: &[P3]) -> Vec<Vec<u32>> {
     if idx.len() > 3 {
         let pts: Vec<P3> = idx.iter().map(|&k| world[k as usize]).collect();
         if !exactly_planar(&pts) {

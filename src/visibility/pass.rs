@@ -7,6 +7,7 @@ use rayon::prelude::*;
 
 use crate::geom::boolean;
 use crate::geom::poly2::{canonicalize, multipolygon_area, MultiPolygon};
+use crate::geom::ring_check::repair;
 use crate::geom::Rect;
 use crate::scene::FaceId;
 use crate::view::{Facing, PieceId, ScreenFaces, View};
@@ -39,8 +40,10 @@ pub struct FaceVisibility {
 }
 
 impl FaceVisibility {
-    /// The result for a visible region: canonicalised, with its area measured.
+    /// The result for a visible region: rings the rounding from the integer grid spoiled
+    /// repaired ([`repair`]), canonicalised, with its area measured.
     fn new(mut visible: MultiPolygon, projected_area: f64) -> Self {
+        repair(&mut visible);
         canonicalize(&mut visible);
         let area = multipolygon_area(&visible);
         FaceVisibility {

@@ -174,3 +174,17 @@ pub(crate) fn models() -> Option<std::path::PathBuf> {
         None
     }
 }
+pub(crate) mod strokes;
+
+/// xorshift64*: a tiny deterministic generator.
+pub(crate) struct Rng(pub(crate) u64);
+
+impl Rng {
+    /// A number in [0, 1).
+    pub(crate) fn f(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545F4914F6CDD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}

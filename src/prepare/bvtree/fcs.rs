@@ -173,6 +173,7 @@ mod tests {
             vertices,
             faces,
             closed: false,
+            solidity: None,
         }
     }
 

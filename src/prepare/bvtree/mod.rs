@@ -242,6 +242,7 @@ pub(crate) fn grids(specs: &[(f64, f64, u32)], bend: f64) -> Mesh {
         vertices,
         faces,
         closed: false,
+        solidity: None,
     }
 }
 

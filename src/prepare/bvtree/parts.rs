@@ -201,6 +201,7 @@ mod tests {
             vertices: (0..n).map(|i| P3::new(i as f64, 0., 0.)).collect(),
             faces: faces.iter().map(|f| Face::new(f.to_vec())).collect(),
             closed: false,
+            solidity: None,
         };
         (m, (0..n).collect())
     }

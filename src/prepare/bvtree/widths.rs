@@ -121,6 +121,7 @@ mod tests {
             vertices,
             faces,
             closed: false,
+            solidity: None,
         };
         let d = drastic_lengths(&m);
         assert!(d.iter().any(|&w| (1.4..3.0).contains(&w)), "{d:?}");

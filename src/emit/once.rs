@@ -1,0 +1,212 @@
+//! Every piece of line stroked once: where two drawn segments run along each other on the
+//! screen, the one of lower rank loses the shared part.
+//!
+//! Distinct edges can project onto one screen line: the edges of a face seen (nearly)
+//! edge-on, an intersection curve along an edge, an edge right behind another with only
+//! edge-on faces between them. Each is visible by itself; drawn as they are, a plotter
+//! strokes the shared part twice. Two segments run along each other where they are nearly
+//! parallel (sine of their angle at most [`PARALLEL_SIN`]) and within [`ONCE_TOL`] of the
+//! drawing's extent of each other; the part of the lower-ranked one within that distance of
+//! the other is removed. Ranks: edge kind (silhouette first, as [`EdgeKind::ALL`]), then
+//! order in the edge list.
+
+use crate::geom::poly2::Pt2;
+
+use super::clip_segment::{at, complement, Interval};
+use super::edges::EdgeKind;
+
+/// Distance, relative to the drawing's extent, under which two nearly parallel segments
+/// count as one line (far below anything a plotter or screen shows, far above f64 rounding
+/// of projected points).
+pub const ONCE_TOL: f64 = 4e-9;
+/// Largest sine of the angle between two segments that may count as one line (edges that
+/// meet at a vertex at any visible angle never do).
+pub const PARALLEL_SIN: f64 = 1e-6;
+
+/// A drawn segment with its rank (lower ranks are kept).
+#[derive(Debug, Clone, Copy)]
+pub struct Ranked {
+    /// Kind of its edge (earlier in [`EdgeKind::ALL`] ranks first).
+    pub kind: EdgeKind,
+    /// Index of its edge.
+    pub edge: u32,
+    /// The screen segment.
+    pub seg: [Pt2; 2],
+}
+
+impl Ranked {
+    fn rank(&self) -> (usize, u32) {
+        let k = EdgeKind::ALL.iter().position(|&k| k == self.kind);
+        (k.unwrap_or(usize::MAX), self.edge)
+    }
+}
+
+/// What is left of each segment of `segs` once every shared part is kept only on the
+/// higher-ranked segment: for each, its remaining pieces (in order along it). Segments of
+/// `keep` always win and lose nothing themselves (visible lines over hidden ones).
+pub fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
+    let extent = segs
+        .iter()
+        .map(|r| &r.seg)
+        .chain(keep)
+        .flatten()
+        .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    let tol = ONCE_TOL * extent;
+    // All segments, `keep` first with the best rank.
+    let all: Vec<([Pt2; 2], (usize, usize, u32))> = keep
+        .iter()
+        .map(|s| (*s, (0, 0, 0)))
+        .chain(segs.iter().map(|r| {
+            let (k, e) = r.rank();
+            (r.seg, (1, k, e))
+        }))
+        .collect();
+    let xmin = |s: &[Pt2; 2]| s[0][0].min(s[1][0]);
+    let xmax = |s: &[Pt2; 2]| s[0][0].max(s[1][0]);
+    let mut order: Vec<usize> = (0..all.len()).collect();
+    order.sort_by(|&i, &j| xmin(&all[i].0).total_cmp(&xmin(&all[j].0)));
+    let mut cuts: Vec<Vec<Interval>> = vec![Vec::new(); all.len()];
+    for (k, &i) in order.iter().enumerate() {
+        for &j in &order[k + 1..] {
+            if xmin(&all[j].0) > xmax(&all[i].0) + tol {
+                break;
+            }
+            let (hi, lo) = if all[i].1 <= all[j].1 { (i, j) } else { (j, i) };
+            if all[lo].1 .0 == 0 {
+                continue; // both kept
+            }
+            if let Some(iv) = along(&all[lo].0, &all[hi].0, tol) {
+                cuts[lo].push(iv);
+            }
+        }
+    }
+    let nkeep = keep.len();
+    (0..segs.len())
+        .map(|s| {
+            let seg = all[nkeep + s].0;
+            let mut c = std::mem::take(&mut cuts[nkeep + s]);
+            if c.is_empty() {
+                return vec![seg];
+            }
+            c.sort_by(|a, b| a[0].total_cmp(&b[0]));
+            let merged = merge(c);
+            complement(&merged)
+                .into_iter()
+                .filter(|iv| iv[1] > iv[0])
+                .map(|iv| [at(seg[0], seg[1], iv[0]), at(seg[0], seg[1], iv[1])])
+                .filter(|p| (p[1][0] - p[0][0]).hypot(p[1][1] - p[0][1]) > tol)
+                .collect()
+        })
+        .collect()
+}
+
+/// The parameter interval of `s` within `tol` of segment `h`, when the two are nearly
+/// parallel and it is longer than `tol`.
+fn along(s: &[Pt2; 2], h: &[Pt2; 2], tol: f64) -> Option<Interval> {
+    let (ds, dh) = (sub(s[1], s[0]), sub(h[1], h[0]));
+    let (ls, lh) = (norm(ds), norm(dh));
+    if ls == 0.0 || lh == 0.0 || (cross(ds, dh) / (ls * lh)).abs() > PARALLEL_SIN {
+        return None;
+    }
+    let u = [dh[0] / lh, dh[1] / lh];
+    // Along h: a(t) = (s(t) - h0)·u must lie in [0, lh]; across: |(s(t) - h0) × u| ≤ tol.
+    let (a0, a1) = (dot(sub(s[0], h[0]), u), dot(ds, u));
+    let (c0, c1) = (cross(sub(s[0], h[0]), u), cross(ds, u));
+    let mut iv = [0.0f64, 1.0f64];
+    let mut clamp = |v0: f64, v1: f64, lo: f64, hi: f64| {
+        // v0 + v1 t in [lo, hi].
+        if v1 == 0.0 {
+            if v0 < lo || v0 > hi {
+                iv = [1.0, 0.0];
+            }
+            return;
+        }
+        let (t0, t1) = ((lo - v0) / v1, (hi - v0) / v1);
+        iv[0] = iv[0].max(t0.min(t1));
+        iv[1] = iv[1].min(t0.max(t1));
+    };
+    clamp(a0, a1, 0.0, lh);
+    clamp(c0, c1, -tol, tol);
+    ((iv[1] - iv[0]) * ls > tol).then_some(iv)
+}
+
+/// Sorted intervals merged where they overlap or touch.
+fn merge(ivs: Vec<Interval>) -> Vec<Interval> {
+    let mut out: Vec<Interval> = Vec::with_capacity(ivs.len());
+    for iv in ivs {
+        match out.last_mut() {
+            Some(last) if iv[0] <= last[1] => last[1] = last[1].max(iv[1]),
+            _ => out.push(iv),
+        }
+    }
+    out
+}
+
+fn sub(a: Pt2, b: Pt2) -> Pt2 {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn dot(a: Pt2, b: Pt2) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+fn cross(a: Pt2, b: Pt2) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+fn norm(a: Pt2) -> f64 {
+    a[0].hypot(a[1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn r(kind: EdgeKind, edge: u32, a: Pt2, b: Pt2) -> Ranked {
+        Ranked {
+            kind,
+            edge,
+            seg: [a, b],
+        }
+    }
+
+    #[test]
+    fn overlapping_collinear_segments_keep_the_higher_rank() {
+        let segs = [
+            r(EdgeKind::Plain, 0, [0., 0.], [4., 0.]),
+            r(EdgeKind::Silhouette, 1, [3., 0.], [1., 0.]),
+            // Meets the first at a vertex at a right angle: untouched.
+            r(EdgeKind::Plain, 2, [4., 0.], [4., 3.]),
+        ];
+        let out = stroke_once(&segs, &[]);
+        assert_eq!(out[1], vec![[[3., 0.], [1., 0.]]]);
+        assert_eq!(out[0], vec![[[0., 0.], [1., 0.]], [[3., 0.], [4., 0.]]]);
+        assert_eq!(out[2], vec![[[4., 0.], [4., 3.]]]);
+    }
+
+    #[test]
+    fn nearly_collinear_copies_and_kept_lines() {
+        // The same segment an ulp off, reversed: drawn once.
+        let segs = [
+            r(
+                EdgeKind::Silhouette,
+                0,
+                [-15.342991981424783, 11.112696255179376],
+                [-15.347482168095203, 11.105495937983646],
+            ),
+            r(
+                EdgeKind::Plain,
+                1,
+                [-15.347482168095198, 11.105495937983656],
+                [-15.342991981424785, 11.112696255179376],
+            ),
+        ];
+        let out = stroke_once(&segs, &[]);
+        assert_eq!(out[0].len(), 1);
+        assert!(out[1].is_empty(), "{:?}", out[1]);
+        // A hidden segment under a visible one disappears where it is covered.
+        let hidden = [r(EdgeKind::Silhouette, 0, [0., 0.], [2., 0.])];
+        let out = stroke_once(&hidden, &[[[1., 0.], [5., 0.]]]);
+        assert_eq!(out[0], vec![[[0., 0.], [1., 0.]]]);
+    }
+}
