@@ -5,10 +5,12 @@ mod camera_args;
 mod check;
 mod flatten;
 mod info;
+mod plot_args;
 pub mod progress;
 mod query;
 mod render;
 mod tribox;
+mod views;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
