@@ -58,7 +58,8 @@ pub(crate) struct PlotArgs {
     /// Direction toward the light (X,Y,Z, world); default from the upper left, in front.
     #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
     pub(crate) light: Option<String>,
-    /// With hatching: draw the outlines of the tone regions instead of the mesh's edges.
+    /// Hatch, with outlines only around hatched regions: the boundaries of the hatched tone
+    /// regions replace creases and plain edges (silhouettes and intersections stay).
     #[arg(long)]
     pub(crate) hatch_outline: bool,
 }
@@ -88,7 +89,10 @@ impl PlotArgs {
         let dash_mm = match dash.as_slice() {
             [a, b] => match (mm(a), mm(b)) {
                 (Some(a), Some(b)) => [a, b],
-                _ => bail!("--dash {}: expected two lengths in mm > 0, DASH,GAP", self.dash),
+                _ => bail!(
+                    "--dash {}: expected two lengths in mm > 0, DASH,GAP",
+                    self.dash
+                ),
             },
             _ => bail!("--dash {}: expected two lengths in mm, DASH,GAP", self.dash),
         };

@@ -185,7 +185,8 @@ impl RenderArgs {
     fn cameras(&self, scene: &Scene) -> Result<(Vec<Camera>, Option<kepler_hsr::geom::Rect>)> {
         if let Some(file) = &self.views {
             let c = &self.camera;
-            if c.dir.is_some() || c.eye.is_some() || c.target.is_some() || c.up.is_some() || c.ortho {
+            if c.dir.is_some() || c.eye.is_some() || c.target.is_some() || c.up.is_some() || c.ortho
+            {
                 bail!("--views gives every view its camera: leave out the camera flags");
             }
             let cams = read_views(file)?
@@ -214,13 +215,7 @@ impl RenderArgs {
 }
 
 /// `--stats`: stage times, pruning counters and what the plot did.
-fn print_stats(
-    scene: &Scene,
-    r: &Rendered,
-    load: Duration,
-    prepare: Duration,
-    written: Duration,
-) {
+fn print_stats(scene: &Scene, r: &Rendered, load: Duration, prepare: Duration, written: Duration) {
     eprintln!("faces: {}", scene.face_count());
     if let Some(l) = &r.stats.lod {
         eprintln!("{}", super::tribox::lod_report(l));

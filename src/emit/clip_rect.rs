@@ -89,7 +89,10 @@ mod tests {
 
     #[test]
     fn segments_inside_crossing_and_outside() {
-        assert_eq!(clip_segment([1., 1.], [2., 2.], &R), Some([[1., 1.], [2., 2.]]));
+        assert_eq!(
+            clip_segment([1., 1.], [2., 2.], &R),
+            Some([[1., 1.], [2., 2.]])
+        );
         assert_eq!(
             clip_segment([-5., 1.], [15., 1.], &R),
             Some([[0., 1.], [10., 1.]])

@@ -94,6 +94,9 @@ mod tests {
 
     #[test]
     fn short_line_is_one_dash() {
-        assert_eq!(dashes(&[[0., 0.], [0.5, 0.]], 2.0, 1.0), vec![vec![[0., 0.], [0.5, 0.]]]);
+        assert_eq!(
+            dashes(&[[0., 0.], [0.5, 0.]], 2.0, 1.0),
+            vec![vec![[0., 0.], [0.5, 0.]]]
+        );
     }
 }

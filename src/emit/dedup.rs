@@ -25,11 +25,9 @@ pub struct DedupStats {
 /// The parts of `segs` (in priority order) not covered by an earlier segment's kept parts,
 /// each with the index of the segment it comes from, in input order.
 pub fn dedup(segs: &[[Pt2; 2]], eps: f64) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
-    let mut grid = CellGrid::new(segs);
+    let mut index = SegmentIndex::new(segs, eps);
     let mut kept: Vec<(usize, [Pt2; 2])> = Vec::with_capacity(segs.len());
-    let mut seen: Vec<usize> = Vec::with_capacity(segs.len());
     let mut stats = DedupStats::default();
-    let mut cells = Vec::new();
     let mut covers: Vec<Cover> = Vec::new();
     for (i, &[a, b]) in segs.iter().enumerate() {
         let len = dist(a, b);
@@ -38,18 +36,7 @@ pub fn dedup(segs: &[[Pt2; 2]], eps: f64) -> (Vec<(usize, [Pt2; 2])>, DedupStats
             stats.length += len;
             continue;
         }
-        grid.cells_of(a, b, &mut cells);
-        covers.clear();
-        for k in grid.near(&cells) {
-            if seen[k] == i + 1 {
-                continue;
-            }
-            seen[k] = i + 1;
-            let [c, d] = kept[k].1;
-            if let Some(cov) = overlap(a, b, len, c, d, eps) {
-                covers.push(cov);
-            }
-        }
+        index.covers(a, b, &mut covers);
         let before = kept.len();
         if covers.is_empty() {
             kept.push((i, [a, b]));
@@ -77,14 +64,72 @@ pub fn dedup(segs: &[[Pt2; 2]], eps: f64) -> (Vec<(usize, [Pt2; 2])>, DedupStats
             }
             stats.length += (len - kept_len).max(0.0);
         }
-        for k in before..kept.len() {
-            let [p, q] = kept[k].1;
-            grid.cells_of(p, q, &mut cells);
-            grid.insert(k, &cells);
-            seen.push(0);
+        for k in &kept[before..] {
+            index.insert(k.1);
         }
     }
     (kept, stats)
+}
+
+/// Segments in a grid, to ask which of them run along a new segment.
+pub struct SegmentIndex {
+    grid: CellGrid,
+    segs: Vec<[Pt2; 2]>,
+    seen: Vec<usize>,
+    query: usize,
+    cells: Vec<usize>,
+    eps: f64,
+}
+
+impl SegmentIndex {
+    /// An empty index over the bounds of `extent` (segments outside still work, slower);
+    /// `eps` is the coincidence tolerance.
+    pub fn new(extent: &[[Pt2; 2]], eps: f64) -> SegmentIndex {
+        SegmentIndex {
+            grid: CellGrid::new(extent),
+            segs: Vec::with_capacity(extent.len()),
+            seen: Vec::with_capacity(extent.len()),
+            query: 0,
+            cells: Vec::new(),
+            eps,
+        }
+    }
+
+    /// Adds a segment.
+    pub fn insert(&mut self, s: [Pt2; 2]) {
+        self.grid.cells_of(s[0], s[1], &mut self.cells);
+        self.grid.insert(self.segs.len(), &self.cells);
+        self.segs.push(s);
+        self.seen.push(0);
+    }
+
+    /// True when a segment of the index runs along a → b for more than `eps`.
+    pub fn overlaps(&mut self, a: Pt2, b: Pt2) -> bool {
+        let mut covers = Vec::new();
+        self.covers(a, b, &mut covers);
+        !covers.is_empty()
+    }
+
+    /// The parts of a → b that segments of the index cover (unsorted).
+    fn covers(&mut self, a: Pt2, b: Pt2, out: &mut Vec<Cover>) {
+        out.clear();
+        let len = dist(a, b);
+        if len == 0.0 {
+            return;
+        }
+        self.query += 1;
+        self.grid.cells_of(a, b, &mut self.cells);
+        for k in self.grid.near(&self.cells) {
+            if self.seen[k] == self.query {
+                continue;
+            }
+            self.seen[k] = self.query;
+            let [c, d] = self.segs[k];
+            if let Some(cov) = overlap(a, b, len, c, d, self.eps) {
+                out.push(cov);
+            }
+        }
+    }
 }
 
 /// The part of a → b (parameters t0 < t1) that an earlier segment covers, with the covering
@@ -173,8 +218,12 @@ impl CellGrid {
     }
 
     fn coords(&self, p: Pt2) -> (usize, usize) {
-        let f = |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
-        (f(p[0], self.origin[0], self.nx), f(p[1], self.origin[1], self.ny))
+        let f =
+            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
+        (
+            f(p[0], self.origin[0], self.nx),
+            f(p[1], self.origin[1], self.ny),
+        )
     }
 
     /// Cells of points sampled along a → b at most half a cell apart (sorted, unique).
@@ -265,7 +314,12 @@ mod tests {
         // A diagonal and a piece of it whose ends were rounded off the line.
         let a = [0.1, 0.2];
         let b = [7.3, 5.9];
-        let at = |t: f64| [a[0] + t * (b[0] - a[0]) + 1e-15, a[1] + t * (b[1] - a[1]) - 1e-15];
+        let at = |t: f64| {
+            [
+                a[0] + t * (b[0] - a[0]) + 1e-15,
+                a[1] + t * (b[1] - a[1]) - 1e-15,
+            ]
+        };
         let s = [[a, b], [at(0.25), at(0.75)]];
         let (k, st) = dedup(&s, 1e-9);
         assert_eq!(k.len(), 1);
@@ -283,7 +337,11 @@ mod tests {
             s ^= s << 17;
             (s >> 11) as f64 / (1u64 << 53) as f64
         };
-        let lines = [([0.0, 0.0], [1.0, 0.5]), ([3.0, 1.0], [3.0, 4.0]), ([-2.0, 5.0], [6.0, 5.0])];
+        let lines = [
+            ([0.0, 0.0], [1.0, 0.5]),
+            ([3.0, 1.0], [3.0, 4.0]),
+            ([-2.0, 5.0], [6.0, 5.0]),
+        ];
         let mut segs = Vec::new();
         let mut ivs: Vec<Vec<[f64; 2]>> = vec![Vec::new(); 3];
         for k in 0..300 {

@@ -31,7 +31,9 @@ pub struct HatchOptions {
     /// Angle of the lines on the page in degrees, counter-clockwise from the x axis; default
     /// across the light's direction (45° when the light comes from the viewer).
     pub angle_deg: Option<f64>,
-    /// Draw the outlines of the tone regions instead of the mesh's visible edges.
+    /// Outlines only around hatched regions: instead of the creases and plain edges, the
+    /// boundaries of the hatched tone regions (silhouettes, borders and intersection curves
+    /// stay).
     pub outline: bool,
 }
 
@@ -88,9 +90,7 @@ pub fn hatch(
 ) -> Hatching {
     let light = light_direction(&view.camera, light);
     let angle = opts.angle_deg.unwrap_or_else(|| {
-        light_on_screen(&view.camera, &light).map_or(45.0, |[x, y]| {
-            y.atan2(x).to_degrees() + 90.0
-        })
+        light_on_screen(&view.camera, &light).map_or(45.0, |[x, y]| y.atan2(x).to_degrees() + 90.0)
     });
     let faces: Vec<(FaceId, u32)> = scene
         .leaves()
@@ -152,7 +152,8 @@ impl Family {
         // The page point of screen p is area.min + scale (p.x − x0, y1 − p.y); its offset along
         // the page normal (−s, −c) (y down) is scale (m·p) + K.
         let (a, cr) = (layout.area, layout.content);
-        let k_const = -s * (a.xmin - layout.scale * cr.xmin) - c * (a.ymin + layout.scale * cr.ymax);
+        let k_const =
+            -s * (a.xmin - layout.scale * cr.xmin) - c * (a.ymin + layout.scale * cr.ymax);
         let centre = [0.5 * (cr.xmin + cr.xmax), 0.5 * (cr.ymin + cr.ymax)];
         let reach = 0.5 * cr.width().hypot(cr.height()) * 1.01 + 1e-9;
         Family {
@@ -169,7 +170,10 @@ impl Family {
     fn line(&self, k: i64) -> [Pt2; 2] {
         let off = self.base + k as f64 * self.step;
         let foot_t = off - (self.m[0] * self.centre[0] + self.m[1] * self.centre[1]);
-        let foot = [self.centre[0] + foot_t * self.m[0], self.centre[1] + foot_t * self.m[1]];
+        let foot = [
+            self.centre[0] + foot_t * self.m[0],
+            self.centre[1] + foot_t * self.m[1],
+        ];
         let r = self.reach;
         [
             [foot[0] - r * self.dir[0], foot[1] - r * self.dir[1]],
@@ -204,9 +208,10 @@ impl Family {
     }
 }
 
-/// The outlines of the tone regions: for each (group, tone), the boundary rings of the union
-/// of its faces' visible regions, as closed polylines with the group's first leaf. `group`
-/// maps a leaf to the group whose faces are merged (a layer's object, or one for all).
+/// The outlines of the hatched regions: for each (group, tone) of a hatched tone, the boundary
+/// rings of the union of its faces' visible regions, as closed polylines with the group's
+/// first leaf. `group` maps a leaf to the group whose faces are merged (a layer's object, or
+/// one for all).
 pub fn tone_outlines(
     hatching: &Hatching,
     vis: &Visibility,
@@ -215,6 +220,7 @@ pub fn tone_outlines(
     let mut keys: Vec<(u32, u8, u32)> = hatching
         .tones
         .iter()
+        .filter(|&&(_, _, t)| t > 0)
         .map(|&(_, leaf, t)| (group(leaf), t, leaf))
         .collect();
     keys.sort_unstable();
@@ -257,8 +263,13 @@ mod tests {
             unit: 10.0,
             content,
         };
-        Layout::new(&frame, Some(super::super::page::PageSize::parse("120x120").unwrap()), Some(10.0), 1)
-            .unwrap()
+        Layout::new(
+            &frame,
+            Some(super::super::page::PageSize::parse("120x120").unwrap()),
+            Some(10.0),
+            1,
+        )
+        .unwrap()
     }
 
     #[test]
@@ -275,7 +286,12 @@ mod tests {
         // the page are at y = 10 + 2k mm, i.e. screen y = 10 − (10 + 2k − 10) / 10.
         let l = layout();
         let fam = Family::new(&l, 0.0, 2.0);
-        let sq: MultiPolygon = vec![vec![vec![[1.05, 1.05], [2.95, 1.05], [2.95, 2.95], [1.05, 2.95]]]];
+        let sq: MultiPolygon = vec![vec![vec![
+            [1.05, 1.05],
+            [2.95, 1.05],
+            [2.95, 2.95],
+            [1.05, 2.95],
+        ]]];
         let segs = fam.clip(&sq);
         assert_eq!(segs.len(), 9, "page y = 82, 84, ..., 98 mm");
         for s in &segs {
@@ -303,7 +319,9 @@ mod tests {
         // Total hatch length is the same as hatching the union.
         let union: MultiPolygon = vec![vec![vec![[1., 1.], [9., 1.], [9., 5.], [1., 5.]]]];
         let len = |v: &[[Pt2; 2]]| -> f64 {
-            v.iter().map(|s| (s[1][0] - s[0][0]).hypot(s[1][1] - s[0][1])).sum()
+            v.iter()
+                .map(|s| (s[1][0] - s[0][0]).hypot(s[1][1] - s[0][1]))
+                .sum()
         };
         let whole = len(&fam.clip(&union));
         assert!((len(&a) + len(&b) - whole).abs() < 1e-9 * whole);

@@ -6,7 +6,8 @@
 //! odd-degree points otherwise (Hierholzer's algorithm after pairing the odd points through
 //! one virtual point). Then within a tolerance: stroke ends closer than it are joined, closest
 //! pairs first, the gap drawn as a straight piece. Deterministic: everything is taken in input
-//! order, ties broken by index.
+//! order, ties broken by index. A gap is bridged only where the caller allows it (no other
+//! line runs along it: a line is drawn once).
 
 use std::collections::HashMap;
 
@@ -18,12 +19,17 @@ fn key(p: Pt2) -> (u64, u64) {
 }
 
 /// Joins polylines (each of two points or more) at exactly equal ends, then, when
-/// `tolerance > 0`, at ends closer than `tolerance`.
-pub fn join(lines: Vec<Vec<Pt2>>, tolerance: f64) -> Vec<Vec<Pt2>> {
+/// `tolerance > 0`, at ends closer than `tolerance` where `bridge(p, q)` allows drawing the
+/// gap from p to q.
+pub fn join(
+    lines: Vec<Vec<Pt2>>,
+    tolerance: f64,
+    bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
+) -> Vec<Vec<Pt2>> {
     let lines: Vec<Vec<Pt2>> = lines.into_iter().filter(|l| l.len() >= 2).collect();
     let trails = euler_trails(&lines);
     if tolerance > 0.0 {
-        join_near(trails, tolerance)
+        join_near(trails, tolerance, bridge)
     } else {
         trails
     }
@@ -78,7 +84,8 @@ fn euler_trails(lines: &[Vec<Pt2>]) -> Vec<Vec<Pt2>> {
     let mut out = Vec::new();
     // Start at the virtual point first (its circuit covers every part with odd points), then
     // at each remaining polyline's first end in input order.
-    let starts = std::iter::once(virt).chain(edges.iter().filter_map(|e| e.line.map(|_| e.ends[0])));
+    let starts =
+        std::iter::once(virt).chain(edges.iter().filter_map(|e| e.line.map(|_| e.ends[0])));
     for start in starts {
         let circuit = hierholzer(start, &edges, &adj, &mut used, &mut next);
         out.extend(split_at_virtual(&circuit, &edges, lines));
@@ -164,9 +171,13 @@ fn split_at_virtual(
     out
 }
 
-/// Joins stroke ends closer than `tol`, closest pairs first; a stroke is never joined to
-/// itself.
-fn join_near(lines: Vec<Vec<Pt2>>, tol: f64) -> Vec<Vec<Pt2>> {
+/// Joins stroke ends closer than `tol` where `bridge` allows, closest pairs first; a stroke
+/// is never joined to itself.
+fn join_near(
+    lines: Vec<Vec<Pt2>>,
+    tol: f64,
+    bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
+) -> Vec<Vec<Pt2>> {
     let n = lines.len();
     // End slot 2i is line i's start, 2i + 1 its end.
     let end = |s: usize| {
@@ -215,6 +226,10 @@ fn join_near(lines: Vec<Vec<Pt2>>, tol: f64) -> Vec<Vec<Pt2>> {
         }
         let (gs, gt) = (find(&mut group, s / 2), find(&mut group, t / 2));
         if gs == gt {
+            continue;
+        }
+        let (p, q) = (end(s), end(t));
+        if p != q && !bridge(p, q) {
             continue;
         }
         group[gs] = gt;
@@ -289,7 +304,7 @@ mod tests {
             vec![[0., 1.], [0., 0.]],
             vec![[1., 1.], [2., 2.]],
         ];
-        let j = join(s.clone(), 0.0);
+        let j = join(s.clone(), 0.0, &mut |_, _| true);
         assert_eq!(j.len(), 1, "{j:?}");
         assert_eq!(j[0].len(), 6);
         assert_eq!(length(&j), length(&s));
@@ -304,7 +319,7 @@ mod tests {
                 vec![[0., 0.], [a.cos(), a.sin()]]
             })
             .collect();
-        let j = join(s.clone(), 0.0);
+        let j = join(s.clone(), 0.0, &mut |_, _| true);
         assert_eq!(j.len(), odd_points(&s) / 2);
         assert_eq!(length(&j), length(&s));
         // Every spoke appears once (as a run of consecutive points).
@@ -325,10 +340,14 @@ mod tests {
             let lines: Vec<Vec<Pt2>> = (0..40)
                 .map(|_| {
                     let (a, b) = (rnd(12), rnd(12));
-                    vec![[a as f64, (a * a) as f64], [0.5, 0.5 + rnd(3) as f64], [b as f64, (b * b) as f64]]
+                    vec![
+                        [a as f64, (a * a) as f64],
+                        [0.5, 0.5 + rnd(3) as f64],
+                        [b as f64, (b * b) as f64],
+                    ]
                 })
                 .collect();
-            let j = join(lines.clone(), 0.0);
+            let j = join(lines.clone(), 0.0, &mut |_, _| true);
             // Lower bound per connected part: max(1, odd / 2); over the whole graph the sum.
             let mut parent: HashMap<(u64, u64), (u64, u64)> = HashMap::new();
             fn root(p: &mut HashMap<(u64, u64), (u64, u64)>, k: (u64, u64)) -> (u64, u64) {
@@ -375,12 +394,20 @@ mod tests {
             vec![[1., 1.0 + 1e-4], [0., 1.]],
             vec![[0., 1.], [0., 2e-4]],
         ];
-        let j = join(s.clone(), 0.01);
+        let j = join(s.clone(), 0.01, &mut |_, _| true);
         assert_eq!(j.len(), 1, "{j:?}");
         // The gaps are drawn: all four sides plus two of the three gaps, and the side that
         // meets its neighbour exactly (2 -> 3) joins without a gap.
         assert_eq!(j[0].len(), 4 + 2 + 1);
-        assert_eq!(join(s.clone(), 0.0).len(), 3);
-        assert_eq!(join(s, 1e-5).len(), 3);
+        assert_eq!(join(s.clone(), 0.0, &mut |_, _| true).len(), 3);
+        assert_eq!(join(s.clone(), 1e-5, &mut |_, _| true).len(), 3);
+        // A gap the caller forbids stays open.
+        let mut asked = 0;
+        let j = join(s, 0.01, &mut |p, _| {
+            asked += 1;
+            p != [1., 1.0 + 1e-4] && p != [1., 1.]
+        });
+        assert_eq!(j.len(), 2, "{j:?}");
+        assert!(asked >= 2);
     }
 }

@@ -22,10 +22,10 @@ pub mod svg;
 pub mod tour;
 pub mod world;
 
-pub use edges::{EdgeKind, EdgeOptions, EdgeSet};
-pub use json::{to_json, Lines};
 pub use color::Rgb;
+pub use edges::{EdgeKind, EdgeOptions, EdgeSet};
 pub use hatch::HatchOptions;
+pub use json::{to_json, Lines};
 pub use lines::{draw, Drawing, LineOptions, Stroke};
 pub use page::PageSize;
 pub use picture::{LayerMode, Pen, Picture, PictureOptions, PlotStats};

@@ -123,7 +123,11 @@ impl Layout {
         let c = frame.content;
         // A drawing with no extent on an axis still needs a scale: use the frame's unit.
         let (cw, ch) = (c.width().max(0.0), c.height().max(0.0));
-        let longer = if cw.max(ch) > 0.0 { cw.max(ch) } else { frame.unit };
+        let longer = if cw.max(ch) > 0.0 {
+            cw.max(ch)
+        } else {
+            frame.unit
+        };
         match page {
             Some(page) => {
                 let m = margin.unwrap_or(DEFAULT_PAGE_MARGIN_MM);
@@ -232,14 +236,24 @@ mod tests {
     #[test]
     fn drawing_is_fitted_and_centred_on_a_page() {
         // A 2:1 drawing on A4 portrait with 10 mm margins: width-limited, 190 mm wide.
-        let l = Layout::new(&frame(Rect::new(-1., 0., 3., 2.)), Some(PageSize::A4), None, 1024)
-            .unwrap();
+        let l = Layout::new(
+            &frame(Rect::new(-1., 0., 3., 2.)),
+            Some(PageSize::A4),
+            None,
+            1024,
+        )
+        .unwrap();
         assert_eq!(l.scale, 190.0 / 4.0);
         assert_eq!(l.area, Rect::new(10.0, 101.0, 200.0, 196.0));
         assert_eq!(l.to_page([-1., 2.]), [10.0, 101.0], "top-left");
         assert_eq!(l.to_page([3., 0.]), [200.0, 196.0], "bottom-right");
-        assert!(Layout::new(&frame(Rect::new(0., 0., 1., 1.)), Some(PageSize::A4), Some(105.0), 9)
-            .is_err());
+        assert!(Layout::new(
+            &frame(Rect::new(0., 0., 1., 1.)),
+            Some(PageSize::A4),
+            Some(105.0),
+            9
+        )
+        .is_err());
     }
 
     #[test]

@@ -22,19 +22,18 @@ use crate::visibility::Visibility;
 
 use super::clip_rect::clip_polyline;
 use super::dash::dashes;
-use super::dedup::dedup;
+use super::dedup::{dedup, SegmentIndex};
 use super::hatch::{hatch, tone_outlines};
 use super::join::join;
 use super::lines::{Drawing, Stroke};
 use super::page::Layout;
-use super::picture::{
-    Fill, Layer, LayerMode, Pen, Picture, PictureOptions, PlotStats, Run,
-};
+use super::picture::{Fill, Layer, LayerMode, Pen, Picture, PictureOptions, PlotStats, Run};
 use super::shade::{face_shade, light_direction};
 use super::tour::plan;
 
-/// Coincidence tolerance of [`dedup`] as a fraction of the page's longer side.
-const DEDUP_EPS: f64 = 1e-9;
+/// Coincidence tolerance of [`dedup`] on the page: lines closer than 0.1 µm are one line
+/// (a plotter's step is about 10 µm, a pen 100 µm or more).
+const DEDUP_EPS_MM: f64 = 1e-4;
 
 /// One polyline to plot, in screen space.
 struct Item {
@@ -63,8 +62,11 @@ pub fn picture(
             pts: s.pts.clone(),
         })
     };
-    if !outline_only {
-        drawing.visible.iter().for_each(|s| add(s, Pen::of(s.kind)));
+    for s in &drawing.visible {
+        // Outlines only around hatched regions: the tone outlines replace inner edges.
+        if !(outline_only && Pen::of(s.kind) == Pen::Edges) {
+            add(s, Pen::of(s.kind));
+        }
     }
     marks.iter().for_each(|s| add(s, Pen::Mark));
     drawing.hidden.iter().for_each(|s| add(s, Pen::Hidden));
@@ -74,10 +76,14 @@ pub fn picture(
         Some(r) => Frame::of(&view.camera, r),
         None => {
             let mut b = Rect::of_points(drawing.visible.iter().flat_map(|s| s.pts.iter()));
-            b = b.union(&Rect::of_points(drawing.hidden.iter().flat_map(|s| s.pts.iter())));
+            b = b.union(&Rect::of_points(
+                drawing.hidden.iter().flat_map(|s| s.pts.iter()),
+            ));
             b = b.union(&Rect::of_points(marks.iter().flat_map(|s| s.pts.iter())));
             if regions {
-                let faces = vis.iter().flat_map(|(_, f)| f.visible.iter().flatten().flatten());
+                let faces = vis
+                    .iter()
+                    .flat_map(|(_, f)| f.visible.iter().flatten().flatten());
                 b = b.union(&Rect::of_points(faces));
             }
             Frame::of(&view.camera, b)
@@ -101,7 +107,7 @@ pub fn picture(
             };
             for (leaf, ring) in tone_outlines(&hatching, vis, group) {
                 items.push(Item {
-                    pen: Pen::Outline,
+                    pen: Pen::Edges,
                     leaf,
                     pts: ring,
                 });
@@ -127,9 +133,21 @@ pub fn picture(
         }
         stats.clipped_mm += (before - after).max(0.0);
     }
-    let eps = DEDUP_EPS * layout.page.longer_side();
+    let eps = DEDUP_EPS_MM;
     let (kept, dup) = dedup(&segs, eps);
     stats.duplicates = dup;
+    // Every line drawn, to keep the joins' gap bridges off them.
+    let mut drawn = SegmentIndex::new(&segs, eps);
+    for (_, s) in &kept {
+        drawn.insert(*s);
+    }
+    let mut bridge = |p: Pt2, q: Pt2| {
+        let free = !drawn.overlaps(p, q);
+        if free {
+            drawn.insert([p, q]);
+        }
+        free
+    };
 
     // Per layer and pen: join, simplify, dash.
     let layer_of = |pen: Pen, leaf: u32| match opts.layers {
@@ -140,11 +158,14 @@ pub fn picture(
     let mut groups: BTreeMap<(u32, Pen), Vec<Vec<Pt2>>> = BTreeMap::new();
     for (src, s) in kept {
         let (pen, leaf) = owner[src];
-        groups.entry((layer_of(pen, leaf), pen)).or_default().push(s.to_vec());
+        groups
+            .entry((layer_of(pen, leaf), pen))
+            .or_default()
+            .push(s.to_vec());
     }
     let mut by_layer: BTreeMap<u32, Vec<(Pen, Vec<Pt2>)>> = BTreeMap::new();
     for ((layer, pen), lines) in groups {
-        let mut strokes = join(lines, opts.join_mm);
+        let mut strokes = join(lines, opts.join_mm, &mut bridge);
         if opts.simplify_mm > 0.0 {
             strokes = strokes
                 .into_iter()
@@ -232,7 +253,12 @@ fn check(o: &PictureOptions) -> Result<()> {
         }
     }
     if let Some(r) = o.frame {
-        if r.is_empty() || !(r.xmin.is_finite() && r.xmax.is_finite() && r.ymin.is_finite() && r.ymax.is_finite()) {
+        if r.is_empty()
+            || !(r.xmin.is_finite()
+                && r.xmax.is_finite()
+                && r.ymin.is_finite()
+                && r.ymax.is_finite())
+        {
             return bad("the picture's frame is empty".into());
         }
     }
@@ -302,7 +328,12 @@ fn ordered_runs(strokes: Vec<(Pen, Vec<Pt2>)>) -> Vec<Run> {
 }
 
 /// Flat-shaded visible regions on the page, clipped to the drawing area.
-fn fills(view: &View, vis: &Visibility, layout: &Layout, light: Option<crate::geom::V3>) -> Vec<Fill> {
+fn fills(
+    view: &View,
+    vis: &Visibility,
+    layout: &Layout,
+    light: Option<crate::geom::V3>,
+) -> Vec<Fill> {
     let light = light_direction(&view.camera, light);
     vis.iter()
         .filter(|(_, fv)| !fv.visible.is_empty())

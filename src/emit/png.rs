@@ -2,7 +2,9 @@
 //! tiny-skia and encoded with the `image` crate. Pixels: `size` along the page's longer
 //! side, or the page at `dpi`.
 
-use tiny_skia::{Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Stroke, Transform};
+use tiny_skia::{
+    Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Stroke, Transform,
+};
 
 use crate::geom::poly2::Pt2;
 use crate::Error;
@@ -55,7 +57,13 @@ pub fn rasterise(pic: &Picture, k: f64) -> Result<Pixmap, Error> {
         }
         if let Some(path) = pb.finish() {
             let paint = paint(f.grey);
-            pm.fill_path(&path, &paint, FillRule::EvenOdd, Transform::identity(), None);
+            pm.fill_path(
+                &path,
+                &paint,
+                FillRule::EvenOdd,
+                Transform::identity(),
+                None,
+            );
             // A hairline in the same grey closes anti-aliasing seams between faces.
             let seam = Stroke {
                 width: 0.5,
@@ -77,7 +85,13 @@ pub fn rasterise(pic: &Picture, k: f64) -> Result<Pixmap, Error> {
                 line_join: LineJoin::Round,
                 ..Stroke::default()
             };
-            pm.stroke_path(&path, &paint(run.pen.grey()), &stroke, Transform::identity(), None);
+            pm.stroke_path(
+                &path,
+                &paint(run.pen.grey()),
+                &stroke,
+                Transform::identity(),
+                None,
+            );
         }
     }
     Ok(pm)
@@ -142,7 +156,10 @@ mod tests {
     fn page_picture_has_requested_size_and_ink() {
         let pic = pic();
         assert_eq!(pixel_size(&pic, pixels_per_mm(&pic, 110, None)), (110, 60));
-        assert_eq!(pixel_size(&pic, pixels_per_mm(&pic, 1, Some(254.0))), (1100, 600));
+        assert_eq!(
+            pixel_size(&pic, pixels_per_mm(&pic, 1, Some(254.0))),
+            (1100, 600)
+        );
         let pm = rasterise(&pic, 1.0).unwrap();
         let px = |x: u32, y: u32| pm.pixel(x, y).unwrap().red();
         assert_eq!(px(1, 1), 255, "margin is white");

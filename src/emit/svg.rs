@@ -71,7 +71,9 @@ pub fn to_svg(pic: &Picture) -> String {
             g = pen_style(g, r.pen, pic);
         }
         for r in &l.runs {
-            let mut p = Path::new().set("class", r.pen.name()).set("d", path_data(&r.lines));
+            let mut p = Path::new()
+                .set("class", r.pen.name())
+                .set("d", path_data(&r.lines));
             if !one_pen {
                 p = pen_style(p, r.pen, pic);
             }

@@ -491,13 +491,19 @@ mod tests {
                 let before = cycle_cost(&t);
                 t.or_opt_move(v, run, p, r);
                 let after = cycle_cost(&t);
-                assert!((before - after - g).abs() < 1e-9, "{before} - {after} != {g}");
+                assert!(
+                    (before - after - g).abs() < 1e-9,
+                    "{before} - {after} != {g}"
+                );
             }
             if let Some((g, i, j)) = t.best_two_opt(v) {
                 let before = cycle_cost(&t);
                 t.two_opt_move(i, j);
                 let after = cycle_cost(&t);
-                assert!((before - after - g).abs() < 1e-9, "{before} - {after} != {g}");
+                assert!(
+                    (before - after - g).abs() < 1e-9,
+                    "{before} - {after} != {g}"
+                );
             }
         }
     }

@@ -82,7 +82,10 @@ pub fn turntable_frame(scene: &Scene, base: &Camera, up: V3) -> Option<Rect> {
         h1 = h1.max(h);
     }
     // A polygon circumscribing the circle of radius r.
-    let e1 = up.cross(&V3::x()).try_normalize(1e-9).unwrap_or_else(|| up.cross(&V3::z()).normalize());
+    let e1 = up
+        .cross(&V3::x())
+        .try_normalize(1e-9)
+        .unwrap_or_else(|| up.cross(&V3::z()).normalize());
     let e2 = up.cross(&e1);
     let rr = r / (std::f64::consts::PI / SIDES as f64).cos();
     let mut rect = Rect::EMPTY;
@@ -127,13 +130,17 @@ mod tests {
                     if k & 4 == 0 { b.lo.z } else { b.hi.z },
                 );
                 let s = cam.project(&p);
-                assert!(frame.padded(1e-12).contains_rect(&Rect::new(s[0], s[1], s[0], s[1])));
+                assert!(frame
+                    .padded(1e-12)
+                    .contains_rect(&Rect::new(s[0], s[1], s[0], s[1])));
             }
         }
         // A quarter turn of a cube about its vertical axis shows the same picture.
         let c = scene.cbox().center();
         let p = P3::new(b.hi.x, b.hi.y, b.hi.z);
-        let q = c + nalgebra::Rotation3::from_axis_angle(&V3::y_axis(), -std::f64::consts::FRAC_PI_2) * (p - c);
+        let q =
+            c + nalgebra::Rotation3::from_axis_angle(&V3::y_axis(), -std::f64::consts::FRAC_PI_2)
+                * (p - c);
         let (s1, s0) = (cams[1].project(&p), base.project(&q));
         assert!((s1[0] - s0[0]).abs() < 1e-12 && (s1[1] - s0[1]).abs() < 1e-12);
     }
@@ -151,7 +158,8 @@ mod tests {
         let s = cams[1].project(&c);
         assert!(s[0].abs() < 1e-12 && s[1].abs() < 1e-12);
         assert!(turntable_frame(&scene, &base, V3::y()).is_some());
-        let inside = Camera::perspective(c, P3::new(c.x, c.y, c.z - 1.0), V3::y(), 40.0, 0.01).unwrap();
+        let inside =
+            Camera::perspective(c, P3::new(c.x, c.y, c.z - 1.0), V3::y(), 40.0, 0.01).unwrap();
         assert!(turntable_frame(&scene, &inside, V3::y()).is_none());
     }
 }
