@@ -56,7 +56,7 @@ pub(crate) struct RenderArgs {
     #[arg(long)]
     pub(crate) fill: bool,
     #[command(flatten)]
-    pub(crate) plot: PlotArgs,
+    pub(crate) plot: Box<PlotArgs>,
     #[command(flatten)]
     pub(crate) camera: CameraArgs,
     /// Render every view of this file (one line of camera flags per view) into numbered

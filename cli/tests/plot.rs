@@ -425,8 +425,8 @@ fn vpype_stat(out: &str) -> ((f64, f64), usize, f64) {
     // The last "Pen-up length" line is the document's total.
     let travel = out
         .lines()
-        .filter_map(|l| l.trim().strip_prefix("Pen-up length: "))
-        .last()
+        .rev()
+        .find_map(|l| l.trim().strip_prefix("Pen-up length: "))
         .map_or(0.0, |v| v.parse().unwrap());
     (page, layers, travel)
 }

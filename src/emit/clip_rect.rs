@@ -32,6 +32,9 @@ pub fn clip_polyline(pts: &[Pt2], r: &Rect) -> Vec<Vec<Pt2>> {
     out
 }
 
+/// A side of the rectangle: axis (0 x, 1 y) and its bound.
+type Side = (usize, f64);
+
 /// The part of segment a → b inside the closed rectangle `r`, or None.
 pub fn clip_segment(a: Pt2, b: Pt2, r: &Rect) -> Option<[Pt2; 2]> {
     let inside = |p: Pt2| r.xmin <= p[0] && p[0] <= r.xmax && r.ymin <= p[1] && p[1] <= r.ymax;
@@ -41,7 +44,7 @@ pub fn clip_segment(a: Pt2, b: Pt2, r: &Rect) -> Option<[Pt2; 2]> {
     let d = [b[0] - a[0], b[1] - a[1]];
     // Entry and exit parameters, each with the side (axis, bound) that set it.
     let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    let (mut s0, mut s1): (Option<(usize, f64)>, Option<(usize, f64)>) = (None, None);
+    let (mut s0, mut s1): (Option<Side>, Option<Side>) = (None, None);
     for axis in 0..2 {
         let (lo, hi) = (r.bound(axis, false), r.bound(axis, true));
         if d[axis] == 0.0 {
@@ -68,7 +71,7 @@ pub fn clip_segment(a: Pt2, b: Pt2, r: &Rect) -> Option<[Pt2; 2]> {
     if t0 > t1 {
         return None;
     }
-    let point = |t: f64, side: Option<(usize, f64)>, end: Pt2| -> Pt2 {
+    let point = |t: f64, side: Option<Side>, end: Pt2| -> Pt2 {
         let Some((axis, bound)) = side else {
             return end;
         };

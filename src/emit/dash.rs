@@ -4,7 +4,7 @@
 //! dash at its first point; a dash may turn a corner. A polyline shorter than one dash is
 //! one dash.
 
-use crate::geom::poly2::Pt2;
+use crate::geom::poly2::{dist, Pt2};
 
 /// The dashes of polyline `pts` with pattern `dash` on, `gap` off (both > 0).
 pub fn dashes(pts: &[Pt2], dash: f64, gap: f64) -> Vec<Vec<Pt2>> {
@@ -14,7 +14,7 @@ pub fn dashes(pts: &[Pt2], dash: f64, gap: f64) -> Vec<Vec<Pt2>> {
     let (mut left, mut down) = (dash, true);
     for w in pts.windows(2) {
         let (a, b) = (w[0], w[1]);
-        let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+        let len = dist(a, b);
         if len == 0.0 {
             continue;
         }
@@ -62,11 +62,7 @@ fn point(a: Pt2, b: Pt2, t: f64, len: f64) -> Pt2 {
 mod tests {
     use super::*;
 
-    fn length(l: &[Pt2]) -> f64 {
-        l.windows(2)
-            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
-            .sum()
-    }
+    use crate::geom::poly2::polyline_length as length;
 
     #[test]
     fn straight_line_dashes() {

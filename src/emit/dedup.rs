@@ -8,7 +8,7 @@
 //! end point, so the pieces meet their neighbours exactly and chain without gaps. A uniform
 //! grid over sampled cells finds candidates, so the work follows the drawing's length.
 
-use crate::geom::poly2::Pt2;
+use crate::geom::poly2::{dist, Pt2};
 use crate::geom::Rect;
 
 /// Counts of what [`dedup`] removed.
@@ -142,14 +142,10 @@ struct Cover {
     p1: Pt2,
 }
 
-fn dist(a: Pt2, b: Pt2) -> f64 {
-    (b[0] - a[0]).hypot(b[1] - a[1])
-}
-
 /// Distance of `p` from the line through `u` and `v` (u != v).
 fn line_dist(u: Pt2, v: Pt2, p: Pt2) -> f64 {
     let (dx, dy) = (v[0] - u[0], v[1] - u[1]);
-    ((p[0] - u[0]) * dy - (p[1] - u[1]) * dx).abs() / dx.hypot(dy)
+    ((p[0] - u[0]) * dy - (p[1] - u[1]) * dx).abs() / dist(u, v)
 }
 
 /// How c → d covers a → b (length `len`), when they lie on one line and share more than `eps`.
@@ -367,7 +363,7 @@ mod tests {
             let unit = dist(lines[l].0, lines[l].1);
             let (mut lo, mut hi) = (f64::NAN, f64::NAN);
             for &[a, b] in iv.iter() {
-                if !(a <= hi) {
+                if hi.is_nan() || a > hi {
                     if hi > lo {
                         want += (hi - lo) * unit;
                     }

@@ -190,7 +190,7 @@ impl Family {
             lo = lo.min(o);
             hi = hi.max(o);
         }
-        if !(lo <= hi) {
+        if lo > hi || lo.is_nan() || hi.is_nan() {
             return Vec::new();
         }
         let k0 = ((lo - self.base) / self.step).ceil() as i64;

@@ -11,7 +11,7 @@
 
 use std::collections::HashMap;
 
-use crate::geom::poly2::Pt2;
+use crate::geom::poly2::{dist, Pt2};
 
 /// Hash key of a point: -0 and 0 are the same point.
 fn key(p: Pt2) -> (u64, u64) {
@@ -64,8 +64,8 @@ fn euler_trails(lines: &[Vec<Pt2>]) -> Vec<Vec<Pt2>> {
         degree[e.ends[0]] += 1;
         degree[e.ends[1]] += 1;
     }
-    for n in 0..nodes {
-        if degree[n] % 2 == 1 {
+    for (n, d) in degree.iter().enumerate().take(nodes) {
+        if d % 2 == 1 {
             edges.push(GraphEdge {
                 ends: [n, virt],
                 line: None,
@@ -182,7 +182,7 @@ fn join_near(
     // End slot 2i is line i's start, 2i + 1 its end.
     let end = |s: usize| {
         let l = &lines[s / 2];
-        if s % 2 == 0 {
+        if s.is_multiple_of(2) {
             l[0]
         } else {
             l[l.len() - 1]
@@ -201,7 +201,7 @@ fn join_near(
             for dx in -1..=1 {
                 for &t in grid.get(&(cx + dx, cy + dy)).into_iter().flatten() {
                     let q = end(t);
-                    let d = (q[0] - p[0]).hypot(q[1] - p[1]);
+                    let d = dist(p, q);
                     if t > s && t / 2 != s / 2 && d <= tol {
                         pairs.push((d, s, t));
                     }
@@ -276,6 +276,7 @@ fn join_near(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::poly2::polyline_length;
 
     fn odd_points(lines: &[Vec<Pt2>]) -> usize {
         let mut deg: HashMap<(u64, u64), usize> = HashMap::new();
@@ -287,11 +288,7 @@ mod tests {
     }
 
     fn length(lines: &[Vec<Pt2>]) -> f64 {
-        lines
-            .iter()
-            .flat_map(|l| l.windows(2))
-            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
-            .sum()
+        lines.iter().map(|l| polyline_length(l)).sum()
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! The picture both SVG and PNG draw, on a page in millimetres: fills, and layers of strokes
 //! in the order a plotter draws them, each stroke with a pen. [`super::plot`] builds it.
 
-use crate::geom::poly2::{Pt2, Ring};
+use crate::geom::poly2::{polyline_length, Pt2, Ring};
 use crate::geom::{Rect, V3};
 
 use super::color::Rgb;
@@ -199,23 +199,12 @@ impl Layer {
     /// What a plotter does for this layer.
     pub fn summary(&self) -> LayerSummary {
         let lines: Vec<&Vec<Pt2>> = self.lines().collect();
-        let len = |l: &Vec<Pt2>| -> f64 {
-            l.windows(2)
-                .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
-                .sum()
-        };
-        let travel = lines
-            .windows(2)
-            .map(|w| {
-                let (a, b) = (w[0][w[0].len() - 1], w[1][0]);
-                (b[0] - a[0]).hypot(b[1] - a[1])
-            })
-            .sum();
+        let travel = super::tour::travel(&lines);
         LayerSummary {
             number: self.number,
             name: self.name.clone(),
             strokes: lines.len(),
-            drawn_mm: lines.iter().map(|l| len(l)).sum(),
+            drawn_mm: lines.iter().map(|l| polyline_length(l)).sum(),
             travel_mm: travel,
         }
     }

@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use geo::{LineString, Simplify};
 
 use crate::error::{Error, Result};
-use crate::geom::poly2::Pt2;
+use crate::geom::poly2::{polyline_length as length, Pt2};
 use crate::geom::Rect;
 use crate::scene::{FaceId, Scene};
 use crate::view::{Frame, View};
@@ -287,12 +287,6 @@ fn top_objects(scene: &Scene) -> TopObjects {
         })
         .collect();
     TopObjects { of_leaf, names }
-}
-
-fn length(l: &[Pt2]) -> f64 {
-    l.windows(2)
-        .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
-        .sum()
 }
 
 /// A polyline simplified to within `tol` (Ramer–Douglas–Peucker, geo); its ends stay.

@@ -9,7 +9,7 @@
 //! everything, so a reversal can always take the shorter side. Deterministic: fixed
 //! neighbour lists, a FIFO work queue, ties to the lower index, and a move budget.
 
-use crate::geom::poly2::Pt2;
+use crate::geom::poly2::{dist, Pt2};
 
 use super::chain::greedy;
 
@@ -23,15 +23,14 @@ const OR_RUN: usize = 3;
 const MOVES_PER_STROKE: usize = 64;
 
 /// Pen-up travel of strokes drawn in order: Σ |end(i) − start(i+1)|.
-pub fn travel(lines: &[Vec<Pt2>]) -> f64 {
+pub fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
     lines
         .windows(2)
-        .map(|w| dist(w[0][w[0].len() - 1], w[1][0]))
+        .map(|w| {
+            let (a, b) = (w[0].as_ref(), w[1].as_ref());
+            dist(a[a.len() - 1], b[0])
+        })
         .sum()
-}
-
-fn dist(a: Pt2, b: Pt2) -> f64 {
-    (b[0] - a[0]).hypot(b[1] - a[1])
 }
 
 /// The drawing order of strokes given by their (start, end) points: (stroke, reversed).

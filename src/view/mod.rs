@@ -6,7 +6,7 @@
 //! - [`screen`]: the remaining faces projected as planar pieces.
 //! - [`tree`]: the object tree in screen space, with bounds for VISFAC2's pruning.
 //! - [`frame`]: the part of the screen plane a picture shows.
-//! - [`turntable`]: cameras carried round the scene, and one frame for all of them.
+//! - [`mod@turntable`]: cameras carried round the scene, and one frame for all of them.
 
 pub mod camera;
 pub mod cull;

@@ -62,7 +62,7 @@ fn turned(base: &Camera, c: P3, up: V3, theta: f64) -> Camera {
 pub fn turntable_frame(scene: &Scene, base: &Camera, up: V3) -> Option<Rect> {
     let (c, up) = axis(scene, up).ok()?;
     let b = scene.cbox();
-    if !(b.lo.x <= b.hi.x) {
+    if b.lo.x > b.hi.x || b.lo.x.is_nan() {
         return None;
     }
     // Radius and height range of the cylinder about the axis.
