@@ -489,6 +489,31 @@ fn vpype_reads_the_page_and_layers_and_cannot_shorten_the_travel() {
             .unwrap(),
         )
         .2;
+        if name == "assembly" {
+            // One vpype layer per top-level object with --layers object.
+            let obj = d.join("assembly-objects.svg");
+            kepler(&[
+                "render",
+                s(&path),
+                "--svg",
+                s(&obj),
+                "--layers",
+                "object",
+                "-q",
+            ]);
+            let labels: Vec<String> = check_plottable(&obj)
+                .1
+                .into_iter()
+                .map(|l| l.label)
+                .collect();
+            assert_eq!(
+                labels.len(),
+                5,
+                "floor, cycle, pierced, compound, sign: {labels:?}"
+            );
+            let out = vpype(&["read", s(&obj), "stat"]).unwrap();
+            assert_eq!(vpype_stat(&out).1, labels.len());
+        }
         eprintln!(
             "{name}: kepler travel {:.1} mm; vpype linemerge linesort {:.1} mm on kepler's order, {:.1} mm from a shuffled order",
             ours / PX_PER_MM,
