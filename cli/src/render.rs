@@ -251,8 +251,13 @@ fn print_stats(scene: &Scene, r: &Rendered, load: Duration, prepare: Duration, w
             strokes.saturating_sub(p.layers.len()),
         );
         eprintln!(
-            "plot: duplicates removed {} whole, {} in part ({:.3} mm); clipped to the page {:.1} mm",
-            p.duplicates.dropped, p.duplicates.trimmed, p.duplicates.length, p.clipped_mm
+            "plot: of {} segments, {} repeated or overlapped dropped whole, {} in part ({:.3} mm); \
+             line outside the drawing area clipped away {:.1} mm",
+            p.duplicates.segments,
+            p.duplicates.dropped,
+            p.duplicates.trimmed,
+            p.duplicates.length,
+            p.clipped_mm
         );
     }
 }

@@ -14,6 +14,8 @@ use crate::geom::Rect;
 /// Counts of what [`dedup`] removed.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct DedupStats {
+    /// Segments looked at.
+    pub segments: usize,
     /// Segments dropped whole (exact duplicates, or covered by others).
     pub dropped: usize,
     /// Segments that lost part of their length.
@@ -27,7 +29,10 @@ pub struct DedupStats {
 pub fn dedup(segs: &[[Pt2; 2]], eps: f64) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
     let mut index = SegmentIndex::new(segs, eps);
     let mut kept: Vec<(usize, [Pt2; 2])> = Vec::with_capacity(segs.len());
-    let mut stats = DedupStats::default();
+    let mut stats = DedupStats {
+        segments: segs.len(),
+        ..DedupStats::default()
+    };
     let mut covers: Vec<Cover> = Vec::new();
     for (i, &[a, b]) in segs.iter().enumerate() {
         let len = dist(a, b);
