@@ -32,6 +32,13 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
+/// `kepler render SCENE --svg SVG EXTRA...`.
+fn render_svg(scene: &Path, svg: &Path, extra: &[&str]) {
+    let mut args = vec!["render", s(scene), "--svg", s(svg)];
+    args.extend(extra);
+    kepler(&args);
+}
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
 }
@@ -204,17 +211,7 @@ fn a4_page_with_pen_layers_dashes_and_no_duplicates() {
     let mesh = d.join("m.obj");
     std::fs::write(&mesh, CUBES).unwrap();
     let svg = d.join("a.svg");
-    kepler(&[
-        "render",
-        s(&mesh),
-        "--svg",
-        s(&svg),
-        "--page",
-        "a4",
-        "--hidden",
-        "--edges",
-        "all",
-    ]);
+    render_svg(&mesh, &svg, &["--page", "a4", "--hidden", "--edges", "all"]);
     let (page, layers) = check_plottable(&svg);
     assert_eq!(page, (210.0, 297.0));
     let labels: Vec<&str> = layers.iter().map(|l| l.label.as_str()).collect();
@@ -230,26 +227,9 @@ fn a4_page_with_pen_layers_dashes_and_no_duplicates() {
         assert!(len <= 2.0 + 1e-9, "dash of {len} mm");
     }
     // Landscape and a custom page, with a margin: everything inside it.
-    kepler(&[
-        "render",
-        s(&mesh),
-        "--svg",
-        s(&svg),
-        "--page",
-        "a4",
-        "--landscape",
-    ]);
+    render_svg(&mesh, &svg, &["--page", "a4", "--landscape"]);
     assert_eq!(check_plottable(&svg).0, (297.0, 210.0));
-    kepler(&[
-        "render",
-        s(&mesh),
-        "--svg",
-        s(&svg),
-        "--page",
-        "120x80mm",
-        "--margin",
-        "15",
-    ]);
+    render_svg(&mesh, &svg, &["--page", "120x80mm", "--margin", "15"]);
     let (page, layers) = check_plottable(&svg);
     assert_eq!(page, (120.0, 80.0));
     for p in layers.iter().flat_map(|l| l.lines.iter().flatten()) {
@@ -267,15 +247,7 @@ fn stroke_widths_in_mm_do_not_change_with_size() {
     std::fs::write(&mesh, CUBES).unwrap();
     let widths = |size: &str| {
         let svg = d.join(format!("w{size}.svg"));
-        kepler(&[
-            "render",
-            s(&mesh),
-            "--svg",
-            s(&svg),
-            "--size",
-            size,
-            "--hidden",
-        ]);
+        render_svg(&mesh, &svg, &["--size", size, "--hidden"]);
         let (page, layers) = read_svg(&std::fs::read_to_string(&svg).unwrap());
         let w: Vec<String> = layers.iter().flat_map(|l| l.widths.clone()).collect();
         (page, w)
@@ -297,15 +269,7 @@ fn object_layers_background_and_hatching() {
     let mesh = d.join("m.obj");
     std::fs::write(&mesh, CUBES).unwrap();
     let svg = d.join("o.svg");
-    kepler(&[
-        "render",
-        s(&mesh),
-        "--svg",
-        s(&svg),
-        "--layers",
-        "object",
-        "--hatch",
-    ]);
+    render_svg(&mesh, &svg, &["--layers", "object", "--hatch"]);
     let (_, layers) = check_plottable(&svg);
     let labels: Vec<&str> = layers.iter().map(|l| l.label.as_str()).collect();
     assert_eq!(labels, vec!["1 a", "2 b"]);
@@ -314,14 +278,7 @@ fn object_layers_background_and_hatching() {
         text.contains(r#"class="hatching""#),
         "the dark faces are hatched"
     );
-    kepler(&[
-        "render",
-        s(&mesh),
-        "--svg",
-        s(&svg),
-        "--background",
-        "#fffff0",
-    ]);
+    render_svg(&mesh, &svg, &["--background", "#fffff0"]);
     let text = std::fs::read_to_string(&svg).unwrap();
     assert_eq!(text.matches("<rect").count(), 1);
     assert!(text.contains(r##"fill="#fffff0""##));
@@ -368,7 +325,7 @@ fn views_file_and_turntable_write_numbered_outputs() {
     )
     .unwrap();
     let svg = d.join("v.svg");
-    kepler(&["render", s(&mesh), "--svg", s(&svg), "--views", s(&views)]);
+    render_svg(&mesh, &svg, &["--views", s(&views)]);
     for k in 1..=2 {
         assert!(d.join(format!("v-00{k}.svg")).is_file());
     }
@@ -492,15 +449,7 @@ fn vpype_reads_the_page_and_layers_and_cannot_shorten_the_travel() {
         if name == "assembly" {
             // One vpype layer per top-level object with --layers object.
             let obj = d.join("assembly-objects.svg");
-            kepler(&[
-                "render",
-                s(&path),
-                "--svg",
-                s(&obj),
-                "--layers",
-                "object",
-                "-q",
-            ]);
+            render_svg(&path, &obj, &["--layers", "object", "-q"]);
             let labels: Vec<String> = check_plottable(&obj)
                 .1
                 .into_iter()

@@ -113,13 +113,8 @@ mod tests {
     #[test]
     fn clipped_points_never_leave_the_rectangle() {
         // Many random long segments: every clipped end is inside the closed rectangle.
-        let mut s = 0x2545F4914F6CDD1Du64;
-        let mut rnd = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64 * 40.0 - 15.0
-        };
+        let mut rng = crate::geom::rng::XorShift::new(0x2545F4914F6CDD1D);
+        let mut rnd = || rng.range(-15.0, 25.0);
         let r = Rect::new(0.1, 0.3, 10.7, 5.9);
         for _ in 0..5000 {
             let (a, b) = ([rnd(), rnd()], [rnd(), rnd()]);

@@ -331,13 +331,8 @@ mod tests {
     fn random_collinear_pieces_cover_their_union_once() {
         // Pieces of three lines: the kept length equals the length of each line's union of
         // intervals, computed independently in one dimension; kept pieces do not overlap.
-        let mut s = 0x9E3779B97F4A7C15u64;
-        let mut rnd = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::geom::rng::XorShift::new(0x9E3779B97F4A7C15);
+        let mut rnd = || rng.unit();
         let lines = [
             ([0.0, 0.0], [1.0, 0.5]),
             ([3.0, 1.0], [3.0, 4.0]),

@@ -326,13 +326,8 @@ mod tests {
 
     #[test]
     fn random_graphs_reach_the_lower_bound() {
-        let mut s = 0x1234_5678_9ABC_DEF1u64;
-        let mut rnd = |n: u64| {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s % n
-        };
+        let mut rng = crate::geom::rng::XorShift::new(0x1234_5678_9ABC_DEF1);
+        let mut rnd = |n: u64| rng.next_u64() % n;
         for _ in 0..50 {
             let lines: Vec<Vec<Pt2>> = (0..40)
                 .map(|_| {

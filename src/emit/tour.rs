@@ -5,22 +5,35 @@
 //! (nearest next end, from the stroke nearest the page's top-left corner), then local search
 //! improves it until no move gains: 2-opt (reverse a run of strokes) and Or-opt (move a run
 //! of up to three strokes elsewhere, either way round), candidates from each end's nearest
-//! neighbours. The open path is closed into a cycle through a depot at distance 0 from
+//! neighbours; then iterated local search: small double-bridge kicks, each followed by local
+//! search and kept only when the travel falls. The open path is closed into a cycle through a depot at distance 0 from
 //! everything, so a reversal can always take the shorter side. Deterministic: fixed
-//! neighbour lists, a FIFO work queue, ties to the lower index, and a move budget.
+//! neighbour lists, a FIFO work queue, ties to the lower index, a seeded generator for the
+//! kicks, and fixed budgets of moves and kicks.
 
 use crate::geom::poly2::{dist, Pt2};
+
+use crate::geom::rng::XorShift;
 
 use super::chain::greedy;
 
 /// Nearest neighbours kept per stroke end.
-const NEIGHBOURS: usize = 8;
+const NEIGHBOURS: usize = 16;
 
 /// Longest run of strokes an Or-opt move carries.
 const OR_RUN: usize = 3;
 
 /// Moves allowed per stroke (a bound on the work, never reached in practice).
 const MOVES_PER_STROKE: usize = 64;
+
+/// Kicks of the iterated local search per stroke, over at most [`MAX_KICKED_STROKES`].
+const KICKS_PER_STROKE: usize = 4;
+
+/// Strokes counted for the number of kicks (a bound on the work for huge layers).
+const MAX_KICKED_STROKES: usize = 2000;
+
+/// Longest run a kick moves.
+const KICK_RUN: usize = 30;
 
 /// Pen-up travel of strokes drawn in order: Σ |end(i) − start(i+1)|.
 pub fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
@@ -64,6 +77,8 @@ struct Tour<'a> {
     near: Vec<Vec<usize>>,
     /// Least gain a move must bring (a rounding guard).
     eps: f64,
+    /// Reversals made, when they are to be undone.
+    log: Option<Vec<(usize, usize)>>,
 }
 
 impl<'a> Tour<'a> {
@@ -87,6 +102,7 @@ impl<'a> Tour<'a> {
             rev,
             near: neighbours(ends),
             eps: 1e-12 * b.longer_side().max(f64::MIN_POSITIVE),
+            log: None,
         }
     }
 
@@ -119,6 +135,9 @@ impl<'a> Tour<'a> {
     /// Reverses the cyclic run of positions from `i` forward to `j` (inclusive), flipping the
     /// strokes in it.
     fn reverse(&mut self, i: usize, j: usize) {
+        if let Some(log) = &mut self.log {
+            log.push((i, j));
+        }
         let n = self.len();
         let len = (j + n - i) % n + 1;
         for k in 0..len / 2 {
@@ -273,49 +292,109 @@ impl<'a> Tour<'a> {
         }
     }
 
-    /// Local search until no move gains (or the move budget is spent).
+    /// Local search until no move gains, then kicks: a local double bridge (two neighbouring
+    /// runs of strokes swapped) followed by local search around it, kept only when the whole
+    /// brings the travel down, undone otherwise (iterated local search).
     fn improve(&mut self) {
         let strokes = self.ends.len();
-        let mut queue: std::collections::VecDeque<usize> = self.seq[..strokes].to_vec().into();
-        let mut queued = vec![true; strokes];
         let mut budget = MOVES_PER_STROKE * strokes;
-        while let Some(v) = queue.pop_front() {
-            queued[v] = false;
+        let all: Vec<usize> = self.seq[..strokes].to_vec();
+        self.local_search(all, &mut budget);
+        if self.len() < 8 {
+            return;
+        }
+        let mut rng = XorShift::new(0x5DEE_CE66_D1CE_5EED);
+        for _ in 0..KICKS_PER_STROKE * strokes.min(MAX_KICKED_STROKES) {
             if budget == 0 {
                 break;
             }
-            if let Some((_, i, j)) = self.best_two_opt(v) {
-                let nodes: Vec<usize> = [i, i + 1, j, j + 1]
+            self.log = Some(Vec::new());
+            let (worse, touched) = self.kick(&mut rng);
+            let gain = self.local_search(touched, &mut budget);
+            let log = self.log.take().unwrap_or_default();
+            if gain - worse <= self.eps {
+                for &(i, j) in log.iter().rev() {
+                    self.reverse(i, j);
+                }
+            }
+        }
+    }
+
+    /// Local search from the strokes in `queue` until no move gains (or the budget is
+    /// spent): the total gain.
+    fn local_search(&mut self, queue: Vec<usize>, budget: &mut usize) -> f64 {
+        let strokes = self.ends.len();
+        let mut queued = vec![false; strokes];
+        let mut queue: std::collections::VecDeque<usize> =
+            queue.into_iter().filter(|&v| v < strokes).collect();
+        for &v in &queue {
+            queued[v] = true;
+        }
+        let mut gained = 0.0;
+        while let Some(v) = queue.pop_front() {
+            queued[v] = false;
+            if *budget == 0 {
+                break;
+            }
+            let nodes: Vec<usize> = if let Some((g, i, j)) = self.best_two_opt(v) {
+                let nodes = [i, i + 1, j, j + 1]
                     .iter()
                     .map(|&k| self.at(k as isize))
                     .collect();
                 self.two_opt_move(i, j);
-                budget -= 1;
-                for u in nodes.into_iter().chain([v]) {
-                    if u < strokes && !queued[u] {
-                        queued[u] = true;
-                        queue.push_back(u);
-                    }
-                }
-                continue;
-            }
-            if let Some((_, run, p, r)) = self.best_or_opt(v) {
+                gained += g;
+                [nodes, vec![v]].concat()
+            } else if let Some((g, run, p, r)) = self.best_or_opt(v) {
                 let s0 = self.pos[v] as isize;
-                let nodes: Vec<usize> = [s0 - 1, s0, s0 + run as isize - 1, s0 + run as isize]
+                let nodes = [s0 - 1, s0, s0 + run as isize - 1, s0 + run as isize]
                     .into_iter()
                     .chain([p as isize, p as isize + 1])
                     .map(|k| self.at(k))
                     .collect();
                 self.or_opt_move(v, run, p, r);
-                budget -= 1;
-                for u in nodes {
-                    if u < strokes && !queued[u] {
-                        queued[u] = true;
-                        queue.push_back(u);
-                    }
+                gained += g;
+                nodes
+            } else {
+                continue;
+            };
+            *budget -= 1;
+            for u in nodes {
+                if u < strokes && !queued[u] {
+                    queued[u] = true;
+                    queue.push_back(u);
                 }
             }
         }
+        gained
+    }
+
+    /// Travel of the edge leaving position k.
+    fn edge(&self, k: usize) -> f64 {
+        Self::d(
+            self.end(self.at(k as isize)),
+            self.start(self.at(k as isize + 1)),
+        )
+    }
+
+    /// A local double bridge: the runs B and C after a random position p swapped. Returns how
+    /// much longer the travel got and the strokes at the changed edges.
+    fn kick(&mut self, rng: &mut XorShift) -> (f64, Vec<usize>) {
+        let n = self.len();
+        let most = KICK_RUN.min((n - 2) / 2).max(1);
+        let p = rng.below(n);
+        let (l1, l2) = (1 + rng.below(most), 1 + rng.below(most));
+        let span = l1 + l2 + 1;
+        let cost = |t: &Self| (0..span).map(|k| t.edge((p + k) % n)).sum::<f64>();
+        let before = cost(self);
+        self.reverse((p + 1) % n, (p + l1 + l2) % n);
+        self.reverse((p + 1) % n, (p + l2) % n);
+        self.reverse((p + l2 + 1) % n, (p + l1 + l2) % n);
+        let after = cost(self);
+        let touched = [0, 1, l2, l2 + 1, l1 + l2, l1 + l2 + 1]
+            .iter()
+            .map(|&k| self.seq[(p + k) % n])
+            .collect();
+        (after - before, touched)
     }
 
     /// The strokes in drawing order, starting after the depot.
@@ -405,13 +484,8 @@ mod tests {
     }
 
     fn random_strokes(n: usize, seed: u64) -> Vec<[Pt2; 2]> {
-        let mut s = seed;
-        let mut rnd = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64 * 100.0
-        };
+        let mut rng = crate::geom::rng::XorShift::new(seed);
+        let mut rnd = || rng.range(0.0, 100.0);
         (0..n)
             .map(|_| {
                 let a = [rnd(), rnd()];
@@ -504,6 +578,79 @@ mod tests {
                     "{before} - {after} != {g}"
                 );
             }
+        }
+    }
+}
+#[cfg(test)]
+mod against_full_two_opt {
+    use super::*;
+    use crate::geom::rng::XorShift;
+
+    /// Travel after a full 2-opt from `order`, written independently the way vpype's
+    /// `linesort --two-opt` does it: for each position, flip the best run starting there,
+    /// while anything gains.
+    fn full_two_opt(ends: &[[Pt2; 2]], order: &[(usize, bool)]) -> f64 {
+        let mut e: Vec<[Pt2; 2]> = order
+            .iter()
+            .map(|&(i, r)| if r { [ends[i][1], ends[i][0]] } else { ends[i] })
+            .collect();
+        let n = e.len();
+        let mut improved = true;
+        while improved {
+            improved = false;
+            for mid in 0..n {
+                let mut best = (-1e-10, usize::MAX);
+                for j in mid..n {
+                    let src = if mid > 0 { Some(e[mid - 1][1]) } else { None };
+                    let dst = if j + 1 < n { Some(e[j + 1][0]) } else { None };
+                    let d = |a: Option<Pt2>, b: Option<Pt2>| match (a, b) {
+                        (Some(a), Some(b)) => dist(a, b),
+                        _ => 0.0,
+                    };
+                    let delta = d(src, Some(e[j][1])) + d(Some(e[mid][0]), dst)
+                        - d(src, Some(e[mid][0]))
+                        - d(Some(e[j][1]), dst);
+                    if delta < best.0 {
+                        best = (delta, j);
+                    }
+                }
+                if best.1 != usize::MAX {
+                    e[mid..=best.1].reverse();
+                    for s in &mut e[mid..=best.1] {
+                        s.swap(0, 1);
+                    }
+                    improved = true;
+                }
+            }
+        }
+        e.windows(2).map(|w| dist(w[0][1], w[1][0])).sum()
+    }
+
+    #[test]
+    fn plan_is_at_least_as_short_as_a_full_two_opt() {
+        let mut rng = XorShift::new(77);
+        for n in [50, 100, 300] {
+            let ends: Vec<[Pt2; 2]> = (0..n)
+                .map(|_| {
+                    let a = [rng.range(0., 100.), rng.range(0., 100.)];
+                    let b = [a[0] + rng.range(-5., 5.), a[1] + rng.range(-5., 5.)];
+                    [a, b]
+                })
+                .collect();
+            let g = greedy(&ends, 0);
+            let ap = |o: &[(usize, bool)]| -> f64 {
+                o.windows(2)
+                    .map(|w| {
+                        dist(
+                            ends[w[0].0][usize::from(!w[0].1)],
+                            ends[w[1].0][usize::from(w[1].1)],
+                        )
+                    })
+                    .sum()
+            };
+            let mine = ap(&plan(&ends));
+            let full = full_two_opt(&ends, &g);
+            assert!(mine <= full, "n {n}: plan {mine} > full 2-opt {full}");
         }
     }
 }

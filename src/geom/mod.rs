@@ -10,6 +10,7 @@ pub mod poly2;
 pub mod polymesh;
 pub mod predicates;
 pub mod rect;
+pub(crate) mod rng;
 pub mod solid_angle;
 pub mod triangle;
 
