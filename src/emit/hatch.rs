@@ -326,4 +326,37 @@ mod tests {
         let whole = len(&fam.clip(&union));
         assert!((len(&a) + len(&b) - whole).abs() < 1e-9 * whole);
     }
+
+    #[test]
+    fn exact_clip_agrees_with_geo() {
+        // A concave region with a hole, hatched at an odd angle: the pieces' total length
+        // equals geo's line clipping (an independent engine), to its float grid's precision.
+        use geo::{BooleanOps, Length, LineString, MultiLineString, Polygon};
+        let l = layout();
+        let fam = Family::new(&l, 23.0, 0.37);
+        let outer = vec![[1., 1.], [9., 2.], [6., 5.], [9., 9.], [2., 8.], [3.5, 4.5]];
+        let hole = vec![[4., 3.], [4.5, 6.], [6.5, 6.5], [5.5, 3.5]];
+        let region: MultiPolygon = vec![vec![outer.clone(), hole.clone()]];
+        let ours: f64 = fam
+            .clip(&region)
+            .iter()
+            .map(|s| crate::geom::poly2::dist(s[0], s[1]))
+            .sum();
+        let ring = |r: &[Pt2]| -> LineString<f64> { r.iter().map(|p| (p[0], p[1])).collect() };
+        let poly = Polygon::new(ring(&outer), vec![ring(&hole)]);
+        let lines: MultiLineString<f64> = (-1000..1000)
+            .map(|k| {
+                let [a, b] = fam.line(k);
+                ring(&[a, b])
+            })
+            .collect();
+        let theirs: f64 = poly
+            .clip(&lines, false)
+            .0
+            .iter()
+            .map(|ls| geo::Euclidean.length(ls))
+            .sum();
+        assert!(ours > 10.0);
+        assert!((ours - theirs).abs() < 1e-6 * ours, "{ours} vs geo {theirs}");
+    }
 }
