@@ -357,6 +357,9 @@ mod tests {
             .map(|ls| geo::Euclidean.length(ls))
             .sum();
         assert!(ours > 10.0);
-        assert!((ours - theirs).abs() < 1e-6 * ours, "{ours} vs geo {theirs}");
+        assert!(
+            (ours - theirs).abs() < 1e-6 * ours,
+            "{ours} vs geo {theirs}"
+        );
     }
 }
