@@ -79,6 +79,8 @@ struct Tour<'a> {
     eps: f64,
     /// Reversals made, when they are to be undone.
     log: Option<Vec<(usize, usize)>>,
+    /// Strokes in the local search's work queue (all false between searches).
+    queued: Vec<bool>,
 }
 
 impl<'a> Tour<'a> {
@@ -103,6 +105,7 @@ impl<'a> Tour<'a> {
             near: neighbours(ends),
             eps: 1e-12 * b.longer_side().max(f64::MIN_POSITIVE),
             log: None,
+            queued: vec![false; n],
         }
     }
 
@@ -324,12 +327,10 @@ impl<'a> Tour<'a> {
     /// spent): the total gain.
     fn local_search(&mut self, queue: Vec<usize>, budget: &mut usize) -> f64 {
         let strokes = self.ends.len();
-        let mut queued = vec![false; strokes];
+        let mut queued = std::mem::take(&mut self.queued);
         let mut queue: std::collections::VecDeque<usize> =
             queue.into_iter().filter(|&v| v < strokes).collect();
-        for &v in &queue {
-            queued[v] = true;
-        }
+        queue.retain(|&v| !std::mem::replace(&mut queued[v], true));
         let mut gained = 0.0;
         while let Some(v) = queue.pop_front() {
             queued[v] = false;
@@ -365,6 +366,11 @@ impl<'a> Tour<'a> {
                 }
             }
         }
+        // A spent budget leaves strokes queued: clear them for the next search.
+        for v in queue {
+            queued[v] = false;
+        }
+        self.queued = queued;
         gained
     }
 
