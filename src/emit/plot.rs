@@ -7,7 +7,8 @@
 //! clip ([`super::clip_rect`]); drop repeated and overlapping collinear pieces, visible pens
 //! first ([`super::dedup`]); per layer and pen, join at equal ends then within
 //! `join_mm` ([`super::join`]), simplify when asked (geo's Ramer–Douglas–Peucker), dash the
-//! hidden pen ([`super::dash`]); per layer, order all strokes ([`super::tour`]).
+//! hidden pen ([`super::dash`]) and join dashes that meet; per layer, order all strokes
+//! ([`super::tour`]).
 
 use std::collections::BTreeMap;
 
@@ -173,8 +174,11 @@ pub fn picture(
                 .collect();
         }
         if pen == Pen::Hidden {
+            // Dashes of different lines that meet (where hidden lines join at a corner) are
+            // drawn as one stroke.
             let [on, off] = opts.dash_mm;
-            strokes = strokes.iter().flat_map(|l| dashes(l, on, off)).collect();
+            let dashed = strokes.iter().flat_map(|l| dashes(l, on, off)).collect();
+            strokes = join(dashed, opts.join_mm, &mut bridge);
         }
         by_layer
             .entry(layer)
