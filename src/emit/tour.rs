@@ -30,7 +30,7 @@ const MOVES_PER_STROKE: usize = 64;
 const KICKS_PER_STROKE: usize = 4;
 
 /// Strokes counted for the number of kicks (a bound on the work for huge layers).
-const MAX_KICKED_STROKES: usize = 2000;
+const MAX_KICKED_STROKES: usize = 500;
 
 /// Longest run a kick moves.
 const KICK_RUN: usize = 30;
