@@ -9,7 +9,8 @@ use std::time::{Duration, Instant};
 use crate::emit::json::to_json;
 use crate::emit::lines::{draw, Drawing, LineOptions};
 use crate::emit::marks::face_marks;
-use crate::emit::picture::{picture, Picture};
+use crate::emit::picture::{Picture, PlotStats};
+use crate::emit::plot::picture;
 use crate::emit::png::to_png;
 use crate::emit::svg::to_svg;
 use crate::error::Result;
@@ -53,23 +54,7 @@ pub struct Outputs {
     pub picture: PictureOptions,
 }
 
-/// How the SVG and PNG pictures look.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PictureOptions {
-    /// Pixels along the picture's longer side.
-    pub size: u32,
-    /// Flat-shaded visible faces under the lines.
-    pub fill: bool,
-}
-
-impl Default for PictureOptions {
-    fn default() -> Self {
-        PictureOptions {
-            size: 1024,
-            fill: false,
-        }
-    }
-}
+pub use crate::emit::picture::PictureOptions;
 
 /// A stage of the pipeline, for times and progress.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -172,6 +157,8 @@ pub struct RenderStats {
     pub counters: Counters,
     /// What level-of-detail substitution did, under `lod`.
     pub lod: Option<LodStats>,
+    /// What building the picture did (layers, strokes, travel, duplicates), when one was made.
+    pub plot: Option<PlotStats>,
 }
 
 impl RenderStats {
@@ -232,11 +219,18 @@ impl Rendered<'_> {
     }
 
     /// The picture both SVG and PNG draw (texture markings included).
-    pub fn picture(&self, opts: &PictureOptions) -> Picture {
+    pub fn picture(&self, opts: &PictureOptions) -> Result<Picture> {
         let empty = Drawing::default();
         let drawing = self.drawing.as_ref().unwrap_or(&empty);
         let marks = face_marks(&self.scene, &self.view, &self.visibility);
-        picture(&self.view, &self.visibility, drawing, &marks, opts.fill)
+        picture(
+            &self.scene,
+            &self.view,
+            &self.visibility,
+            drawing,
+            &marks,
+            opts,
+        )
     }
 }
 
@@ -319,21 +313,24 @@ pub fn render_with<'s>(
         png: None,
         stats: RenderStats::default(),
     };
+    let mut plot = None;
     stats.timed(Stage::Emit, progress, || -> Result<()> {
         if out.json {
             r.json = Some(r.to_json(out.json_lines));
         }
         if pictures {
-            let pic = r.picture(&out.picture);
+            let pic = r.picture(&out.picture)?;
             if out.svg {
-                r.svg = Some(to_svg(&pic, out.picture.size));
+                r.svg = Some(to_svg(&pic));
             }
             if out.png {
-                r.png = Some(to_png(&pic, out.picture.size)?);
+                r.png = Some(to_png(&pic, out.picture.size, out.picture.dpi)?);
             }
+            plot = Some(pic.stats);
         }
         Ok(())
     })?;
+    stats.plot = plot;
     r.stats = stats;
     Ok(r)
 }

@@ -7,10 +7,12 @@ mod components;
 mod flatten;
 mod hierarchy_arg;
 mod info;
+mod plot_args;
 pub mod progress;
 mod query;
 mod render;
 mod tribox;
+mod views;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

@@ -4,14 +4,20 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
+use kepler_hsr::geom::V3;
+use kepler_hsr::scene::{CameraSpec, Scene};
+use kepler_hsr::view::{turntable, turntable_frame};
 use kepler_hsr::{
-    render_with, EdgeOptions, EdgeSet, LineOptions, Outputs, PictureOptions, Progress,
-    RenderOptions, Stage,
+    render_with, Camera, EdgeOptions, EdgeSet, LineOptions, Outputs, Progress, RenderOptions,
+    Rendered, Stage,
 };
 
+use super::camera_args::parse_vec3;
+use super::plot_args::PlotArgs;
 use super::progress::follow;
+use super::views::{numbered, read_views};
 use super::{load_only, write, CameraArgs};
 
 /// A render that has taken this long shows a progress bar (on a terminal).
@@ -32,7 +38,8 @@ pub(crate) struct RenderArgs {
     /// Write a PNG picture here.
     #[arg(long, value_name = "F")]
     pub(crate) png: Option<PathBuf>,
-    /// Pixels along the picture's longer side (PNG; SVG width/height).
+    /// Pixels along the PNG's longer side; without --page, also the SVG page's longer side
+    /// in CSS pixels (1/96 in). Pen widths are in mm and do not change with it.
     #[arg(long, value_name = "PX", default_value_t = 1024,
           value_parser = clap::value_parser!(u32).range(1..=32768))]
     pub(crate) size: u32,
@@ -42,14 +49,25 @@ pub(crate) struct RenderArgs {
     /// Crease threshold: dihedral angle in degrees above which an edge is a crease.
     #[arg(long, value_name = "DEG", default_value_t = 30.0)]
     pub(crate) crease: f64,
-    /// Draw hidden lines too (dashed grey).
+    /// Draw hidden lines too (grey dashes, each dash a stroke, on their own layer).
     #[arg(long)]
     pub(crate) hidden: bool,
-    /// Fill visible faces, flat shaded, under the lines.
+    /// Fill visible faces, flat shaded, under the lines (for the screen: use --hatch to plot).
     #[arg(long)]
     pub(crate) fill: bool,
     #[command(flatten)]
+    pub(crate) plot: Box<PlotArgs>,
+    #[command(flatten)]
     pub(crate) camera: CameraArgs,
+    /// Render every view of this file (one line of camera flags per view) into numbered
+    /// outputs (F.svg becomes F-001.svg, ...), preparing the scene once.
+    #[arg(long, value_name = "FILE", conflicts_with = "turntable")]
+    pub(crate) views: Option<PathBuf>,
+    /// Render N views a full turn about the vertical axis (--up, default +Y) through the
+    /// scene's centre, from the camera the other flags ask for, into numbered outputs, all
+    /// framed alike.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=10000))]
+    pub(crate) turntable: Option<u32>,
     /// Print the time of each stage and the pruning counters.
     #[arg(long)]
     pub(crate) stats: bool,
@@ -105,10 +123,7 @@ impl RenderArgs {
                 svg: self.svg.is_some(),
                 png: self.png.is_some(),
                 drawing: false,
-                picture: PictureOptions {
-                    size: self.size,
-                    fill: self.fill,
-                },
+                picture: self.plot.options(self.size, self.fill)?,
             },
             no_inbox: self.no_inbox,
             lod: self.lod.options(self.size)?,
@@ -127,38 +142,133 @@ pub(crate) fn run(a: RenderArgs) -> Result<ExitCode> {
     let t = Instant::now();
     kepler_hsr::prepare::prepare_with(&mut scene, &a.hierarchy.prepare());
     let prepare = t.elapsed();
-    let camera = a.camera.camera(&scene)?;
-    let progress = Progress::new();
-    let delay = PROGRESS_AFTER.saturating_sub(start.elapsed());
-    let r = follow(&progress, delay, || {
-        render_with(&scene, &camera, &opts, Some(&progress))
-    })?;
-    let t = Instant::now();
-    for (path, bytes) in [
-        (&a.json, r.json.as_ref().map(String::as_bytes)),
-        (&a.svg, r.svg.as_ref().map(String::as_bytes)),
-        (&a.png, r.png.as_deref()),
-    ] {
-        if let (Some(path), Some(bytes)) = (path, bytes) {
-            write(path, bytes)?;
+    let (cameras, frame) = a.cameras(&scene)?;
+    let many = a.views.is_some() || a.turntable.is_some();
+    for (k, camera) in cameras.iter().enumerate() {
+        let mut opts = opts.clone();
+        opts.outputs.picture.frame = frame;
+        let progress = Progress::new();
+        let delay = PROGRESS_AFTER.saturating_sub(start.elapsed());
+        let r = follow(&progress, delay, || {
+            render_with(&scene, camera, &opts, Some(&progress))
+        })?;
+        let t = Instant::now();
+        for (path, bytes) in [
+            (&a.json, r.json.as_ref().map(String::as_bytes)),
+            (&a.svg, r.svg.as_ref().map(String::as_bytes)),
+            (&a.png, r.png.as_deref()),
+        ] {
+            if let (Some(path), Some(bytes)) = (path, bytes) {
+                if many {
+                    write(&numbered(path, k + 1, cameras.len()), bytes)?;
+                } else {
+                    write(path, bytes)?;
+                }
+            }
         }
-    }
-    let written = t.elapsed();
-    if a.stats {
-        eprintln!("faces: {}", scene.face_count());
-        eprintln!("hierarchy: {}", a.hierarchy.name());
-        if let Some(l) = &r.stats.lod {
-            eprintln!("{}", super::tribox::lod_report(l));
-        }
-        let mut times = vec![(Stage::Load.name(), load), (Stage::Prepare.name(), prepare)];
-        times.extend(r.stats.times.iter().map(|(s, d)| (s.name(), *d)));
-        times.push(("write", written));
-        for (name, d) in &times {
-            eprintln!("time {name:<11} {:>10.3} ms", d.as_secs_f64() * 1e3);
-        }
-        for (name, v) in r.stats.counters.lines() {
-            eprintln!("{name:<45} {v}");
+        let written = t.elapsed();
+        if a.stats {
+            if many {
+                eprintln!("view {} of {}", k + 1, cameras.len());
+            }
+            let (load, prepare) = if k == 0 {
+                (load, prepare)
+            } else {
+                Default::default()
+            };
+            print_stats(&scene, a.hierarchy.name(), &r, load, prepare, written);
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+impl RenderArgs {
+    /// The cameras to render (one, a views file's, or a turntable's) and, for a turntable,
+    /// the one frame they share.
+    fn cameras(&self, scene: &Scene) -> Result<(Vec<Camera>, Option<kepler_hsr::geom::Rect>)> {
+        if let Some(file) = &self.views {
+            let c = &self.camera;
+            if c.dir.is_some() || c.eye.is_some() || c.target.is_some() || c.up.is_some() || c.ortho
+            {
+                bail!("--views gives every view its camera: leave out the camera flags");
+            }
+            let cams = read_views(file)?
+                .iter()
+                .enumerate()
+                .map(|(i, v)| {
+                    v.camera(scene)
+                        .map_err(|e| anyhow::anyhow!("{}: view {}: {e}", file.display(), i + 1))
+                })
+                .collect::<Result<Vec<_>>>()?;
+            return Ok((cams, None));
+        }
+        let base = self.camera.camera(scene)?;
+        let Some(n) = self.turntable else {
+            return Ok((vec![base], None));
+        };
+        let up = match (&self.camera.up, &scene.camera) {
+            (Some(s), _) => parse_vec3(s, "up")?,
+            (None, Some(CameraSpec::Orthographic { up, .. }))
+            | (None, Some(CameraSpec::Perspective { up, .. })) => *up,
+            (None, None) => V3::y(),
+        };
+        let cams = turntable(scene, &base, up, n as usize)?;
+        Ok((cams, turntable_frame(scene, &base, up)))
+    }
+}
+
+/// `--stats`: stage times, pruning counters and what the plot did.
+fn print_stats(
+    scene: &Scene,
+    hierarchy: &str,
+    r: &Rendered,
+    load: Duration,
+    prepare: Duration,
+    written: Duration,
+) {
+    eprintln!("faces: {}", scene.face_count());
+    eprintln!("hierarchy: {hierarchy}");
+    if let Some(l) = &r.stats.lod {
+        eprintln!("{}", super::tribox::lod_report(l));
+    }
+    let mut times = vec![(Stage::Load.name(), load), (Stage::Prepare.name(), prepare)];
+    times.extend(r.stats.times.iter().map(|(s, d)| (s.name(), *d)));
+    times.push(("write", written));
+    for (name, d) in &times {
+        eprintln!("time {name:<11} {:>10.3} ms", d.as_secs_f64() * 1e3);
+    }
+    for (name, v) in r.stats.counters.lines() {
+        eprintln!("{name:<45} {v}");
+    }
+    if let Some(p) = &r.stats.plot {
+        let (mut strokes, mut drawn, mut travel) = (0, 0.0, 0.0);
+        for l in &p.layers {
+            eprintln!(
+                "layer {} {:<14} {:>7} strokes {:>7} pen lifts  drawn {:>11.1} mm  travel {:>10.1} mm",
+                l.number,
+                l.name,
+                l.strokes,
+                l.strokes.saturating_sub(1),
+                l.drawn_mm,
+                l.travel_mm
+            );
+            strokes += l.strokes;
+            drawn += l.drawn_mm;
+            travel += l.travel_mm;
+        }
+        eprintln!(
+            "plot: {} layers, {strokes} strokes, {} pen lifts, drawn {drawn:.1} mm, pen-up travel {travel:.1} mm",
+            p.layers.len(),
+            strokes.saturating_sub(p.layers.len()),
+        );
+        eprintln!(
+            "plot: of {} segments, {} repeated or overlapped dropped whole, {} in part ({:.3} mm); \
+             line outside the drawing area clipped away {:.1} mm",
+            p.duplicates.segments,
+            p.duplicates.dropped,
+            p.duplicates.trimmed,
+            p.duplicates.length,
+            p.clipped_mm
+        );
+    }
 }

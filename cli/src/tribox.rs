@@ -284,6 +284,7 @@ fn render_svg(parts: &[(String, PolyMesh)], original: &Scene, a: &TriboxArgs) ->
             picture: PictureOptions {
                 size: a.size,
                 fill: true,
+                ..PictureOptions::default()
             },
             ..Outputs::default()
         },

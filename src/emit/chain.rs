@@ -1,5 +1,6 @@
 //! Joining segments into long polylines (at exactly equal end points) and ordering polylines
 //! greedily (nearest next start, reversal allowed) so that a pen plotter lifts the pen little.
+//! The drawing's own per-object order; pictures refine it across whole layers ([`super::tour`]).
 
 use std::collections::HashMap;
 
@@ -62,31 +63,43 @@ pub fn order(mut lines: Vec<Vec<Pt2>>) -> Vec<Vec<Pt2>> {
     if lines.len() < 3 {
         return lines;
     }
-    let mut grid = Grid::new(&lines);
-    let mut used = vec![false; lines.len()];
-    let mut out = Vec::with_capacity(lines.len());
-    let mut cur = 0;
-    let mut reversed = false;
+    let ends: Vec<[Pt2; 2]> = lines.iter().map(|l| [l[0], l[l.len() - 1]]).collect();
+    greedy(&ends, 0)
+        .into_iter()
+        .map(|(i, rev)| {
+            let mut l = std::mem::take(&mut lines[i]);
+            if rev {
+                l.reverse();
+            }
+            l
+        })
+        .collect()
+}
+
+/// Greedy nearest-neighbour order of strokes given by their (start, end) points, from
+/// stroke `first`: each next stroke is the one with an end nearest the pen, reversed (`true`)
+/// when that is its end. Ties go to the lower index.
+pub fn greedy(ends: &[[Pt2; 2]], first: usize) -> Vec<(usize, bool)> {
+    if ends.is_empty() {
+        return Vec::new();
+    }
+    let mut grid = Grid::new(ends);
+    let mut used = vec![false; ends.len()];
+    let mut out = Vec::with_capacity(ends.len());
+    let (mut cur, mut reversed) = (first.min(ends.len() - 1), false);
     loop {
         used[cur] = true;
-        let mut l = std::mem::take(&mut lines[cur]);
-        if reversed {
-            l.reverse();
-        }
-        let pen = l[l.len() - 1];
-        out.push(l);
-        match grid.nearest(pen, &lines, &used) {
-            Some((n, rev)) => {
-                cur = n;
-                reversed = rev;
-            }
+        out.push((cur, reversed));
+        let pen = ends[cur][usize::from(!reversed)];
+        match grid.nearest(pen, ends, &used) {
+            Some((n, rev)) => (cur, reversed) = (n, rev),
             None => break,
         }
     }
     out
 }
 
-/// A uniform grid over polyline end points.
+/// A uniform grid over stroke end points.
 struct Grid {
     origin: Pt2,
     cell: f64,
@@ -95,10 +108,9 @@ struct Grid {
 }
 
 impl Grid {
-    fn new(lines: &[Vec<Pt2>]) -> Grid {
-        let ends = lines.iter().flat_map(|l| [l[0], l[l.len() - 1]]);
-        let b = crate::geom::Rect::of_points(ends.collect::<Vec<_>>().iter());
-        let n = ((lines.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
+    fn new(ends: &[[Pt2; 2]]) -> Grid {
+        let b = crate::geom::Rect::of_points(ends.iter().flatten());
+        let n = ((ends.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
         let size = b.longer_side();
         let cell = if size > 0.0 && size.is_finite() {
             size / n as f64
@@ -111,10 +123,10 @@ impl Grid {
             n,
             cells: vec![Vec::new(); n * n],
         };
-        for (i, l) in lines.iter().enumerate() {
-            let c = g.index(l[0]);
+        for (i, [s, e]) in ends.iter().enumerate() {
+            let c = g.index(*s);
             g.cells[c].push((i, false));
-            let c = g.index(l[l.len() - 1]);
+            let c = g.index(*e);
             g.cells[c].push((i, true));
         }
         g
@@ -130,9 +142,9 @@ impl Grid {
         y * self.n + x
     }
 
-    /// Nearest unused end point: (line, true when it is the line's end). Entries of used lines
-    /// are dropped lazily.
-    fn nearest(&mut self, p: Pt2, lines: &[Vec<Pt2>], used: &[bool]) -> Option<(usize, bool)> {
+    /// Nearest unused end point: (stroke, true when it is the stroke's end). Entries of used
+    /// strokes are dropped lazily.
+    fn nearest(&mut self, p: Pt2, ends: &[[Pt2; 2]], used: &[bool]) -> Option<(usize, bool)> {
         let (cx, cy) = self.coords(p);
         let mut best: Option<(f64, usize, bool)> = None;
         for r in 0..self.n {
@@ -152,8 +164,7 @@ impl Grid {
                     let cell = &mut self.cells[y * self.n + x];
                     cell.retain(|&(i, _)| !used[i]);
                     for &(i, rev) in cell.iter() {
-                        let l = &lines[i];
-                        let q = if rev { l[l.len() - 1] } else { l[0] };
+                        let q = ends[i][usize::from(rev)];
                         let d = (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2);
                         if best.is_none_or(|(bd, bi, br)| (d, i, rev) < (bd, bi, br)) {
                             best = Some((d, i, rev));

@@ -1,55 +1,83 @@
-//! The picture both SVG and PNG draw: a frame, flat-shaded fills, and per-object layers of
-//! polylines with a pen per line kind.
+//! The picture both SVG and PNG draw, on a page in millimetres: fills, and layers of strokes
+//! in the order a plotter draws them, each stroke with a pen. [`super::plot`] builds it.
 
-use std::collections::BTreeMap;
+use crate::geom::poly2::{polyline_length, Pt2, Ring};
+use crate::geom::{Rect, V3};
 
-use crate::geom::poly2::{Pt2, Ring};
-use crate::geom::{newell, Rect, V3};
-use crate::scene::FaceId;
-use crate::view::{Frame, View};
-use crate::visibility::Visibility;
-
+use super::color::Rgb;
+use super::dedup::DedupStats;
 use super::edges::EdgeKind;
-use super::lines::{Drawing, Stroke};
+use super::hatch::HatchOptions;
+use super::page::PageSize;
 
-/// A pen: how a kind of line is drawn.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+/// A pen: what a kind of line is drawn with. Pens in priority order: where two lines
+/// coincide, the one with the earlier pen is kept.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Pen {
-    /// Hidden lines: thin, dashed, grey (drawn first, under the rest).
-    Hidden,
+    /// Silhouettes and borders.
+    Outline,
+    /// Creases and plain polygon edges.
+    Edges,
+    /// Intersection curves.
+    Intersection,
     /// Texture markings on faces.
     Mark,
-    /// Creases, plain edges and intersection curves.
-    Light,
-    /// Silhouettes and borders.
-    Heavy,
+    /// Hatching.
+    Hatch,
+    /// Hidden lines, as dashes.
+    Hidden,
 }
 
 impl Pen {
+    /// Every pen, in layer order.
+    pub const ALL: [Pen; 6] = [
+        Pen::Outline,
+        Pen::Edges,
+        Pen::Intersection,
+        Pen::Mark,
+        Pen::Hatch,
+        Pen::Hidden,
+    ];
+
     /// The pen of a visible line kind.
     pub fn of(kind: EdgeKind) -> Pen {
         match kind {
-            EdgeKind::Silhouette | EdgeKind::Border => Pen::Heavy,
-            _ => Pen::Light,
+            EdgeKind::Silhouette | EdgeKind::Border => Pen::Outline,
+            EdgeKind::Intersection => Pen::Intersection,
+            EdgeKind::Crease | EdgeKind::Plain => Pen::Edges,
         }
     }
 
-    /// Name (SVG class).
+    /// Layer number of the pen with `--layers pen` (fixed, whichever pens are present).
+    pub fn number(self) -> u32 {
+        match self {
+            Pen::Outline => 1,
+            Pen::Edges => 2,
+            Pen::Intersection => 3,
+            Pen::Mark => 4,
+            Pen::Hatch => 5,
+            Pen::Hidden => 6,
+        }
+    }
+
+    /// Name (layer label and SVG class).
     pub fn name(self) -> &'static str {
         match self {
+            Pen::Outline => "outline",
+            Pen::Edges => "edges",
+            Pen::Intersection => "intersections",
+            Pen::Mark => "marks",
+            Pen::Hatch => "hatching",
             Pen::Hidden => "hidden",
-            Pen::Mark => "mark",
-            Pen::Light => "light",
-            Pen::Heavy => "heavy",
         }
     }
 
-    /// Line width as a fraction of the drawing's size.
-    pub fn width(self) -> f64 {
+    /// Stroke width as a fraction of the outline pen's (`--pen`).
+    pub fn width_factor(self) -> f64 {
         match self {
-            Pen::Heavy => 0.003,
-            Pen::Light => 0.0015,
-            Pen::Hidden | Pen::Mark => 0.001,
+            Pen::Outline => 1.0,
+            Pen::Edges | Pen::Intersection => 0.6,
+            Pen::Mark | Pen::Hatch | Pen::Hidden => 0.5,
         }
     }
 
@@ -61,112 +89,179 @@ impl Pen {
             _ => 0,
         }
     }
+}
 
-    /// Dash and gap lengths as fractions of the drawing's size, for dashed pens.
-    pub fn dash(self) -> Option<[f64; 2]> {
-        (self == Pen::Hidden).then_some([0.008, 0.005])
+/// How the strokes are grouped into layers (`--layers`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LayerMode {
+    /// One layer per pen, numbered by [`Pen::number`].
+    #[default]
+    Pen,
+    /// One layer per top-level object, numbered in object order.
+    Object,
+    /// Everything in one group (not a layer).
+    None,
+}
+
+/// How the SVG and PNG pictures look.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PictureOptions {
+    /// Without a page: the picture's longer side in CSS pixels (1/96 in) for the SVG and
+    /// pixels for the PNG. With a page: the PNG's longer side, unless `dpi` is given.
+    pub size: u32,
+    /// PNG resolution in dots per inch of the page (instead of `size`).
+    pub dpi: Option<f64>,
+    /// A physical page (the drawing fitted inside the margin and centred); none: a page of
+    /// the drawing's own shape.
+    pub page: Option<PageSize>,
+    /// Margin in mm (default: 10 mm on a page, 5% of the drawing without one).
+    pub margin_mm: Option<f64>,
+    /// Width of the outline pen in mm; the other pens are fractions of it.
+    pub pen_mm: f64,
+    /// How strokes are grouped into layers.
+    pub layers: LayerMode,
+    /// A background colour (SVG: a rectangle under everything; PNG: default white).
+    pub background: Option<Rgb>,
+    /// Hidden lines' dash and gap lengths in mm.
+    pub dash_mm: [f64; 2],
+    /// Stroke ends closer than this (mm) are joined into one stroke; 0 joins exact ends only.
+    pub join_mm: f64,
+    /// Simplify strokes to within this distance (mm; 0 keeps every point).
+    pub simplify_mm: f64,
+    /// Flat-shaded visible faces under the lines (not plottable: for the screen).
+    pub fill: bool,
+    /// Hatch the visible faces.
+    pub hatch: Option<HatchOptions>,
+    /// Direction toward the light for fills and hatching (world coordinates); default from
+    /// the upper left, in front of the picture.
+    pub light: Option<V3>,
+    /// Frame this screen rectangle instead of the drawing's bounds (the same frame for every
+    /// view of a turntable).
+    pub frame: Option<Rect>,
+}
+
+impl Default for PictureOptions {
+    fn default() -> Self {
+        PictureOptions {
+            size: 1024,
+            dpi: None,
+            page: None,
+            margin_mm: None,
+            pen_mm: 0.5,
+            layers: LayerMode::Pen,
+            background: None,
+            dash_mm: [2.0, 1.0],
+            join_mm: 0.05,
+            simplify_mm: 0.0,
+            fill: false,
+            hatch: None,
+            light: None,
+            frame: None,
+        }
     }
 }
 
-/// One face's visible region, flat shaded.
+/// One face's visible region on the page, flat shaded.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fill {
-    /// Rings of the visible region (even-odd fill).
+    /// Rings of the visible region (even-odd fill), in mm.
     pub rings: Vec<Ring>,
     /// Grey level.
     pub grey: u8,
 }
 
-/// The lines of one object.
+/// Consecutive strokes of one layer drawn with one pen.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Run {
+    /// The pen.
+    pub pen: Pen,
+    /// Polylines in mm, in drawing order and direction.
+    pub lines: Vec<Vec<Pt2>>,
+}
+
+/// A layer: what a plotter draws in one go.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Layer {
-    /// The object's path.
+    /// Layer number (the digits of its Inkscape label).
+    pub number: u32,
+    /// Name: the pen's or the top-level object's.
     pub name: String,
-    /// Polylines by pen, pens in drawing order.
-    pub pens: Vec<(Pen, Vec<Vec<Pt2>>)>,
+    /// Strokes in drawing order, in runs of one pen.
+    pub runs: Vec<Run>,
 }
 
-/// Everything to draw, in screen space (y up).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Picture {
-    /// The framed part of the screen plane; line widths scale with its unit.
-    pub frame: Frame,
-    /// Fills, under everything.
-    pub fills: Vec<Fill>,
-    /// Line layers, one per object that has lines, in object order.
-    pub layers: Vec<Layer>,
-}
+impl Layer {
+    /// Every stroke of the layer in drawing order.
+    pub fn lines(&self) -> impl Iterator<Item = &Vec<Pt2>> {
+        self.runs.iter().flat_map(|r| r.lines.iter())
+    }
 
-/// Builds the picture of a view: `marks` are texture markings, `fill` adds shaded faces.
-pub fn picture(
-    view: &View,
-    vis: &Visibility,
-    drawing: &Drawing,
-    marks: &[Stroke],
-    fill: bool,
-) -> Picture {
-    let fills = if fill { fills(view, vis) } else { Vec::new() };
-    let mut by_leaf: BTreeMap<u32, BTreeMap<Pen, Vec<Vec<Pt2>>>> = BTreeMap::new();
-    let mut add = |s: &Stroke, pen: Pen| {
-        by_leaf
-            .entry(s.leaf)
-            .or_default()
-            .entry(pen)
-            .or_default()
-            .push(s.pts.clone());
-    };
-    drawing.hidden.iter().for_each(|s| add(s, Pen::Hidden));
-    marks.iter().for_each(|s| add(s, Pen::Mark));
-    drawing.visible.iter().for_each(|s| add(s, Pen::of(s.kind)));
-    let layers: Vec<Layer> = by_leaf
-        .into_iter()
-        .map(|(leaf, pens)| Layer {
-            name: drawing
-                .leaf_paths
-                .get(leaf as usize)
-                .cloned()
-                .unwrap_or_default(),
-            pens: pens.into_iter().collect(),
-        })
-        .collect();
-    let pts = layers
-        .iter()
-        .flat_map(|l| l.pens.iter().flat_map(|p| p.1.iter().flatten()))
-        .chain(fills.iter().flat_map(|f| f.rings.iter().flatten()));
-    Picture {
-        frame: Frame::of(&view.camera, Rect::of_points(pts)),
-        fills,
-        layers,
+    /// What a plotter does for this layer.
+    pub fn summary(&self) -> LayerSummary {
+        let lines: Vec<&Vec<Pt2>> = self.lines().collect();
+        let travel = super::tour::travel(&lines);
+        LayerSummary {
+            number: self.number,
+            name: self.name.clone(),
+            strokes: lines.len(),
+            drawn_mm: lines.iter().map(|l| polyline_length(l)).sum(),
+            travel_mm: travel,
+        }
     }
 }
 
-/// Flat-shaded visible regions, one per face with something visible.
-fn fills(view: &View, vis: &Visibility) -> Vec<Fill> {
-    let m = &view.camera.matrix;
-    let row = |r: usize| V3::new(m[(r, 0)], m[(r, 1)], m[(r, 2)]).normalize();
-    let (u, v) = (row(0), row(1));
-    let w = u.cross(&v);
-    let light = (u * -0.4 + v * 0.6 + w).normalize();
-    vis.iter()
-        .filter(|(_, fv)| !fv.visible.is_empty())
-        .map(|(f, fv)| {
-            let n = world_normal(view, f);
-            let n = if n.dot(&w) < 0.0 { -n } else { n };
-            let shade = n.try_normalize(0.0).map_or(0.0, |n| n.dot(&light).max(0.0));
-            Fill {
-                rings: fv.visible.iter().flatten().cloned().collect(),
-                grey: (110.0 + 140.0 * shade).round().clamp(0.0, 255.0) as u8,
-            }
-        })
-        .collect()
+/// Strokes, drawn length and pen-up travel of one layer (as vpype's `stat` counts: travel
+/// from each stroke's end to the next one's start, not from or back to the home position).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayerSummary {
+    /// Layer number.
+    pub number: u32,
+    /// Layer name.
+    pub name: String,
+    /// Strokes (the pen goes down once per stroke and is lifted `strokes - 1` times between
+    /// them).
+    pub strokes: usize,
+    /// Pen-down length in mm.
+    pub drawn_mm: f64,
+    /// Pen-up travel in mm.
+    pub travel_mm: f64,
 }
 
-/// Newell normal of face `f`'s world points (for a warped face, the sum of its pieces').
-fn world_normal(view: &View, f: FaceId) -> V3 {
-    view.screen
-        .pieces_of(f)
-        .map(|p| newell(view.screen.world_pts(p)))
-        .sum()
+/// What building the picture did, for `--stats`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PlotStats {
+    /// Per layer.
+    pub layers: Vec<LayerSummary>,
+    /// Repeated and overlapping collinear pieces removed.
+    pub duplicates: DedupStats,
+    /// Line length (mm) outside the page's drawing area, clipped away.
+    pub clipped_mm: f64,
+}
+
+/// Everything to draw, on a page in millimetres (y down).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Picture {
+    /// The page.
+    pub page: PageSize,
+    /// Width of the outline pen in mm.
+    pub pen_mm: f64,
+    /// Background colour, when asked for.
+    pub background: Option<Rgb>,
+    /// Fills, under everything.
+    pub fills: Vec<Fill>,
+    /// Layers, in number order.
+    pub layers: Vec<Layer>,
+    /// How the layers were made.
+    pub mode: LayerMode,
+    /// What building it did.
+    pub stats: PlotStats,
+}
+
+impl Picture {
+    /// Stroke width of a pen in mm.
+    pub fn width(&self, pen: Pen) -> f64 {
+        self.pen_mm * pen.width_factor()
+    }
 }
 
 #[cfg(test)]
@@ -174,10 +269,26 @@ mod tests {
     use super::*;
 
     #[test]
-    fn pens_by_kind() {
-        assert_eq!(Pen::of(EdgeKind::Silhouette), Pen::Heavy);
-        assert_eq!(Pen::of(EdgeKind::Crease), Pen::Light);
-        assert!(Pen::Heavy.width() > Pen::Light.width());
-        assert!(Pen::Hidden.dash().is_some());
+    fn pens_by_kind_and_layer_numbers() {
+        assert_eq!(Pen::of(EdgeKind::Silhouette), Pen::Outline);
+        assert_eq!(Pen::of(EdgeKind::Crease), Pen::Edges);
+        assert_eq!(Pen::of(EdgeKind::Intersection), Pen::Intersection);
+        let nums: Vec<u32> = Pen::ALL.iter().map(|p| p.number()).collect();
+        assert_eq!(nums, vec![1, 2, 3, 4, 5, 6]);
+        assert!(Pen::Outline.width_factor() > Pen::Edges.width_factor());
+    }
+
+    #[test]
+    fn layer_summary_counts_travel_between_strokes() {
+        let l = Layer {
+            number: 1,
+            name: "outline".into(),
+            runs: vec![Run {
+                pen: Pen::Outline,
+                lines: vec![vec![[0., 0.], [3., 0.]], vec![[3., 4.], [3., 5.]]],
+            }],
+        };
+        let s = l.summary();
+        assert_eq!((s.strokes, s.drawn_mm, s.travel_mm), (2, 4.0, 4.0));
     }
 }

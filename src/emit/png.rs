@@ -1,28 +1,39 @@
-//! PNG output of a [`Picture`]: the same picture as the SVG, rasterised anti-aliased with
-//! tiny-skia and encoded with the `image` crate.
+//! PNG output of a [`Picture`]: the same page as the SVG, rasterised anti-aliased with
+//! tiny-skia and encoded with the `image` crate. Pixels: `size` along the page's longer
+//! side, or the page at `dpi`.
 
 use tiny_skia::{
-    Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform,
+    Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Stroke, Transform,
 };
 
 use crate::geom::poly2::Pt2;
 use crate::Error;
 
+use super::color::Rgb;
 use super::picture::Picture;
 
-/// Pixel size of a picture whose longer side is `size` pixels: (width, height), each >= 1.
-pub fn pixel_size(pic: &Picture, size: u32) -> (u32, u32) {
-    let (w, h) = (pic.frame.rect.width(), pic.frame.rect.height());
-    let s = f64::from(size.max(1)) / w.max(h);
-    let px = |v: f64| ((v * s).round() as u32).clamp(1, size.max(1));
-    (px(w), px(h))
+/// Largest PNG side in pixels.
+const MAX_SIDE: f64 = 32768.0;
+
+/// Pixels per mm of a picture drawn `size` pixels along its longer side, or at `dpi`.
+pub fn pixels_per_mm(pic: &Picture, size: u32, dpi: Option<f64>) -> f64 {
+    match dpi {
+        Some(d) => d / 25.4,
+        None => f64::from(size.max(1)) / pic.page.longer_side(),
+    }
 }
 
-/// The PNG bytes of a picture, `size` pixels along its longer side.
-pub fn to_png(pic: &Picture, size: u32) -> Result<Vec<u8>, Error> {
-    let pixmap = rasterise(pic, size)?;
+/// Pixel size (width, height), each >= 1.
+pub fn pixel_size(pic: &Picture, px_per_mm: f64) -> (u32, u32) {
+    let px = |v: f64| (v * px_per_mm).round().clamp(1.0, MAX_SIDE) as u32;
+    (px(pic.page.width), px(pic.page.height))
+}
+
+/// The PNG bytes of a picture.
+pub fn to_png(pic: &Picture, size: u32, dpi: Option<f64>) -> Result<Vec<u8>, Error> {
+    let pixmap = rasterise(pic, pixels_per_mm(pic, size, dpi))?;
     let (w, h) = (pixmap.width(), pixmap.height());
-    // Opaque white background: premultiplied RGBA equals straight RGBA.
+    // Opaque background: premultiplied RGBA equals straight RGBA.
     let img = image::RgbaImage::from_raw(w, h, pixmap.take())
         .ok_or_else(|| Error::Usage("PNG buffer has the wrong size".into()))?;
     let mut out = std::io::Cursor::new(Vec::new());
@@ -31,26 +42,21 @@ pub fn to_png(pic: &Picture, size: u32) -> Result<Vec<u8>, Error> {
     Ok(out.into_inner())
 }
 
-/// Draws the picture into a new pixmap.
-pub fn rasterise(pic: &Picture, size: u32) -> Result<Pixmap, Error> {
-    let (w, h) = pixel_size(pic, size);
+/// Draws the picture into a new pixmap at `k` pixels per mm.
+pub fn rasterise(pic: &Picture, k: f64) -> Result<Pixmap, Error> {
+    let (w, h) = pixel_size(pic, k);
     let mut pm =
         Pixmap::new(w, h).ok_or_else(|| Error::Usage(format!("cannot make a {w}x{h} picture")))?;
-    pm.fill(Color::WHITE);
-    let r = pic.frame.rect;
-    let (x0, y1) = (r.xmin, r.ymax);
-    let s = f64::from(w) / r.width().max(f64::MIN_POSITIVE);
-    let s = s.min(f64::from(h) / r.height().max(f64::MIN_POSITIVE));
-    let to_px = |p: &Pt2| ((p[0] - x0) * s, (y1 - p[1]) * s);
+    let [r, g, b] = pic.background.unwrap_or(Rgb::WHITE).0;
+    pm.fill(Color::from_rgba8(r, g, b, 255));
+    let to_px = |p: &Pt2| (p[0] * k, p[1] * k);
     for f in &pic.fills {
         let mut pb = PathBuilder::new();
         for r in &f.rings {
             add_polyline(&mut pb, r.iter().map(to_px), true);
         }
         if let Some(path) = pb.finish() {
-            let mut paint = Paint::default();
-            paint.set_color_rgba8(f.grey, f.grey, f.grey, 255);
-            paint.anti_alias = true;
+            let paint = paint(f.grey);
             pm.fill_path(
                 &path,
                 &paint,
@@ -67,30 +73,36 @@ pub fn rasterise(pic: &Picture, size: u32) -> Result<Pixmap, Error> {
         }
     }
     for layer in &pic.layers {
-        for (pen, lines) in &layer.pens {
+        for run in &layer.runs {
             let mut pb = PathBuilder::new();
-            for l in lines {
+            for l in &run.lines {
                 add_polyline(&mut pb, l.iter().map(to_px), false);
             }
             let Some(path) = pb.finish() else { continue };
-            let mut paint = Paint::default();
-            let g = pen.grey();
-            paint.set_color_rgba8(g, g, g, 255);
-            paint.anti_alias = true;
-            let unit = pic.frame.unit * s;
             let stroke = Stroke {
-                width: ((pen.width() * unit) as f32).max(0.5),
+                width: ((pic.width(run.pen) * k) as f32).max(0.5),
                 line_cap: LineCap::Round,
                 line_join: LineJoin::Round,
-                dash: pen.dash().and_then(|[a, b]| {
-                    StrokeDash::new(vec![(a * unit) as f32, (b * unit) as f32], 0.0)
-                }),
                 ..Stroke::default()
             };
-            pm.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
+            pm.stroke_path(
+                &path,
+                &paint(run.pen.grey()),
+                &stroke,
+                Transform::identity(),
+                None,
+            );
         }
     }
     Ok(pm)
+}
+
+/// Anti-aliased paint of a grey level.
+fn paint(g: u8) -> Paint<'static> {
+    let mut paint = Paint::default();
+    paint.set_color_rgba8(g, g, g, 255);
+    paint.anti_alias = true;
+    paint
 }
 
 /// Adds one polyline (closed when `close`) in pixel coordinates.
@@ -112,32 +124,65 @@ fn add_polyline(pb: &mut PathBuilder, pts: impl Iterator<Item = (f64, f64)>, clo
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::emit::picture::{Fill, Layer, Pen};
+    use crate::emit::page::PageSize;
+    use crate::emit::picture::{Fill, Layer, LayerMode, Pen, PlotStats, Run};
 
-    #[test]
-    fn square_picture_has_requested_size_and_ink() {
-        let pic = Picture {
-            frame: crate::view::Frame {
-                rect: crate::geom::Rect::new(-0.5, -0.5, 10.5, 5.5),
-                unit: 10.0,
+    fn pic() -> Picture {
+        Picture {
+            page: PageSize {
+                width: 110.0,
+                height: 60.0,
             },
+            pen_mm: 1.0,
+            background: None,
             fills: vec![Fill {
-                rings: vec![vec![[0., 0.], [10., 0.], [10., 5.], [0., 5.]]],
+                rings: vec![vec![[5., 5.], [105., 5.], [105., 55.], [5., 55.]]],
                 grey: 200,
             }],
             layers: vec![Layer {
-                name: "a".into(),
-                pens: vec![(Pen::Heavy, vec![vec![[0., 0.], [10., 5.]]])],
+                number: 1,
+                name: "outline".into(),
+                runs: vec![Run {
+                    pen: Pen::Outline,
+                    lines: vec![vec![[5., 55.], [105., 5.]]],
+                }],
             }],
-        };
-        assert_eq!(pixel_size(&pic, 110), (110, 60));
-        let pm = rasterise(&pic, 110).unwrap();
+            mode: LayerMode::Pen,
+            stats: PlotStats::default(),
+        }
+    }
+
+    #[test]
+    fn page_picture_has_requested_size_and_ink() {
+        let pic = pic();
+        assert_eq!(pixel_size(&pic, pixels_per_mm(&pic, 110, None)), (110, 60));
+        assert_eq!(
+            pixel_size(&pic, pixels_per_mm(&pic, 1, Some(254.0))),
+            (1100, 600)
+        );
+        let pm = rasterise(&pic, 1.0).unwrap();
         let px = |x: u32, y: u32| pm.pixel(x, y).unwrap().red();
         assert_eq!(px(1, 1), 255, "margin is white");
         assert_eq!(px(20, 50), 200, "fill");
         let ink = (28..33).map(|y| px(55, y)).min().unwrap();
         assert!(ink < 150, "line through the centre: {ink}");
-        let bytes = to_png(&pic, 110).unwrap();
+        let bytes = to_png(&pic, 110, None).unwrap();
         assert_eq!(&bytes[1..4], b"PNG");
+    }
+
+    #[test]
+    fn line_width_in_mm_is_the_same_at_any_resolution() {
+        // A 1 mm pen is 1 px at 1 px/mm and 4 px at 4 px/mm: ink across the line scales.
+        let pic = pic();
+        let across = |k: f64| {
+            let pm = rasterise(&pic, k).unwrap();
+            let x = (55.0 * k) as u32;
+            (0..pm.height())
+                .filter(|&y| pm.pixel(x, y).unwrap().red() < 100)
+                .count() as f64
+                / k
+        };
+        let (a, b) = (across(2.0), across(8.0));
+        assert!((a - b).abs() < 0.75, "{a} mm vs {b} mm");
     }
 }

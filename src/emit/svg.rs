@@ -1,8 +1,8 @@
-//! SVG output of a [`Picture`]: the `svg` crate builds the document, path data is written
-//! here with shortest round-trip f64 numbers (the crate's own path data rounds to f32).
-//!
-//! Screen y grows up and SVG y grows down, so every y is written negated. One `<g>` per
-//! object (a layer for plotter tools), one path per object and pen.
+//! SVG output of a [`Picture`]: a page in millimetres (width and height in mm, a viewBox in
+//! mm), one Inkscape layer per picture layer (`inkscape:groupmode="layer"`, label "N name",
+//! which plotter tools such as vpype and the AxiDraw extension read as layer N), no
+//! background unless one is asked for. The `svg` crate builds the document; path data is
+//! written here with shortest round-trip f64 numbers (the crate's own path data rounds to f32).
 
 use std::fmt::Write as _;
 
@@ -10,65 +10,74 @@ use svg::node::element::{Group, Path, Rectangle};
 use svg::Document;
 
 use crate::geom::poly2::Pt2;
-use crate::geom::Rect;
 
 use super::json::num;
-use super::picture::{Pen, Picture};
+use super::picture::{LayerMode, Pen, Picture};
 
-/// The SVG document of a picture, `size` pixels along its longer side.
-pub fn to_svg(pic: &Picture, size: u32) -> String {
-    let Rect {
-        xmin: x0,
-        ymin: y0,
-        xmax: x1,
-        ymax: y1,
-    } = pic.frame.rect;
-    let (w, h) = (x1 - x0, y1 - y0);
-    let px = f64::from(size.max(1)) / w.max(h);
-    let view_box = format!("{} {} {} {}", num(x0), num(-y1), num(w), num(h));
+/// The Inkscape namespace (layers).
+const INKSCAPE: &str = "http://www.inkscape.org/namespaces/inkscape";
+
+/// The SVG document of a picture.
+pub fn to_svg(pic: &Picture) -> String {
+    let (w, h) = (pic.page.width, pic.page.height);
     let mut doc = Document::new()
-        .set("viewBox", view_box)
-        .set("width", num((w * px).round().max(1.0)))
-        .set("height", num((h * px).round().max(1.0)))
-        .add(
+        .set("xmlns:inkscape", INKSCAPE)
+        .set("width", format!("{}mm", num(w)))
+        .set("height", format!("{}mm", num(h)))
+        .set("viewBox", format!("0 0 {} {}", num(w), num(h)));
+    if let Some(bg) = pic.background {
+        doc = doc.add(
             Rectangle::new()
-                .set("x", num(x0))
-                .set("y", num(-y1))
+                .set("id", "background")
                 .set("width", num(w))
                 .set("height", num(h))
-                .set("fill", "white"),
+                .set("fill", bg.hex()),
         );
+    }
     if !pic.fills.is_empty() {
-        // A thin stroke in each face's own grey closes anti-aliasing seams between faces.
-        let mut g = Group::new()
-            .set("id", "fill")
-            .set("stroke-width", num(0.0003 * pic.frame.unit))
+        // Numbered after every line layer, so plotter tools never merge it into one; drawn
+        // first, under the lines. A thin stroke in each face's own grey closes seams.
+        let number = pic.layers.iter().map(|l| l.number).max().unwrap_or(0) + 1;
+        let mut g = layer(number, "fill")
+            .set("stroke-width", num(0.05))
             .set("stroke-linejoin", "round");
         for f in &pic.fills {
             let mut d = String::new();
             for r in &f.rings {
                 polyline(&mut d, r, true);
             }
+            let grey = super::color::Rgb::grey(f.grey).hex();
             g = g.add(
                 Path::new()
                     .set("d", d)
-                    .set("fill", grey(f.grey))
-                    .set("stroke", grey(f.grey))
+                    .set("fill", grey.clone())
+                    .set("stroke", grey)
                     .set("fill-rule", "evenodd"),
             );
         }
         doc = doc.add(g);
     }
-    let mut ids = Vec::new();
-    for layer in &pic.layers {
-        let id = unique_id(&layer.name, &mut ids);
-        let mut g = Group::new()
-            .set("id", id)
-            .set("fill", "none")
-            .set("stroke-linecap", "round")
-            .set("stroke-linejoin", "round");
-        for (pen, lines) in &layer.pens {
-            g = g.add(pen_path(*pen, lines, pic.frame.unit));
+    for l in &pic.layers {
+        let mut g = match pic.mode {
+            LayerMode::None => Group::new().set("id", "drawing"),
+            _ => layer(l.number, &l.name),
+        }
+        .set("fill", "none")
+        .set("stroke-linecap", "round")
+        .set("stroke-linejoin", "round");
+        let one_pen = l.runs.windows(2).all(|w| w[0].pen == w[1].pen);
+        if let (true, Some(r)) = (one_pen, l.runs.first()) {
+            // One pen: its colour and width on the layer, where plotter tools look for them.
+            g = pen_style(g, r.pen, pic);
+        }
+        for r in &l.runs {
+            let mut p = Path::new()
+                .set("class", r.pen.name())
+                .set("d", path_data(&r.lines));
+            if !one_pen {
+                p = pen_style(p, r.pen, pic);
+            }
+            g = g.add(p);
         }
         doc = doc.add(g);
     }
@@ -77,27 +86,31 @@ pub fn to_svg(pic: &Picture, size: u32) -> String {
     s
 }
 
-/// One path for all polylines of a pen.
-fn pen_path(pen: Pen, lines: &[Vec<Pt2>], unit: f64) -> Path {
+/// An Inkscape layer group labelled "N name".
+fn layer(number: u32, name: &str) -> Group {
+    Group::new()
+        .set("id", format!("layer{number}"))
+        .set("inkscape:groupmode", "layer")
+        .set("inkscape:label", format!("{number} {name}"))
+}
+
+/// Sets a pen's stroke colour and width (mm) on an element.
+fn pen_style<T: svg::Node>(mut e: T, pen: Pen, pic: &Picture) -> T {
+    e.assign("stroke", super::color::Rgb::grey(pen.grey()).hex());
+    e.assign("stroke-width", num(pic.width(pen)));
+    e
+}
+
+/// "Mx,y Lx,y ..." of every polyline.
+fn path_data(lines: &[Vec<Pt2>]) -> String {
     let mut d = String::new();
     for l in lines {
         polyline(&mut d, l, false);
     }
-    let mut p = Path::new()
-        .set("class", pen.name())
-        .set("d", d)
-        .set("stroke", grey(pen.grey()))
-        .set("stroke-width", num(pen.width() * unit));
-    if let Some([a, b]) = pen.dash() {
-        p = p.set(
-            "stroke-dasharray",
-            format!("{} {}", num(a * unit), num(b * unit)),
-        );
-    }
-    p
+    d
 }
 
-/// Appends "Mx,y Lx,y ..." (y negated), closed with Z when `close`.
+/// Appends "Mx,y Lx,y ...", closed with Z when `close`.
 fn polyline(d: &mut String, pts: &[Pt2], close: bool) {
     for (i, p) in pts.iter().enumerate() {
         let _ = write!(
@@ -105,7 +118,7 @@ fn polyline(d: &mut String, pts: &[Pt2], close: bool) {
             "{}{},{}",
             if i == 0 { "M" } else { "L" },
             num(p[0]),
-            num(-p[1])
+            num(p[1])
         );
     }
     if close && !pts.is_empty() {
@@ -113,74 +126,71 @@ fn polyline(d: &mut String, pts: &[Pt2], close: bool) {
     }
 }
 
-/// "#rrggbb" of a grey level.
-fn grey(g: u8) -> String {
-    format!("#{g:02x}{g:02x}{g:02x}")
-}
-
-/// An XML id from an object path: letters, digits, '-', '_' and '.' kept, others '_';
-/// prefixed so it starts with a letter, suffixed with a counter when already taken.
-fn unique_id(name: &str, taken: &mut Vec<String>) -> String {
-    let clean: String = name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || "-_.".contains(c) {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    let base = format!("obj_{clean}");
-    let mut id = base.clone();
-    let mut k = 1;
-    while taken.contains(&id) {
-        k += 1;
-        id = format!("{base}_{k}");
-    }
-    taken.push(id.clone());
-    id
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::emit::picture::{Fill, Layer};
-    use crate::view::Frame;
+    use crate::emit::color::Rgb;
+    use crate::emit::page::PageSize;
+    use crate::emit::picture::{Fill, Layer, PlotStats, Run};
 
-    fn pic() -> Picture {
+    fn pic(mode: LayerMode) -> Picture {
         Picture {
-            frame: Frame {
-                rect: Rect::new(-0.5, -0.5, 10.5, 5.5),
-                unit: 10.0,
-            },
-            fills: vec![Fill {
-                rings: vec![vec![[0., 0.], [1., 0.], [0., 1.]]],
-                grey: 200,
-            }],
-            layers: vec![Layer {
-                name: "house/roof".into(),
-                pens: vec![(Pen::Heavy, vec![vec![[0.1, 0.2], [1.0 / 3.0, 5.0]]])],
-            }],
+            page: PageSize::A4,
+            pen_mm: 0.5,
+            background: None,
+            fills: vec![],
+            layers: vec![
+                Layer {
+                    number: 1,
+                    name: "outline".into(),
+                    runs: vec![Run {
+                        pen: Pen::Outline,
+                        lines: vec![vec![[10.0, 20.0], [1.0 / 3.0, 50.0]]],
+                    }],
+                },
+                Layer {
+                    number: 6,
+                    name: "hidden".into(),
+                    runs: vec![Run {
+                        pen: Pen::Hidden,
+                        lines: vec![vec![[1.0, 1.0], [2.0, 1.0]], vec![[3.0, 1.0], [4.0, 1.0]]],
+                    }],
+                },
+            ],
+            mode,
+            stats: PlotStats::default(),
         }
     }
 
     #[test]
-    fn document_shape() {
-        let s = to_svg(&pic(), 1100);
+    fn a4_page_in_mm_with_inkscape_layers_and_no_background() {
+        let s = to_svg(&pic(LayerMode::Pen));
         assert!(s.starts_with("<svg"), "{s}");
-        assert!(s.contains(r#"viewBox="-0.5 -5.5 11 6""#), "{s}");
-        assert!(s.contains(r#"width="1100""#));
-        assert!(s.contains(r#"id="obj_house_roof""#));
-        assert!(s.contains("M0.1,-0.2L0.3333333333333333,-5"), "{s}");
-        assert!(s.contains(r##"fill="#c8c8c8""##));
+        assert!(s.contains(r#"width="210mm""#) && s.contains(r#"height="297mm""#));
+        assert!(s.contains(r#"viewBox="0 0 210 297""#), "{s}");
+        assert!(s.contains(r#"xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape""#));
+        assert!(s.contains(r#"inkscape:groupmode="layer""#));
+        assert!(s.contains(r#"inkscape:label="1 outline""#));
+        assert!(s.contains(r#"inkscape:label="6 hidden""#));
+        assert!(s.contains("M10,20L0.3333333333333333,50"), "{s}");
+        assert!(s.contains("M1,1L2,1M3,1L4,1"), "{s}");
+        assert!(s.contains(r#"stroke-width="0.5""#) && s.contains(r#"stroke-width="0.25""#));
+        assert!(!s.contains("<rect"));
         assert_eq!(s.matches("<path").count(), 2);
     }
 
     #[test]
-    fn ids_are_unique() {
-        let mut t = Vec::new();
-        assert_eq!(unique_id("a b", &mut t), "obj_a_b");
-        assert_eq!(unique_id("a/b", &mut t), "obj_a_b_2");
+    fn background_and_fills_only_when_asked() {
+        let mut p = pic(LayerMode::None);
+        p.background = Some(Rgb::parse("ivory").unwrap());
+        p.fills = vec![Fill {
+            rings: vec![vec![[0., 0.], [1., 0.], [0., 1.]]],
+            grey: 200,
+        }];
+        let s = to_svg(&p);
+        assert!(s.contains(r##"fill="#fffff0""##));
+        assert!(s.contains(r#"inkscape:label="7 fill""#), "{s}");
+        assert!(s.contains(r##"fill="#c8c8c8""##));
+        assert!(s.contains(r#"id="drawing""#));
     }
 }

@@ -7,7 +7,8 @@ use std::cmp::Ordering;
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub};
 
 use num_bigint::{BigInt, Sign};
-use num_traits::{ToPrimitive, Zero};
+use num_integer::Integer;
+use num_traits::{One, ToPrimitive, Zero};
 
 /// An exact rational n / d (d > 0), with its f64 approximation (within a few ulps) kept to
 /// settle comparisons of clearly different values without multiplying big numbers.
@@ -21,6 +22,9 @@ pub struct Q {
 /// Relative gap between two approximations above which their order is certain (the
 /// approximations are within 4 ulps, ~1e-15, of the values).
 const APPROX_GAP: f64 = 1e-12;
+
+/// Denominator size (bits) past which a fraction is reduced by its gcd.
+const GCD_BITS: u64 = 1024;
 
 impl Q {
     /// The integer `k`.
@@ -94,6 +98,15 @@ impl Q {
         if tz > 0 {
             self.n >>= tz as usize;
             self.d >>= tz as usize;
+        }
+        // Odd denominators from chains of divisions grow without bound: past GCD_BITS a gcd
+        // costs less than the multiplications it saves.
+        if self.d.bits() > GCD_BITS {
+            let g = self.n.gcd(&self.d);
+            if !g.is_one() {
+                self.n /= &g;
+                self.d /= &g;
+            }
         }
         self.approx = self.compute_f64();
         self

@@ -11,6 +11,7 @@ pub mod polymesh;
 pub mod predicates;
 pub mod rect;
 pub mod ring_check;
+pub(crate) mod rng;
 pub mod solid_angle;
 pub mod tri_intersect;
 pub mod triangle;

@@ -26,6 +26,19 @@ pub fn ring_area(r: &[Pt2]) -> f64 {
     0.5 * s
 }
 
+/// Distance between two points (sqrt of the sum of squares, not hypot: screen and page
+/// coordinates are far from overflow, and this is several times faster).
+#[inline]
+pub fn dist(a: Pt2, b: Pt2) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    (dx * dx + dy * dy).sqrt()
+}
+
+/// Length of a polyline.
+pub fn polyline_length(l: &[Pt2]) -> f64 {
+    l.windows(2).map(|w| dist(w[0], w[1])).sum()
+}
+
 /// Area of a polygon with holes (outer minus holes, by signed ring areas).
 pub fn polygon_area(p: &Polygon) -> f64 {
     p.iter().map(|r| ring_area(r)).sum()

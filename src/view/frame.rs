@@ -16,8 +16,10 @@ const MAX_ASPECT: f64 = 1.6;
 pub struct Frame {
     /// Framed rectangle, margin included.
     pub rect: Rect,
-    /// Size of the drawing (its longer side without the margin): line widths scale with it.
+    /// Size of the drawing (its longer side without the margin).
     pub unit: f64,
+    /// The drawing's own rectangle (`rect` without the margin): what a page shows.
+    pub content: Rect,
 }
 
 impl Frame {
@@ -27,9 +29,11 @@ impl Frame {
     pub fn of(camera: &Camera, b: Rect) -> Frame {
         let b = field_of_view(camera, b);
         if b.is_empty() {
+            let unit_square = Rect::new(0.0, 0.0, 1.0, 1.0);
             return Frame {
-                rect: Rect::new(0.0, 0.0, 1.0, 1.0),
+                rect: unit_square,
                 unit: 1.0,
+                content: unit_square,
             };
         }
         let size = b.longer_side();
@@ -37,6 +41,7 @@ impl Frame {
         Frame {
             rect: b.padded(MARGIN * unit),
             unit,
+            content: b,
         }
     }
 
@@ -72,6 +77,7 @@ mod tests {
         let f = Frame::of(&cam, Rect::new(0., 0., 10., 5.));
         assert_eq!(f.unit, 10.0);
         assert_eq!(f.rect, Rect::new(-0.5, -0.5, 10.5, 5.5));
+        assert_eq!(f.content, Rect::new(0., 0., 10., 5.));
         assert_eq!(f.pixels_per_unit(1100), 100.0);
         let e = Frame::of(&cam, Rect::EMPTY);
         assert_eq!((e.rect, e.unit), (Rect::new(0., 0., 1., 1.), 1.0));

@@ -6,6 +6,7 @@
 //! - [`screen`]: the remaining faces projected as planar pieces.
 //! - [`tree`]: the object tree in screen space, with bounds for VISFAC2's pruning.
 //! - [`frame`]: the part of the screen plane a picture shows.
+//! - [`mod@turntable`]: cameras carried round the scene, and one frame for all of them.
 
 pub mod camera;
 pub mod cull;
@@ -14,6 +15,7 @@ pub mod lod;
 pub mod piece_id;
 pub mod screen;
 pub mod tree;
+pub mod turntable;
 
 pub use camera::{Camera, CameraRequest, Projection};
 pub use cull::Cull;
@@ -22,6 +24,7 @@ pub use lod::{substitute, LodOptions, LodStats};
 pub use piece_id::PieceId;
 pub use screen::{Facing, Piece, ScreenFaces};
 pub use tree::{ObjectNode, ViewTree};
+pub use turntable::{turntable, turntable_frame};
 
 use crate::scene::Scene;
 

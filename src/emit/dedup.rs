@@ -1,0 +1,385 @@
+//! A line is drawn once: segments that repeat or overlap a segment kept before them, along
+//! the same line, lose the shared part.
+//!
+//! Segments come in priority order (the caller puts visible pens before hidden ones); each
+//! keeps only what no earlier kept segment covers. Two segments lie on one line when both
+//! ends of the shorter are within `eps` of the longer's line, and overlap when they share more
+//! than `eps` of length. Where a segment is cut, the cut point is the covering segment's own
+//! end point, so the pieces meet their neighbours exactly and chain without gaps. A uniform
+//! grid over sampled cells finds candidates, so the work follows the drawing's length.
+
+use crate::geom::poly2::{dist, Pt2};
+use crate::geom::Rect;
+
+/// Counts of what [`dedup`] removed.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct DedupStats {
+    /// Segments looked at.
+    pub segments: usize,
+    /// Segments dropped whole (exact duplicates, or covered by others).
+    pub dropped: usize,
+    /// Segments that lost part of their length.
+    pub trimmed: usize,
+    /// Length removed.
+    pub length: f64,
+}
+
+/// The parts of `segs` (in priority order) not covered by an earlier segment's kept parts,
+/// each with the index of the segment it comes from, in input order.
+pub fn dedup(segs: &[[Pt2; 2]], eps: f64) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
+    let mut index = SegmentIndex::new(segs, eps);
+    let mut kept: Vec<(usize, [Pt2; 2])> = Vec::with_capacity(segs.len());
+    let mut stats = DedupStats {
+        segments: segs.len(),
+        ..DedupStats::default()
+    };
+    let mut covers: Vec<Cover> = Vec::new();
+    for (i, &[a, b]) in segs.iter().enumerate() {
+        let len = dist(a, b);
+        if len <= eps {
+            stats.dropped += 1;
+            stats.length += len;
+            continue;
+        }
+        index.covers(a, b, &mut covers);
+        let before = kept.len();
+        if covers.is_empty() {
+            kept.push((i, [a, b]));
+        } else {
+            covers.sort_by(|p, q| p.t0.total_cmp(&q.t0));
+            let (mut t, mut pt) = (0.0, a);
+            let mut kept_len = 0.0;
+            for c in &covers {
+                if (c.t0 - t) * len > eps {
+                    kept.push((i, [pt, c.p0]));
+                    kept_len += (c.t0 - t) * len;
+                }
+                if c.t1 > t {
+                    (t, pt) = (c.t1, c.p1);
+                }
+            }
+            if (1.0 - t) * len > eps {
+                kept.push((i, [pt, b]));
+                kept_len += (1.0 - t) * len;
+            }
+            if kept.len() == before {
+                stats.dropped += 1;
+            } else {
+                stats.trimmed += 1;
+            }
+            stats.length += (len - kept_len).max(0.0);
+        }
+        for k in &kept[before..] {
+            index.insert(k.1);
+        }
+    }
+    (kept, stats)
+}
+
+/// Segments in a grid, to ask which of them run along a new segment.
+pub struct SegmentIndex {
+    grid: CellGrid,
+    segs: Vec<[Pt2; 2]>,
+    seen: Vec<usize>,
+    query: usize,
+    cells: Vec<usize>,
+    eps: f64,
+}
+
+impl SegmentIndex {
+    /// An empty index over the bounds of `extent` (segments outside still work, slower);
+    /// `eps` is the coincidence tolerance.
+    pub fn new(extent: &[[Pt2; 2]], eps: f64) -> SegmentIndex {
+        SegmentIndex {
+            grid: CellGrid::new(extent),
+            segs: Vec::with_capacity(extent.len()),
+            seen: Vec::with_capacity(extent.len()),
+            query: 0,
+            cells: Vec::new(),
+            eps,
+        }
+    }
+
+    /// Adds a segment.
+    pub fn insert(&mut self, s: [Pt2; 2]) {
+        self.grid.cells_of(s[0], s[1], &mut self.cells);
+        self.grid.insert(self.segs.len(), &self.cells);
+        self.segs.push(s);
+        self.seen.push(0);
+    }
+
+    /// True when a segment of the index runs along a → b for more than `eps`.
+    pub fn overlaps(&mut self, a: Pt2, b: Pt2) -> bool {
+        let mut covers = Vec::new();
+        self.covers(a, b, &mut covers);
+        !covers.is_empty()
+    }
+
+    /// The parts of a → b that segments of the index cover (unsorted).
+    fn covers(&mut self, a: Pt2, b: Pt2, out: &mut Vec<Cover>) {
+        out.clear();
+        let len = dist(a, b);
+        if len == 0.0 {
+            return;
+        }
+        self.query += 1;
+        self.grid.cells_of(a, b, &mut self.cells);
+        for k in self.grid.near(&self.cells) {
+            if self.seen[k] == self.query {
+                continue;
+            }
+            self.seen[k] = self.query;
+            let [c, d] = self.segs[k];
+            if let Some(cov) = overlap(a, b, len, c, d, self.eps) {
+                out.push(cov);
+            }
+        }
+    }
+}
+
+/// The part of a → b (parameters t0 < t1) that an earlier segment covers, with the covering
+/// points (the earlier segment's ends, or a and b themselves).
+#[derive(Debug, Clone, Copy)]
+struct Cover {
+    t0: f64,
+    p0: Pt2,
+    t1: f64,
+    p1: Pt2,
+}
+
+/// Distance of `p` from the line through `u` and `v` (u != v).
+fn line_dist(u: Pt2, v: Pt2, p: Pt2) -> f64 {
+    let (dx, dy) = (v[0] - u[0], v[1] - u[1]);
+    ((p[0] - u[0]) * dy - (p[1] - u[1]) * dx).abs() / dist(u, v)
+}
+
+/// How c → d covers a → b (length `len`), when they lie on one line and share more than `eps`.
+fn overlap(a: Pt2, b: Pt2, len: f64, c: Pt2, d: Pt2, eps: f64) -> Option<Cover> {
+    let lc = dist(c, d);
+    if lc == 0.0 {
+        return None;
+    }
+    let on_line = if lc >= len {
+        line_dist(c, d, a) <= eps && line_dist(c, d, b) <= eps
+    } else {
+        line_dist(a, b, c) <= eps && line_dist(a, b, d) <= eps
+    };
+    if !on_line {
+        return None;
+    }
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let param = |p: Pt2| ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (len * len);
+    let (mut tc, mut td, mut c, mut d) = (param(c), param(d), c, d);
+    if tc > td {
+        (tc, td, c, d) = (td, tc, d, c);
+    }
+    let (t0, p0) = if tc > 0.0 { (tc, c) } else { (0.0, a) };
+    let (t1, p1) = if td < 1.0 { (td, d) } else { (1.0, b) };
+    ((t1 - t0) * len > eps).then_some(Cover { t0, p0, t1, p1 })
+}
+
+/// Square cells over the segments' bounds; each kept segment is listed in the cells of points
+/// sampled along it at most half a cell apart, and a query looks at those cells' neighbours
+/// too, so two segments within a fraction of a cell of each other always meet in the grid.
+struct CellGrid {
+    origin: Pt2,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    cells: Vec<Vec<usize>>,
+}
+
+impl CellGrid {
+    fn new(segs: &[[Pt2; 2]]) -> CellGrid {
+        let b = Rect::of_points(segs.iter().flatten());
+        let n = ((segs.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
+        let side = b.longer_side();
+        let cell = if side > 0.0 && side.is_finite() {
+            side / n as f64
+        } else {
+            1.0
+        };
+        let count = |w: f64| ((w / cell).ceil() as usize).clamp(1, n);
+        let (nx, ny) = if b.is_empty() {
+            (1, 1)
+        } else {
+            (count(b.width()), count(b.height()))
+        };
+        CellGrid {
+            origin: if b.is_empty() {
+                [0.0, 0.0]
+            } else {
+                [b.xmin, b.ymin]
+            },
+            cell,
+            nx,
+            ny,
+            cells: vec![Vec::new(); nx * ny],
+        }
+    }
+
+    fn coords(&self, p: Pt2) -> (usize, usize) {
+        let f =
+            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
+        (
+            f(p[0], self.origin[0], self.nx),
+            f(p[1], self.origin[1], self.ny),
+        )
+    }
+
+    /// Cells of points sampled along a → b at most half a cell apart (sorted, unique).
+    fn cells_of(&self, a: Pt2, b: Pt2, out: &mut Vec<usize>) {
+        out.clear();
+        let steps = ((2.0 * dist(a, b) / self.cell).ceil() as usize).clamp(1, 1 << 20);
+        for s in 0..=steps {
+            let t = s as f64 / steps as f64;
+            let (x, y) = self.coords([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+            out.push(y * self.nx + x);
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+
+    fn insert(&mut self, k: usize, cells: &[usize]) {
+        for &c in cells {
+            self.cells[c].push(k);
+        }
+    }
+
+    /// Entries of the cells around `cells` (may repeat).
+    fn near<'a>(&'a self, cells: &'a [usize]) -> impl Iterator<Item = usize> + 'a {
+        cells.iter().flat_map(move |&c| {
+            let (x, y) = ((c % self.nx) as isize, (c / self.nx) as isize);
+            (-1..=1).flat_map(move |dy| {
+                (-1..=1).flat_map(move |dx| {
+                    let (u, v) = (x + dx, y + dy);
+                    let ok = u >= 0 && v >= 0 && (u as usize) < self.nx && (v as usize) < self.ny;
+                    let list: &[usize] = if ok {
+                        &self.cells[v as usize * self.nx + u as usize]
+                    } else {
+                        &[]
+                    };
+                    list.iter().copied()
+                })
+            })
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn total(pieces: &[(usize, [Pt2; 2])]) -> f64 {
+        pieces.iter().map(|(_, [a, b])| dist(*a, *b)).sum()
+    }
+
+    #[test]
+    fn exact_and_reversed_duplicates_are_dropped() {
+        let s = [
+            [[0., 0.], [1., 0.]],
+            [[1., 0.], [0., 0.]],
+            [[0., 0.], [1., 0.]],
+            [[0., 1.], [1., 1.]],
+        ];
+        let (k, st) = dedup(&s, 1e-9);
+        assert_eq!(k, vec![(0, s[0]), (3, s[3])]);
+        assert_eq!((st.dropped, st.trimmed), (2, 0));
+    }
+
+    #[test]
+    fn overlapping_collinear_pieces_keep_the_uncovered_parts() {
+        // [0, 4] kept; [2, 6] keeps [4, 6]; [-1, 7] keeps [-1, 0] and [6, 7]; an inner piece
+        // [1, 3] on a parallel line 1e-3 away is a different line.
+        let s = [
+            [[0., 0.], [4., 0.]],
+            [[2., 0.], [6., 0.]],
+            [[7., 0.], [-1., 0.]],
+            [[1., 1e-3], [3., 1e-3]],
+        ];
+        let (k, _) = dedup(&s, 1e-9);
+        assert_eq!(
+            k,
+            vec![
+                (0, s[0]),
+                (1, [[4., 0.], [6., 0.]]),
+                (2, [[7., 0.], [6., 0.]]),
+                (2, [[0., 0.], [-1., 0.]]),
+                (3, s[3]),
+            ]
+        );
+    }
+
+    #[test]
+    fn rounding_sized_offsets_still_count_as_one_line() {
+        // A diagonal and a piece of it whose ends were rounded off the line.
+        let a = [0.1, 0.2];
+        let b = [7.3, 5.9];
+        let at = |t: f64| {
+            [
+                a[0] + t * (b[0] - a[0]) + 1e-15,
+                a[1] + t * (b[1] - a[1]) - 1e-15,
+            ]
+        };
+        let s = [[a, b], [at(0.25), at(0.75)]];
+        let (k, st) = dedup(&s, 1e-9);
+        assert_eq!(k.len(), 1);
+        assert_eq!(st.dropped, 1);
+    }
+
+    #[test]
+    fn random_collinear_pieces_cover_their_union_once() {
+        // Pieces of three lines: the kept length equals the length of each line's union of
+        // intervals, computed independently in one dimension; kept pieces do not overlap.
+        let mut rng = crate::geom::rng::XorShift::new(0x9E3779B97F4A7C15);
+        let mut rnd = || rng.unit();
+        let lines = [
+            ([0.0, 0.0], [1.0, 0.5]),
+            ([3.0, 1.0], [3.0, 4.0]),
+            ([-2.0, 5.0], [6.0, 5.0]),
+        ];
+        let mut segs = Vec::new();
+        let mut ivs: Vec<Vec<[f64; 2]>> = vec![Vec::new(); 3];
+        for k in 0..300 {
+            let l = k % 3;
+            let (p, q) = lines[l];
+            let (mut t0, mut t1) = (rnd() * 10.0, rnd() * 10.0);
+            if rnd() < 0.3 {
+                t1 = t0; // a repeat of the previous piece on this line, when any
+                if let Some(&[u, v]) = ivs[l].last() {
+                    (t0, t1) = (u, v);
+                }
+            }
+            let at = |t: f64| [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
+            if t0 != t1 {
+                segs.push([at(t0), at(t1)]);
+                ivs[l].push([t0.min(t1), t0.max(t1)]);
+            }
+        }
+        let (kept, _) = dedup(&segs, 1e-9);
+        let mut want = 0.0;
+        for (l, iv) in ivs.iter_mut().enumerate() {
+            iv.sort_by(|a, b| a[0].total_cmp(&b[0]));
+            let unit = dist(lines[l].0, lines[l].1);
+            let (mut lo, mut hi) = (f64::NAN, f64::NAN);
+            for &[a, b] in iv.iter() {
+                if hi.is_nan() || a > hi {
+                    if hi > lo {
+                        want += (hi - lo) * unit;
+                    }
+                    (lo, hi) = (a, b);
+                } else {
+                    hi = hi.max(b);
+                }
+            }
+            if hi > lo {
+                want += (hi - lo) * unit;
+            }
+        }
+        let got = total(&kept);
+        assert!((got - want).abs() < 1e-9 * want, "{got} != {want}");
+        // Nothing kept overlaps anything else kept.
+        let (again, st) = dedup(&kept.iter().map(|k| k.1).collect::<Vec<_>>(), 1e-9);
+        assert_eq!((again.len(), st.dropped, st.trimmed), (kept.len(), 0, 0));
+    }
+}

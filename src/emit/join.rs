@@ -1,0 +1,407 @@
+//! Joining polylines end to end so that a plotter lifts its pen as rarely as possible.
+//!
+//! First at exactly equal end points: the polylines are the edges of a graph on their end
+//! points, and an Euler-trail cover of each connected part draws it with the fewest strokes
+//! there can be — one for a part whose points all have even degree, half the number of
+//! odd-degree points otherwise (Hierholzer's algorithm after pairing the odd points through
+//! one virtual point). Then within a tolerance: stroke ends closer than it are joined, closest
+//! pairs first, the gap drawn as a straight piece. Deterministic: everything is taken in input
+//! order, ties broken by index. A gap is bridged only where the caller allows it (no other
+//! line runs along it: a line is drawn once).
+
+use std::collections::HashMap;
+
+use crate::geom::poly2::{dist, Pt2};
+
+/// Hash key of a point: -0 and 0 are the same point.
+fn key(p: Pt2) -> (u64, u64) {
+    ((p[0] + 0.0).to_bits(), (p[1] + 0.0).to_bits())
+}
+
+/// Joins polylines (each of two points or more) at exactly equal ends, then, when
+/// `tolerance > 0`, at ends closer than `tolerance` where `bridge(p, q)` allows drawing the
+/// gap from p to q.
+pub fn join(
+    lines: Vec<Vec<Pt2>>,
+    tolerance: f64,
+    bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
+) -> Vec<Vec<Pt2>> {
+    let lines: Vec<Vec<Pt2>> = lines.into_iter().filter(|l| l.len() >= 2).collect();
+    let trails = euler_trails(&lines);
+    if tolerance > 0.0 {
+        join_near(trails, tolerance, bridge)
+    } else {
+        trails
+    }
+}
+
+/// An edge of the end-point graph: a polyline, or a virtual edge to the pairing point.
+#[derive(Clone, Copy)]
+struct GraphEdge {
+    ends: [usize; 2],
+    line: Option<usize>,
+}
+
+/// The fewest trails that draw every polyline once, joined at exactly equal end points.
+fn euler_trails(lines: &[Vec<Pt2>]) -> Vec<Vec<Pt2>> {
+    let mut ids: HashMap<(u64, u64), usize> = HashMap::new();
+    let mut node = |p: Pt2| {
+        let n = ids.len();
+        *ids.entry(key(p)).or_insert(n)
+    };
+    let mut edges: Vec<GraphEdge> = lines
+        .iter()
+        .enumerate()
+        .map(|(i, l)| GraphEdge {
+            ends: [node(l[0]), node(l[l.len() - 1])],
+            line: Some(i),
+        })
+        .collect();
+    let nodes = ids.len();
+    let virt = nodes;
+    let mut degree = vec![0usize; nodes + 1];
+    for e in &edges {
+        degree[e.ends[0]] += 1;
+        degree[e.ends[1]] += 1;
+    }
+    for (n, d) in degree.iter().enumerate().take(nodes) {
+        if d % 2 == 1 {
+            edges.push(GraphEdge {
+                ends: [n, virt],
+                line: None,
+            });
+        }
+    }
+    let mut adj: Vec<Vec<usize>> = vec![Vec::new(); nodes + 1];
+    for (k, e) in edges.iter().enumerate() {
+        adj[e.ends[0]].push(k);
+        if e.ends[1] != e.ends[0] {
+            adj[e.ends[1]].push(k);
+        }
+    }
+    let mut used = vec![false; edges.len()];
+    let mut next = vec![0usize; nodes + 1];
+    let mut out = Vec::new();
+    // Start at the virtual point first (its circuit covers every part with odd points), then
+    // at each remaining polyline's first end in input order.
+    let starts =
+        std::iter::once(virt).chain(edges.iter().filter_map(|e| e.line.map(|_| e.ends[0])));
+    for start in starts {
+        let circuit = hierholzer(start, &edges, &adj, &mut used, &mut next);
+        out.extend(split_at_virtual(&circuit, &edges, lines));
+    }
+    out
+}
+
+/// One Euler circuit from `start` over unused edges: the edges in order, each with the node
+/// it is entered from.
+fn hierholzer(
+    start: usize,
+    edges: &[GraphEdge],
+    adj: &[Vec<usize>],
+    used: &mut [bool],
+    next: &mut [usize],
+) -> Vec<(usize, usize)> {
+    let mut stack: Vec<(usize, Option<(usize, usize)>)> = vec![(start, None)];
+    let mut circuit = Vec::new();
+    while let Some(&(v, _)) = stack.last() {
+        let mut advanced = false;
+        while next[v] < adj[v].len() {
+            let k = adj[v][next[v]];
+            next[v] += 1;
+            if used[k] {
+                continue;
+            }
+            used[k] = true;
+            let e = edges[k];
+            let w = if e.ends[0] == v { e.ends[1] } else { e.ends[0] };
+            stack.push((w, Some((k, v))));
+            advanced = true;
+            break;
+        }
+        if !advanced {
+            if let Some((_, Some(step))) = stack.pop() {
+                circuit.push(step);
+            }
+        }
+    }
+    circuit.reverse();
+    circuit
+}
+
+/// Cuts a circuit at its virtual edges into polylines of the real ones.
+fn split_at_virtual(
+    circuit: &[(usize, usize)],
+    edges: &[GraphEdge],
+    lines: &[Vec<Pt2>],
+) -> Vec<Vec<Pt2>> {
+    let mut out = Vec::new();
+    let mut cur: Vec<Pt2> = Vec::new();
+    // A circuit through the virtual point starts right after a virtual edge once rotated.
+    let first_virtual = circuit.iter().position(|&(k, _)| edges[k].line.is_none());
+    let rot = first_virtual.map_or(0, |i| i + 1);
+    for idx in 0..circuit.len() {
+        let (k, from) = circuit[(idx + rot) % circuit.len()];
+        match edges[k].line {
+            None => {
+                if cur.len() > 1 {
+                    out.push(std::mem::take(&mut cur));
+                }
+                cur.clear();
+            }
+            Some(i) => {
+                let l = &lines[i];
+                let forward = edges[k].ends[0] == from;
+                let pts: Box<dyn Iterator<Item = &Pt2>> = if forward {
+                    Box::new(l.iter())
+                } else {
+                    Box::new(l.iter().rev())
+                };
+                for (j, p) in pts.enumerate() {
+                    if j > 0 || cur.is_empty() {
+                        cur.push(*p);
+                    }
+                }
+            }
+        }
+    }
+    if cur.len() > 1 {
+        out.push(cur);
+    }
+    out
+}
+
+/// Joins stroke ends closer than `tol` where `bridge` allows, closest pairs first; a stroke
+/// is never joined to itself.
+fn join_near(
+    lines: Vec<Vec<Pt2>>,
+    tol: f64,
+    bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
+) -> Vec<Vec<Pt2>> {
+    let n = lines.len();
+    // End slot 2i is line i's start, 2i + 1 its end.
+    let end = |s: usize| {
+        let l = &lines[s / 2];
+        if s.is_multiple_of(2) {
+            l[0]
+        } else {
+            l[l.len() - 1]
+        }
+    };
+    let cell = |p: Pt2| ((p[0] / tol).floor() as i64, (p[1] / tol).floor() as i64);
+    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    for s in 0..2 * n {
+        grid.entry(cell(end(s))).or_default().push(s);
+    }
+    let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
+    for s in 0..2 * n {
+        let p = end(s);
+        let (cx, cy) = cell(p);
+        for dy in -1..=1 {
+            for dx in -1..=1 {
+                for &t in grid.get(&(cx + dx, cy + dy)).into_iter().flatten() {
+                    let q = end(t);
+                    let d = dist(p, q);
+                    if t > s && t / 2 != s / 2 && d <= tol {
+                        pairs.push((d, s, t));
+                    }
+                }
+            }
+        }
+    }
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+    // link[s]: the end slot s is joined to. Joining must not close a cycle of strokes.
+    let mut link = vec![usize::MAX; 2 * n];
+    let mut group: Vec<usize> = (0..n).collect();
+    fn find(g: &mut [usize], mut i: usize) -> usize {
+        while g[i] != i {
+            g[i] = g[g[i]];
+            i = g[i];
+        }
+        i
+    }
+    for (_, s, t) in pairs {
+        if link[s] != usize::MAX || link[t] != usize::MAX {
+            continue;
+        }
+        let (gs, gt) = (find(&mut group, s / 2), find(&mut group, t / 2));
+        if gs == gt {
+            continue;
+        }
+        let (p, q) = (end(s), end(t));
+        if p != q && !bridge(p, q) {
+            continue;
+        }
+        group[gs] = gt;
+        link[s] = t;
+        link[t] = s;
+    }
+    // Walk each chain from a line whose start or end is free, in input order.
+    let mut done = vec![false; n];
+    let mut out = Vec::new();
+    for i in 0..n {
+        if done[i] {
+            continue;
+        }
+        let free_start = link[2 * i] == usize::MAX;
+        let free_end = link[2 * i + 1] == usize::MAX;
+        if !free_start && !free_end {
+            continue; // inside a chain: reached from one of its ends
+        }
+        // Enter line i at its free end.
+        let mut slot = if free_start { 2 * i } else { 2 * i + 1 };
+        let mut chain: Vec<Pt2> = Vec::new();
+        loop {
+            let li = slot / 2;
+            done[li] = true;
+            let l = &lines[li];
+            let pts: Vec<Pt2> = if slot % 2 == 0 {
+                l.clone()
+            } else {
+                l.iter().rev().copied().collect()
+            };
+            let skip = usize::from(chain.last() == pts.first());
+            chain.extend_from_slice(&pts[skip..]);
+            let exit = slot ^ 1;
+            match link[exit] {
+                usize::MAX => break,
+                t => slot = t,
+            }
+        }
+        out.push(chain);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::poly2::polyline_length;
+
+    fn odd_points(lines: &[Vec<Pt2>]) -> usize {
+        let mut deg: HashMap<(u64, u64), usize> = HashMap::new();
+        for l in lines {
+            *deg.entry(key(l[0])).or_default() += 1;
+            *deg.entry(key(l[l.len() - 1])).or_default() += 1;
+        }
+        deg.values().filter(|d| *d % 2 == 1).count()
+    }
+
+    fn length(lines: &[Vec<Pt2>]) -> f64 {
+        lines.iter().map(|l| polyline_length(l)).sum()
+    }
+
+    #[test]
+    fn a_square_with_a_tail_is_one_stroke() {
+        // Square loop plus a tail from a corner: two odd points, so one trail.
+        let s = vec![
+            vec![[0., 0.], [1., 0.]],
+            vec![[1., 0.], [1., 1.]],
+            vec![[1., 1.], [0., 1.]],
+            vec![[0., 1.], [0., 0.]],
+            vec![[1., 1.], [2., 2.]],
+        ];
+        let j = join(s.clone(), 0.0, &mut |_, _| true);
+        assert_eq!(j.len(), 1, "{j:?}");
+        assert_eq!(j[0].len(), 6);
+        assert_eq!(length(&j), length(&s));
+    }
+
+    #[test]
+    fn a_star_needs_half_its_odd_points() {
+        // Six spokes from the centre: seven points, six of degree 1 and the centre of degree 6.
+        let s: Vec<Vec<Pt2>> = (0..6)
+            .map(|k| {
+                let a = k as f64;
+                vec![[0., 0.], [a.cos(), a.sin()]]
+            })
+            .collect();
+        let j = join(s.clone(), 0.0, &mut |_, _| true);
+        assert_eq!(j.len(), odd_points(&s) / 2);
+        assert_eq!(length(&j), length(&s));
+        // Every spoke appears once (as a run of consecutive points).
+        let segs: usize = j.iter().map(|l| l.len() - 1).sum();
+        assert_eq!(segs, 6);
+    }
+
+    #[test]
+    fn random_graphs_reach_the_lower_bound() {
+        let mut rng = crate::geom::rng::XorShift::new(0x1234_5678_9ABC_DEF1);
+        let mut rnd = |n: u64| rng.next_u64() % n;
+        for _ in 0..50 {
+            let lines: Vec<Vec<Pt2>> = (0..40)
+                .map(|_| {
+                    let (a, b) = (rnd(12), rnd(12));
+                    vec![
+                        [a as f64, (a * a) as f64],
+                        [0.5, 0.5 + rnd(3) as f64],
+                        [b as f64, (b * b) as f64],
+                    ]
+                })
+                .collect();
+            let j = join(lines.clone(), 0.0, &mut |_, _| true);
+            // Lower bound per connected part: max(1, odd / 2); over the whole graph the sum.
+            let mut parent: HashMap<(u64, u64), (u64, u64)> = HashMap::new();
+            fn root(p: &mut HashMap<(u64, u64), (u64, u64)>, k: (u64, u64)) -> (u64, u64) {
+                let mut r = k;
+                while let Some(&q) = p.get(&r) {
+                    if q == r {
+                        break;
+                    }
+                    r = q;
+                }
+                r
+            }
+            for l in &lines {
+                let (a, b) = (key(l[0]), key(l[l.len() - 1]));
+                parent.entry(a).or_insert(a);
+                parent.entry(b).or_insert(b);
+                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                parent.insert(ra, rb);
+            }
+            let mut parts: HashMap<(u64, u64), usize> = HashMap::new();
+            let mut deg: HashMap<(u64, u64), usize> = HashMap::new();
+            for l in &lines {
+                *deg.entry(key(l[0])).or_default() += 1;
+                *deg.entry(key(l[l.len() - 1])).or_default() += 1;
+            }
+            let keys: Vec<_> = parent.keys().copied().collect();
+            for k in keys {
+                let r = root(&mut parent, k);
+                *parts.entry(r).or_default() += deg[&k] % 2;
+            }
+            let bound: usize = parts.values().map(|&odd| (odd / 2).max(1)).sum();
+            assert_eq!(j.len(), bound);
+            assert!((length(&j) - length(&lines)).abs() < 1e-9 * length(&lines));
+        }
+    }
+
+    #[test]
+    fn near_ends_join_closest_first_and_never_into_a_loop() {
+        // Four sides of a unit square, each end a hair from the next side's start: within
+        // 0.01 they join into one stroke (three joins; the fourth would close a loop).
+        let s = vec![
+            vec![[0., 0.], [1., 0.]],
+            vec![[1.0 + 1e-3, 0.], [1., 1.]],
+            vec![[1., 1.0 + 1e-4], [0., 1.]],
+            vec![[0., 1.], [0., 2e-4]],
+        ];
+        let j = join(s.clone(), 0.01, &mut |_, _| true);
+        assert_eq!(j.len(), 1, "{j:?}");
+        // The gaps are drawn: all four sides plus two of the three gaps, and the side that
+        // meets its neighbour exactly (2 -> 3) joins without a gap.
+        assert_eq!(j[0].len(), 4 + 2 + 1);
+        assert_eq!(join(s.clone(), 0.0, &mut |_, _| true).len(), 3);
+        assert_eq!(join(s.clone(), 1e-5, &mut |_, _| true).len(), 3);
+        // Gaps the caller forbids stay open: both ends of the stroke of sides 3 and 4.
+        let mut asked = 0;
+        let j = join(s, 0.01, &mut |p, q| {
+            asked += 1;
+            ![[1., 1.0 + 1e-4], [0., 2e-4]]
+                .iter()
+                .any(|x| [p, q].contains(x))
+        });
+        assert_eq!(j.len(), 2, "{j:?}");
+        assert!(asked >= 2);
+    }
+}

@@ -1,0 +1,354 @@
+//! Builds the [`Picture`] of a solved view: the drawing's lines (and hatching, markings,
+//! fills) laid out on the page in mm, clipped exactly to the drawing area, each line drawn
+//! once, joined into long strokes, hidden lines dashed, and every layer ordered to cut the
+//! pen's travel.
+//!
+//! Steps: frame and page layout; hatch lines (their spacing is in mm); map to the page and
+//! clip ([`super::clip_rect`]); drop repeated and overlapping collinear pieces, visible pens
+//! first ([`super::dedup`]); per layer and pen, join at equal ends then within
+//! `join_mm` ([`super::join`]), simplify when asked (geo's Ramer–Douglas–Peucker), dash the
+//! hidden pen ([`super::dash`]) and join dashes that meet; per layer, order all strokes
+//! ([`super::tour`]).
+
+use std::collections::BTreeMap;
+
+use geo::{LineString, Simplify};
+
+use crate::error::{Error, Result};
+use crate::geom::poly2::{polyline_length as length, Pt2};
+use crate::geom::Rect;
+use crate::scene::{FaceId, Scene};
+use crate::view::{Frame, View};
+use crate::visibility::Visibility;
+
+use super::clip_rect::clip_polyline;
+use super::dash::dashes;
+use super::dedup::{dedup, SegmentIndex};
+use super::hatch::{hatch, tone_outlines};
+use super::join::join;
+use super::lines::{Drawing, Stroke};
+use super::page::Layout;
+use super::picture::{Fill, Layer, LayerMode, Pen, Picture, PictureOptions, PlotStats, Run};
+use super::shade::{face_shade, light_direction};
+use super::tour::plan;
+
+/// Coincidence tolerance of [`dedup`] on the page: lines closer than 0.1 µm are one line
+/// (a plotter's step is about 10 µm, a pen 100 µm or more).
+const DEDUP_EPS_MM: f64 = 1e-4;
+
+/// One polyline to plot, in screen space.
+struct Item {
+    pen: Pen,
+    leaf: u32,
+    pts: Vec<Pt2>,
+}
+
+/// The picture of a solved view: `drawing` is its line drawing, `marks` its face markings.
+pub fn picture(
+    scene: &Scene,
+    view: &View,
+    vis: &Visibility,
+    drawing: &Drawing,
+    marks: &[Stroke],
+    opts: &PictureOptions,
+) -> Result<Picture> {
+    check(opts)?;
+    let tops = top_objects(scene);
+    let outline_only = opts.hatch.is_some_and(|h| h.outline);
+    let mut items: Vec<Item> = Vec::new();
+    let mut add = |s: &Stroke, pen: Pen| {
+        items.push(Item {
+            pen,
+            leaf: s.leaf,
+            pts: s.pts.clone(),
+        })
+    };
+    for s in &drawing.visible {
+        // Outlines only around hatched regions: the tone outlines replace inner edges.
+        if !(outline_only && Pen::of(s.kind) == Pen::Edges) {
+            add(s, Pen::of(s.kind));
+        }
+    }
+    marks.iter().for_each(|s| add(s, Pen::Mark));
+    drawing.hidden.iter().for_each(|s| add(s, Pen::Hidden));
+
+    let regions = opts.fill || opts.hatch.is_some();
+    let frame = match opts.frame {
+        Some(r) => Frame::of(&view.camera, r),
+        None => {
+            let mut b = Rect::of_points(drawing.visible.iter().flat_map(|s| s.pts.iter()));
+            b = b.union(&Rect::of_points(
+                drawing.hidden.iter().flat_map(|s| s.pts.iter()),
+            ));
+            b = b.union(&Rect::of_points(marks.iter().flat_map(|s| s.pts.iter())));
+            if regions {
+                let faces = vis
+                    .iter()
+                    .flat_map(|(_, f)| f.visible.iter().flatten().flatten());
+                b = b.union(&Rect::of_points(faces));
+            }
+            Frame::of(&view.camera, b)
+        }
+    };
+    let layout = Layout::new(&frame, opts.page, opts.margin_mm, opts.size)?;
+
+    if let Some(h) = &opts.hatch {
+        let hatching = hatch(scene, view, vis, &layout, h, opts.light);
+        for &(leaf, s) in &hatching.segments {
+            items.push(Item {
+                pen: Pen::Hatch,
+                leaf,
+                pts: s.to_vec(),
+            });
+        }
+        if h.outline {
+            let group = |leaf: u32| match opts.layers {
+                LayerMode::Object => tops.of_leaf[leaf as usize],
+                _ => 0,
+            };
+            for (leaf, ring) in tone_outlines(&hatching, vis, group) {
+                items.push(Item {
+                    pen: Pen::Edges,
+                    leaf,
+                    pts: ring,
+                });
+            }
+        }
+    }
+
+    // On the page, clipped to the drawing area, as segments in priority order.
+    let mut stats = PlotStats::default();
+    items.sort_by_key(|it| (it.pen, it.leaf));
+    let mut segs: Vec<[Pt2; 2]> = Vec::new();
+    let mut owner: Vec<(Pen, u32)> = Vec::new();
+    for it in &items {
+        let page: Vec<Pt2> = it.pts.iter().map(|&p| layout.to_page(p)).collect();
+        let before = length(&page);
+        let mut after = 0.0;
+        for part in clip_polyline(&page, &layout.area) {
+            after += length(&part);
+            for w in part.windows(2) {
+                segs.push([w[0], w[1]]);
+                owner.push((it.pen, it.leaf));
+            }
+        }
+        stats.clipped_mm += (before - after).max(0.0);
+    }
+    let eps = DEDUP_EPS_MM;
+    let (kept, dup) = dedup(&segs, eps);
+    stats.duplicates = dup;
+    // Every line drawn, to keep the joins' gap bridges off them.
+    let mut drawn = SegmentIndex::new(&segs, eps);
+    for (_, s) in &kept {
+        drawn.insert(*s);
+    }
+    let mut bridge = |p: Pt2, q: Pt2| {
+        let free = !drawn.overlaps(p, q);
+        if free {
+            drawn.insert([p, q]);
+        }
+        free
+    };
+
+    // Per layer and pen: join, simplify, dash.
+    let layer_of = |pen: Pen, leaf: u32| match opts.layers {
+        LayerMode::Pen => pen.number(),
+        LayerMode::Object => tops.of_leaf[leaf as usize] + 1,
+        LayerMode::None => 1,
+    };
+    let mut groups: BTreeMap<(u32, Pen), Vec<Vec<Pt2>>> = BTreeMap::new();
+    for (src, s) in kept {
+        let (pen, leaf) = owner[src];
+        groups
+            .entry((layer_of(pen, leaf), pen))
+            .or_default()
+            .push(s.to_vec());
+    }
+    let mut by_layer: BTreeMap<u32, Vec<(Pen, Vec<Pt2>)>> = BTreeMap::new();
+    for ((layer, pen), lines) in groups {
+        let mut strokes = join(lines, opts.join_mm, &mut bridge);
+        if opts.simplify_mm > 0.0 {
+            strokes = strokes
+                .into_iter()
+                .map(|l| simplify(&l, opts.simplify_mm))
+                .collect();
+        }
+        if pen == Pen::Hidden {
+            // Dashes of different lines that meet (where hidden lines join at a corner) are
+            // drawn as one stroke.
+            let [on, off] = opts.dash_mm;
+            let dashed = strokes.iter().flat_map(|l| dashes(l, on, off)).collect();
+            strokes = join(dashed, opts.join_mm, &mut bridge);
+        }
+        by_layer
+            .entry(layer)
+            .or_default()
+            .extend(strokes.into_iter().map(|l| (pen, l)));
+    }
+    let layers: Vec<Layer> = by_layer
+        .into_iter()
+        .map(|(number, strokes)| {
+            let name = match opts.layers {
+                LayerMode::Pen => Pen::ALL
+                    .iter()
+                    .find(|p| p.number() == number)
+                    .map_or("lines", |p| p.name())
+                    .to_string(),
+                LayerMode::Object => tops.names[number as usize - 1].clone(),
+                LayerMode::None => "drawing".to_string(),
+            };
+            Layer {
+                number,
+                name,
+                runs: ordered_runs(strokes),
+            }
+        })
+        .collect();
+    stats.layers = layers.iter().map(Layer::summary).collect();
+    let fills = if opts.fill {
+        fills(view, vis, &layout, opts.light)
+    } else {
+        Vec::new()
+    };
+    Ok(Picture {
+        page: layout.page,
+        pen_mm: opts.pen_mm,
+        background: opts.background,
+        fills,
+        layers,
+        mode: opts.layers,
+        stats,
+    })
+}
+
+/// Rejects settings no picture can be made with.
+fn check(o: &PictureOptions) -> Result<()> {
+    let positive = |v: f64| v.is_finite() && v > 0.0;
+    let bad = |what: String| Err(Error::Usage(what));
+    if !positive(o.pen_mm) {
+        return bad(format!("--pen {}: expected a width in mm > 0", o.pen_mm));
+    }
+    if !(positive(o.dash_mm[0]) && positive(o.dash_mm[1])) {
+        return bad(format!(
+            "--dash {},{}: expected dash and gap lengths in mm > 0",
+            o.dash_mm[0], o.dash_mm[1]
+        ));
+    }
+    if !(o.join_mm.is_finite() && o.join_mm >= 0.0) {
+        return bad(format!("--join {}: expected mm >= 0", o.join_mm));
+    }
+    if !(o.simplify_mm.is_finite() && o.simplify_mm >= 0.0) {
+        return bad(format!("--simplify {}: expected mm >= 0", o.simplify_mm));
+    }
+    if let Some(d) = o.dpi {
+        if !(positive(d) && d <= 10_000.0) {
+            return bad(format!("--dpi {d}: expected dots per inch in (0, 10000]"));
+        }
+    }
+    if let Some(h) = &o.hatch {
+        if !(positive(h.spacing_mm) && h.spacing_mm >= 0.01) {
+            return bad(format!(
+                "--hatch-spacing {}: expected mm >= 0.01",
+                h.spacing_mm
+            ));
+        }
+        if h.angle_deg.is_some_and(|a| !a.is_finite()) {
+            return bad("--hatch-angle: expected degrees".into());
+        }
+    }
+    if let Some(r) = o.frame {
+        if r.is_empty()
+            || !(r.xmin.is_finite()
+                && r.xmax.is_finite()
+                && r.ymin.is_finite()
+                && r.ymax.is_finite())
+        {
+            return bad("the picture's frame is empty".into());
+        }
+    }
+    Ok(())
+}
+
+/// Top-level objects: for every leaf, the index of its top-level object (the first part of
+/// its path), numbered in order of first appearance, and their names.
+struct TopObjects {
+    of_leaf: Vec<u32>,
+    names: Vec<String>,
+}
+
+fn top_objects(scene: &Scene) -> TopObjects {
+    let mut names: Vec<String> = Vec::new();
+    let of_leaf = scene
+        .leaves()
+        .iter()
+        .map(|l| {
+            let top = l.path.split('/').next().unwrap_or("").to_string();
+            let k = names.iter().position(|n| *n == top).unwrap_or_else(|| {
+                names.push(top);
+                names.len() - 1
+            });
+            k as u32
+        })
+        .collect();
+    TopObjects { of_leaf, names }
+}
+
+/// A polyline simplified to within `tol` (Ramer–Douglas–Peucker, geo); its ends stay.
+fn simplify(l: &[Pt2], tol: f64) -> Vec<Pt2> {
+    let ls: LineString<f64> = l.iter().map(|p| (p[0], p[1])).collect();
+    ls.simplify(tol).0.iter().map(|c| [c.x, c.y]).collect()
+}
+
+/// A layer's strokes in plotting order, grouped into runs of one pen.
+fn ordered_runs(strokes: Vec<(Pen, Vec<Pt2>)>) -> Vec<Run> {
+    let ends: Vec<[Pt2; 2]> = strokes
+        .iter()
+        .map(|(_, l)| [l[0], l[l.len() - 1]])
+        .collect();
+    let mut strokes: Vec<Option<(Pen, Vec<Pt2>)>> = strokes.into_iter().map(Some).collect();
+    let mut runs: Vec<Run> = Vec::new();
+    for (i, rev) in plan(&ends) {
+        let Some((pen, mut l)) = strokes[i].take() else {
+            continue;
+        };
+        if rev {
+            l.reverse();
+        }
+        match runs.last_mut() {
+            Some(r) if r.pen == pen => r.lines.push(l),
+            _ => runs.push(Run {
+                pen,
+                lines: vec![l],
+            }),
+        }
+    }
+    runs
+}
+
+/// Flat-shaded visible regions on the page, clipped to the drawing area.
+fn fills(
+    view: &View,
+    vis: &Visibility,
+    layout: &Layout,
+    light: Option<crate::geom::V3>,
+) -> Vec<Fill> {
+    let light = light_direction(&view.camera, light);
+    vis.iter()
+        .filter(|(_, fv)| !fv.visible.is_empty())
+        .filter_map(|(f, fv): (FaceId, _)| {
+            let rings: Vec<Vec<Pt2>> = fv
+                .visible
+                .iter()
+                .flatten()
+                .map(|r| r.iter().map(|&p| layout.to_page(p)).collect::<Vec<Pt2>>())
+                .map(|r| layout.area.clip_ring(&r))
+                .filter(|r| r.len() >= 3)
+                .collect();
+            let shade = face_shade(view, f, &light);
+            (!rings.is_empty()).then(|| Fill {
+                rings,
+                grey: (110.0 + 140.0 * shade).round().clamp(0.0, 255.0) as u8,
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,662 @@
+//! The order a plotter draws a layer's strokes in: as little pen-up travel as we can find.
+//!
+//! Travel is the sum of distances from each stroke's end to the next stroke's start (as
+//! vpype's `stat` counts it); a stroke may be drawn either way. The order starts greedy
+//! (nearest next end, from the stroke nearest the page's top-left corner), then local search
+//! improves it until no move gains: 2-opt (reverse a run of strokes) and Or-opt (move a run
+//! of up to three strokes elsewhere, either way round), candidates from each end's nearest
+//! neighbours; then iterated local search: small double-bridge kicks, each followed by local
+//! search and kept only when the travel falls. The open path is closed into a cycle through a depot at distance 0 from
+//! everything, so a reversal can always take the shorter side. Deterministic: fixed
+//! neighbour lists, a FIFO work queue, ties to the lower index, a seeded generator for the
+//! kicks, and fixed budgets of moves and kicks.
+
+use crate::geom::poly2::{dist, Pt2};
+
+use crate::geom::rng::XorShift;
+
+use super::chain::greedy;
+
+/// Nearest neighbours kept per stroke end.
+const NEIGHBOURS: usize = 16;
+
+/// Longest run of strokes an Or-opt move carries.
+const OR_RUN: usize = 3;
+
+/// Moves allowed per stroke (a bound on the work, never reached in practice).
+const MOVES_PER_STROKE: usize = 64;
+
+/// Kicks of the iterated local search per stroke, over at most [`MAX_KICKED_STROKES`].
+const KICKS_PER_STROKE: usize = 4;
+
+/// Strokes counted for the number of kicks (a bound on the work for huge layers).
+const MAX_KICKED_STROKES: usize = 500;
+
+/// Longest run a kick moves.
+const KICK_RUN: usize = 30;
+
+/// Pen-up travel of strokes drawn in order: Σ |end(i) − start(i+1)|.
+pub fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
+    lines
+        .windows(2)
+        .map(|w| {
+            let (a, b) = (w[0].as_ref(), w[1].as_ref());
+            dist(a[a.len() - 1], b[0])
+        })
+        .sum()
+}
+
+/// The drawing order of strokes given by their (start, end) points: (stroke, reversed).
+pub fn plan(ends: &[[Pt2; 2]]) -> Vec<(usize, bool)> {
+    let n = ends.len();
+    if n < 3 {
+        return greedy(ends, 0);
+    }
+    let home = [0.0, 0.0];
+    let first = (0..n)
+        .min_by(|&i, &j| {
+            let d = |k: usize| dist(ends[k][0], home).min(dist(ends[k][1], home));
+            d(i).total_cmp(&d(j)).then(i.cmp(&j))
+        })
+        .unwrap_or(0);
+    let mut t = Tour::new(ends, &greedy(ends, first));
+    t.improve();
+    t.order()
+}
+
+/// A cyclic tour: the strokes and the depot (index n), each stroke with its direction.
+struct Tour<'a> {
+    ends: &'a [[Pt2; 2]],
+    /// Node at each position (n is the depot).
+    seq: Vec<usize>,
+    /// Position of each node.
+    pos: Vec<usize>,
+    /// Stroke drawn end to start (along the array's forward direction).
+    rev: Vec<bool>,
+    /// For each end slot (2i start, 2i + 1 end of stroke i): nearest other strokes' slots.
+    near: Vec<Vec<usize>>,
+    /// Least gain a move must bring (a rounding guard).
+    eps: f64,
+    /// Reversals made, when they are to be undone.
+    log: Option<Vec<(usize, usize)>>,
+    /// Strokes in the local search's work queue (all false between searches).
+    queued: Vec<bool>,
+}
+
+impl<'a> Tour<'a> {
+    fn new(ends: &'a [[Pt2; 2]], order: &[(usize, bool)]) -> Tour<'a> {
+        let n = ends.len();
+        let mut seq: Vec<usize> = order.iter().map(|o| o.0).collect();
+        seq.push(n);
+        let mut pos = vec![0; n + 1];
+        for (k, &v) in seq.iter().enumerate() {
+            pos[v] = k;
+        }
+        let mut rev = vec![false; n + 1];
+        for &(i, r) in order {
+            rev[i] = r;
+        }
+        let b = crate::geom::Rect::of_points(ends.iter().flatten());
+        Tour {
+            ends,
+            seq,
+            pos,
+            rev,
+            near: neighbours(ends),
+            eps: 1e-12 * b.longer_side().max(f64::MIN_POSITIVE),
+            log: None,
+            queued: vec![false; n],
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.seq.len()
+    }
+
+    fn at(&self, k: isize) -> usize {
+        let n = self.len() as isize;
+        self.seq[k.rem_euclid(n) as usize]
+    }
+
+    /// Entry point of node v in the forward direction (None for the depot).
+    fn start(&self, v: usize) -> Option<Pt2> {
+        (v < self.ends.len()).then(|| self.ends[v][usize::from(self.rev[v])])
+    }
+
+    /// Exit point of node v in the forward direction (None for the depot).
+    fn end(&self, v: usize) -> Option<Pt2> {
+        (v < self.ends.len()).then(|| self.ends[v][usize::from(!self.rev[v])])
+    }
+
+    fn d(p: Option<Pt2>, q: Option<Pt2>) -> f64 {
+        match (p, q) {
+            (Some(p), Some(q)) => dist(p, q),
+            _ => 0.0,
+        }
+    }
+
+    /// Reverses the cyclic run of positions from `i` forward to `j` (inclusive), flipping the
+    /// strokes in it.
+    fn reverse(&mut self, i: usize, j: usize) {
+        if let Some(log) = &mut self.log {
+            log.push((i, j));
+        }
+        let n = self.len();
+        let len = (j + n - i) % n + 1;
+        for k in 0..len / 2 {
+            let (a, b) = ((i + k) % n, (j + n - k) % n);
+            self.seq.swap(a, b);
+        }
+        for k in 0..len {
+            let p = (i + k) % n;
+            let v = self.seq[p];
+            self.pos[v] = p;
+            self.rev[v] = !self.rev[v];
+        }
+    }
+
+    /// Reverses the run between positions i + 1 and j, or equivalently the rest of the cycle,
+    /// whichever is shorter.
+    fn two_opt_move(&mut self, i: usize, j: usize) {
+        let n = self.len();
+        let inner = (j + n - i) % n;
+        if inner <= n - inner {
+            self.reverse((i + 1) % n, j);
+        } else {
+            self.reverse((j + 1) % n, i);
+        }
+    }
+
+    /// Gain of replacing edges (i, i+1) and (j, j+1) by (i, j) and (i+1, j+1).
+    fn two_opt_gain(&self, i: usize, j: usize) -> f64 {
+        let (a, b) = (self.at(i as isize), self.at(i as isize + 1));
+        let (c, d) = (self.at(j as isize), self.at(j as isize + 1));
+        if i == j {
+            return 0.0;
+        }
+        Self::d(self.end(a), self.start(b)) + Self::d(self.end(c), self.start(d))
+            - Self::d(self.end(a), self.end(c))
+            - Self::d(self.start(b), self.start(d))
+    }
+
+    /// The best 2-opt move with a new edge at stroke v: (gain, i, j).
+    fn best_two_opt(&self, v: usize) -> Option<(f64, usize, usize)> {
+        let n = self.len();
+        let pv = self.pos[v];
+        let mut best: Option<(f64, usize, usize)> = None;
+        // Strictly better only: the first of equal gains wins.
+        let mut consider = |g: f64, i: usize, j: usize| {
+            if g > self.eps && best.is_none_or(|(bg, _, _)| g > bg) {
+                best = Some((g, i, j));
+            }
+        };
+        // New edge end(v) – end(m): positions (pos v, pos m).
+        for &q in &self.near[2 * v + usize::from(!self.rev[v])] {
+            let m = q / 2;
+            if q % 2 == usize::from(!self.rev[m]) {
+                consider(self.two_opt_gain(pv, self.pos[m]), pv, self.pos[m]);
+            }
+        }
+        // New edge start(v) – start(m): positions (pos v − 1, pos m − 1).
+        for &q in &self.near[2 * v + usize::from(self.rev[v])] {
+            let m = q / 2;
+            if q % 2 == usize::from(self.rev[m]) {
+                let (i, j) = ((pv + n - 1) % n, (self.pos[m] + n - 1) % n);
+                consider(self.two_opt_gain(i, j), i, j);
+            }
+        }
+        best
+    }
+
+    /// The best Or-opt move of a run starting at stroke v: (gain, run length, edge position p
+    /// to insert after, reversed).
+    fn best_or_opt(&self, v: usize) -> Option<(f64, usize, usize, bool)> {
+        let n = self.len();
+        let s0 = self.pos[v];
+        let mut best: Option<(f64, usize, usize, bool)> = None;
+        for run in 1..=OR_RUN.min(n.saturating_sub(3)) {
+            let s1 = (s0 + run - 1) % n;
+            let nodes: Vec<usize> = (0..run).map(|k| self.seq[(s0 + k) % n]).collect();
+            if nodes.contains(&(n - 1)) {
+                break; // the depot never moves
+            }
+            let (first, last) = (nodes[0], nodes[run - 1]);
+            let (prev, next) = (self.at(s0 as isize - 1), self.at(s1 as isize + 1));
+            let removed = Self::d(self.end(prev), self.start(first))
+                + Self::d(self.end(last), self.start(next))
+                - Self::d(self.end(prev), self.start(next));
+            if removed <= self.eps {
+                continue;
+            }
+            let (sp, ep) = (self.start(first), self.end(last));
+            let slots = [
+                2 * first + usize::from(self.rev[first]),
+                2 * last + usize::from(!self.rev[last]),
+            ];
+            for &slot in &slots {
+                for &q in &self.near[slot] {
+                    let m = q / 2;
+                    if nodes.contains(&m) {
+                        continue;
+                    }
+                    let pm = self.pos[m];
+                    for p in [(pm + n - 1) % n, pm] {
+                        let (u, w) = (self.seq[p], self.at(p as isize + 1));
+                        if nodes.contains(&u) || nodes.contains(&w) {
+                            continue;
+                        }
+                        let base = Self::d(self.end(u), self.start(w));
+                        let fwd = Self::d(self.end(u), sp) + Self::d(ep, self.start(w)) - base;
+                        let bwd = Self::d(self.end(u), ep) + Self::d(sp, self.start(w)) - base;
+                        for (cost, r) in [(fwd, false), (bwd, true)] {
+                            let g = removed - cost;
+                            if g > self.eps && best.is_none_or(|(bg, ..)| g > bg) {
+                                best = Some((g, run, p, r));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    /// Moves the run of `run` strokes at stroke v's position to just after position p,
+    /// reversed when `r`, by reversals over the shorter way round.
+    fn or_opt_move(&mut self, v: usize, run: usize, p: usize, r: bool) {
+        let n = self.len();
+        let s0 = self.pos[v];
+        let s1 = (s0 + run - 1) % n;
+        // Forward from the run to p: run, Y = (s1+1 ..= p). Rotating [run Y] to [Y run].
+        let ahead = (p + n - s1) % n;
+        // Backward: X = (p+1 ..= s0-1), rotating [X run] to [run X].
+        let behind = (s0 + n - p - 1) % n;
+        if ahead <= behind {
+            self.reverse(s0, p);
+            // Now Y reversed sits at s0 .., the run reversed at the end.
+            let y_end = (s0 + ahead - 1) % n;
+            if ahead > 0 {
+                self.reverse(s0, y_end);
+            }
+            if !r {
+                self.reverse((y_end + 1) % n, p);
+            }
+        } else {
+            let x0 = (p + 1) % n;
+            self.reverse(x0, s1);
+            // Now the run reversed sits at x0 .., X reversed after it.
+            let run_end = (x0 + run - 1) % n;
+            if behind > 0 {
+                self.reverse((run_end + 1) % n, s1);
+            }
+            if !r {
+                self.reverse(x0, run_end);
+            }
+        }
+    }
+
+    /// Local search until no move gains, then kicks: a local double bridge (two neighbouring
+    /// runs of strokes swapped) followed by local search around it, kept only when the whole
+    /// brings the travel down, undone otherwise (iterated local search).
+    fn improve(&mut self) {
+        let strokes = self.ends.len();
+        let mut budget = MOVES_PER_STROKE * strokes;
+        let all: Vec<usize> = self.seq[..strokes].to_vec();
+        self.local_search(all, &mut budget);
+        if self.len() < 8 {
+            return;
+        }
+        let mut rng = XorShift::new(0x5DEE_CE66_D1CE_5EED);
+        for _ in 0..KICKS_PER_STROKE * strokes.min(MAX_KICKED_STROKES) {
+            if budget == 0 {
+                break;
+            }
+            self.log = Some(Vec::new());
+            let (worse, touched) = self.kick(&mut rng);
+            let gain = self.local_search(touched, &mut budget);
+            let log = self.log.take().unwrap_or_default();
+            if gain - worse <= self.eps {
+                for &(i, j) in log.iter().rev() {
+                    self.reverse(i, j);
+                }
+            }
+        }
+    }
+
+    /// Local search from the strokes in `queue` until no move gains (or the budget is
+    /// spent): the total gain.
+    fn local_search(&mut self, queue: Vec<usize>, budget: &mut usize) -> f64 {
+        let strokes = self.ends.len();
+        let mut queued = std::mem::take(&mut self.queued);
+        let mut queue: std::collections::VecDeque<usize> =
+            queue.into_iter().filter(|&v| v < strokes).collect();
+        queue.retain(|&v| !std::mem::replace(&mut queued[v], true));
+        let mut gained = 0.0;
+        while let Some(v) = queue.pop_front() {
+            queued[v] = false;
+            if *budget == 0 {
+                break;
+            }
+            let nodes: Vec<usize> = if let Some((g, i, j)) = self.best_two_opt(v) {
+                let nodes = [i, i + 1, j, j + 1]
+                    .iter()
+                    .map(|&k| self.at(k as isize))
+                    .collect();
+                self.two_opt_move(i, j);
+                gained += g;
+                [nodes, vec![v]].concat()
+            } else if let Some((g, run, p, r)) = self.best_or_opt(v) {
+                let s0 = self.pos[v] as isize;
+                let nodes = [s0 - 1, s0, s0 + run as isize - 1, s0 + run as isize]
+                    .into_iter()
+                    .chain([p as isize, p as isize + 1])
+                    .map(|k| self.at(k))
+                    .collect();
+                self.or_opt_move(v, run, p, r);
+                gained += g;
+                nodes
+            } else {
+                continue;
+            };
+            *budget -= 1;
+            for u in nodes {
+                if u < strokes && !queued[u] {
+                    queued[u] = true;
+                    queue.push_back(u);
+                }
+            }
+        }
+        // A spent budget leaves strokes queued: clear them for the next search.
+        for v in queue {
+            queued[v] = false;
+        }
+        self.queued = queued;
+        gained
+    }
+
+    /// Travel of the edge leaving position k.
+    fn edge(&self, k: usize) -> f64 {
+        Self::d(
+            self.end(self.at(k as isize)),
+            self.start(self.at(k as isize + 1)),
+        )
+    }
+
+    /// A local double bridge: the runs B and C after a random position p swapped. Returns how
+    /// much longer the travel got and the strokes at the changed edges.
+    fn kick(&mut self, rng: &mut XorShift) -> (f64, Vec<usize>) {
+        let n = self.len();
+        let most = KICK_RUN.min((n - 2) / 2).max(1);
+        let p = rng.below(n);
+        let (l1, l2) = (1 + rng.below(most), 1 + rng.below(most));
+        let span = l1 + l2 + 1;
+        let cost = |t: &Self| (0..span).map(|k| t.edge((p + k) % n)).sum::<f64>();
+        let before = cost(self);
+        self.reverse((p + 1) % n, (p + l1 + l2) % n);
+        self.reverse((p + 1) % n, (p + l2) % n);
+        self.reverse((p + l2 + 1) % n, (p + l1 + l2) % n);
+        let after = cost(self);
+        let touched = [0, 1, l2, l2 + 1, l1 + l2, l1 + l2 + 1]
+            .iter()
+            .map(|&k| self.seq[(p + k) % n])
+            .collect();
+        (after - before, touched)
+    }
+
+    /// The strokes in drawing order, starting after the depot.
+    fn order(&self) -> Vec<(usize, bool)> {
+        let n = self.len();
+        let d = self.pos[n - 1];
+        (1..n)
+            .map(|k| {
+                let v = self.seq[(d + k) % n];
+                (v, self.rev[v])
+            })
+            .collect()
+    }
+}
+
+/// For each end slot, the slots of the nearest ends of other strokes (up to [`NEIGHBOURS`]),
+/// nearest first; from a uniform grid, searched ring by ring.
+fn neighbours(ends: &[[Pt2; 2]]) -> Vec<Vec<usize>> {
+    let pts: Vec<Pt2> = ends.iter().flatten().copied().collect();
+    let b = crate::geom::Rect::of_points(pts.iter());
+    let side = b.longer_side();
+    let g = ((pts.len() as f64 / 2.0).sqrt().ceil() as usize).clamp(1, 2048);
+    let cell = if side > 0.0 && side.is_finite() {
+        side / g as f64
+    } else {
+        1.0
+    };
+    let coord = |v: f64, o: f64| (((v - o) / cell).floor().max(0.0) as usize).min(g - 1);
+    let mut cells: Vec<Vec<usize>> = vec![Vec::new(); g * g];
+    for (s, p) in pts.iter().enumerate() {
+        cells[coord(p[1], b.ymin) * g + coord(p[0], b.xmin)].push(s);
+    }
+    let mut out = Vec::with_capacity(pts.len());
+    let mut found: Vec<(f64, usize)> = Vec::new();
+    for (s, p) in pts.iter().enumerate() {
+        let (cx, cy) = (coord(p[0], b.xmin), coord(p[1], b.ymin));
+        found.clear();
+        for r in 0..g {
+            // Ring r holds nothing nearer than (r − 1) cells.
+            if found.len() >= NEIGHBOURS {
+                found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                found.truncate(NEIGHBOURS);
+                if r > 1 && found[NEIGHBOURS - 1].0 < (r - 1) as f64 * cell {
+                    break;
+                }
+            }
+            if r > cx.max(cy).max(g - 1 - cx).max(g - 1 - cy) {
+                break; // the ring lies wholly outside the grid
+            }
+            let (y0, y1) = (cy.saturating_sub(r), (cy + r).min(g - 1));
+            let (x0, x1) = (cx.saturating_sub(r), (cx + r).min(g - 1));
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    if x.abs_diff(cx) != r && y.abs_diff(cy) != r {
+                        continue;
+                    }
+                    for &t in &cells[y * g + x] {
+                        if t / 2 != s / 2 {
+                            found.push((dist(*p, pts[t]), t));
+                        }
+                    }
+                }
+            }
+        }
+        found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        found.truncate(NEIGHBOURS);
+        out.push(found.iter().map(|f| f.1).collect());
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn apply(ends: &[[Pt2; 2]], order: &[(usize, bool)]) -> Vec<Vec<Pt2>> {
+        order
+            .iter()
+            .map(|&(i, r)| {
+                if r {
+                    vec![ends[i][1], ends[i][0]]
+                } else {
+                    vec![ends[i][0], ends[i][1]]
+                }
+            })
+            .collect()
+    }
+
+    fn random_strokes(n: usize, seed: u64) -> Vec<[Pt2; 2]> {
+        let mut rng = crate::geom::rng::XorShift::new(seed);
+        let mut rnd = || rng.range(0.0, 100.0);
+        (0..n)
+            .map(|_| {
+                let a = [rnd(), rnd()];
+                [a, [a[0] + rnd() * 0.05, a[1] + rnd() * 0.05]]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn plan_is_a_permutation_and_beats_greedy() {
+        for (n, seed) in [(3, 1), (10, 2), (200, 3), (2000, 4)] {
+            let ends = random_strokes(n, seed);
+            let p = plan(&ends);
+            let mut seen: Vec<usize> = p.iter().map(|o| o.0).collect();
+            seen.sort_unstable();
+            assert_eq!(seen, (0..n).collect::<Vec<_>>());
+            let g = travel(&apply(&ends, &greedy(&ends, 0)));
+            let t = travel(&apply(&ends, &p));
+            assert!(t <= g + 1e-9, "n {n}: plan {t} > greedy {g}");
+            if n >= 200 {
+                assert!(t < 0.95 * g, "n {n}: plan {t} not clearly below greedy {g}");
+            }
+            assert_eq!(p, plan(&ends), "deterministic");
+        }
+    }
+
+    #[test]
+    fn strokes_on_a_line_are_drawn_in_a_row() {
+        // Ten unit strokes along x, given shuffled and some reversed: one pass, no travel
+        // except the unit gaps between them.
+        let mut ends: Vec<[Pt2; 2]> = (0..10)
+            .map(|k| {
+                let x = 2.0 * f64::from(k);
+                [[x, 0.0], [x + 1.0, 0.0]]
+            })
+            .collect();
+        ends.swap(2, 7);
+        ends.swap(0, 5);
+        ends[3].reverse();
+        ends[8].reverse();
+        let t = travel(&apply(&ends, &plan(&ends)));
+        assert!((t - 9.0).abs() < 1e-12, "{t}");
+    }
+
+    #[test]
+    fn reversals_and_moves_keep_positions_consistent() {
+        let ends = random_strokes(12, 9);
+        let order: Vec<(usize, bool)> = (0..12).map(|i| (i, i % 3 == 0)).collect();
+        let mut t = Tour::new(&ends, &order);
+        let before = cycle_cost(&t);
+        t.reverse(10, 2); // wraps around the depot at 12
+        t.or_opt_move(t.seq[4], 2, 8, true);
+        t.or_opt_move(t.seq[9], 3, 1, false);
+        for (k, &v) in t.seq.iter().enumerate() {
+            assert_eq!(t.pos[v], k);
+        }
+        let mut all = t.seq.clone();
+        all.sort_unstable();
+        assert_eq!(all, (0..13).collect::<Vec<_>>());
+        assert!(cycle_cost(&t).is_finite() && before.is_finite());
+    }
+
+    fn cycle_cost(t: &Tour) -> f64 {
+        (0..t.len() as isize)
+            .map(|k| Tour::d(t.end(t.at(k)), t.start(t.at(k + 1))))
+            .sum()
+    }
+
+    #[test]
+    fn or_opt_gain_is_the_cost_change() {
+        // Every Or-opt move the search proposes lowers the cycle's cost by its gain.
+        let ends = random_strokes(60, 5);
+        let mut t = Tour::new(&ends, &greedy(&ends, 0));
+        for v in 0..60 {
+            if let Some((g, run, p, r)) = t.best_or_opt(v) {
+                let before = cycle_cost(&t);
+                t.or_opt_move(v, run, p, r);
+                let after = cycle_cost(&t);
+                assert!(
+                    (before - after - g).abs() < 1e-9,
+                    "{before} - {after} != {g}"
+                );
+            }
+            if let Some((g, i, j)) = t.best_two_opt(v) {
+                let before = cycle_cost(&t);
+                t.two_opt_move(i, j);
+                let after = cycle_cost(&t);
+                assert!(
+                    (before - after - g).abs() < 1e-9,
+                    "{before} - {after} != {g}"
+                );
+            }
+        }
+    }
+}
+#[cfg(test)]
+mod against_full_two_opt {
+    use super::*;
+    use crate::geom::rng::XorShift;
+
+    /// Travel after a full 2-opt from `order`, written independently the way vpype's
+    /// `linesort --two-opt` does it: for each position, flip the best run starting there,
+    /// while anything gains.
+    fn full_two_opt(ends: &[[Pt2; 2]], order: &[(usize, bool)]) -> f64 {
+        let mut e: Vec<[Pt2; 2]> = order
+            .iter()
+            .map(|&(i, r)| if r { [ends[i][1], ends[i][0]] } else { ends[i] })
+            .collect();
+        let n = e.len();
+        let mut improved = true;
+        while improved {
+            improved = false;
+            for mid in 0..n {
+                let mut best = (-1e-10, usize::MAX);
+                for j in mid..n {
+                    let src = if mid > 0 { Some(e[mid - 1][1]) } else { None };
+                    let dst = if j + 1 < n { Some(e[j + 1][0]) } else { None };
+                    let d = |a: Option<Pt2>, b: Option<Pt2>| match (a, b) {
+                        (Some(a), Some(b)) => dist(a, b),
+                        _ => 0.0,
+                    };
+                    let delta = d(src, Some(e[j][1])) + d(Some(e[mid][0]), dst)
+                        - d(src, Some(e[mid][0]))
+                        - d(Some(e[j][1]), dst);
+                    if delta < best.0 {
+                        best = (delta, j);
+                    }
+                }
+                if best.1 != usize::MAX {
+                    e[mid..=best.1].reverse();
+                    for s in &mut e[mid..=best.1] {
+                        s.swap(0, 1);
+                    }
+                    improved = true;
+                }
+            }
+        }
+        e.windows(2).map(|w| dist(w[0][1], w[1][0])).sum()
+    }
+
+    #[test]
+    fn plan_is_at_least_as_short_as_a_full_two_opt() {
+        let mut rng = XorShift::new(77);
+        for n in [50, 100, 300] {
+            let ends: Vec<[Pt2; 2]> = (0..n)
+                .map(|_| {
+                    let a = [rng.range(0., 100.), rng.range(0., 100.)];
+                    let b = [a[0] + rng.range(-5., 5.), a[1] + rng.range(-5., 5.)];
+                    [a, b]
+                })
+                .collect();
+            let g = greedy(&ends, 0);
+            let ap = |o: &[(usize, bool)]| -> f64 {
+                o.windows(2)
+                    .map(|w| {
+                        dist(
+                            ends[w[0].0][usize::from(!w[0].1)],
+                            ends[w[1].0][usize::from(w[1].1)],
+                        )
+                    })
+                    .sum()
+            };
+            let mine = ap(&plan(&ends));
+            let full = full_two_opt(&ends, &g);
+            assert!(mine <= full, "n {n}: plan {mine} > full 2-opt {full}");
+        }
+    }
+}
