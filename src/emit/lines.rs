@@ -5,6 +5,7 @@
 //! hidden part is the rest of it. Edge-on faces have empty VTPs, so the other face decides.
 
 use std::collections::BTreeMap;
+use std::sync::OnceLock;
 
 use rayon::prelude::*;
 
@@ -15,10 +16,11 @@ use crate::view::{Camera, Projection, View};
 use crate::visibility::Visibility;
 
 use super::chain::{chain, order};
-use super::clip_segment::{at, complement, intervals_in, union, Interval};
+use super::clip_segment::{at, complement, intervals_in, intervals_in_region, union, Interval};
 use super::edges::{mesh_edges, Edge, EdgeKind, EdgeOptions};
 use super::intersect::intersection_edges;
 use super::json::Lines;
+use super::region::Region;
 use super::world::WorldFaces;
 
 /// Options of the line drawing.
@@ -116,17 +118,46 @@ pub fn visible_intervals(a: Pt2, b: Pt2, faces: &[FaceId], vis: &Visibility) -> 
     union(&lists)
 }
 
+/// The VTP of every face as an indexed [`Region`], made when first asked for: the edges of
+/// one face are clipped against its region many times.
+struct Regions<'v> {
+    vis: &'v Visibility,
+    made: Vec<OnceLock<Region<'v>>>,
+}
+
+impl<'v> Regions<'v> {
+    fn new(vis: &'v Visibility, faces: usize) -> Self {
+        Regions {
+            vis,
+            made: (0..faces).map(|_| OnceLock::new()).collect(),
+        }
+    }
+
+    /// [`visible_intervals`] with the regions indexed once.
+    fn visible_intervals(&self, a: Pt2, b: Pt2, faces: &[FaceId]) -> Vec<Interval> {
+        let lists: Vec<Vec<Interval>> = faces
+            .iter()
+            .map(|&f| {
+                let region = self.made[f.index()]
+                    .get_or_init(|| Region::new(&self.vis.face(f).visible));
+                intervals_in_region(a, b, region)
+            })
+            .collect();
+        union(&lists)
+    }
+}
+
 /// Visible and hidden pieces of one edge.
 type Pieces = (Vec<[Pt2; 2]>, Vec<[Pt2; 2]>);
 
-fn edge_pieces(view: &View, vis: &Visibility, e: &Edge, hidden: bool) -> Pieces {
+fn edge_pieces(view: &View, regions: &Regions, e: &Edge, hidden: bool) -> Pieces {
     let Some([a, b]) = project_segment(&view.camera, &e.ends[0], &e.ends[1]) else {
         return (Vec::new(), Vec::new());
     };
     if a == b {
         return (Vec::new(), Vec::new());
     }
-    let shown = visible_intervals(a, b, &e.faces, vis);
+    let shown = regions.visible_intervals(a, b, &e.faces);
     let seg = |iv: &Interval| [at(a, b, iv[0]), at(a, b, iv[1])];
     let keep = |iv: &&Interval| iv[1] > iv[0];
     let vis_pieces = shown.iter().filter(keep).map(seg).collect();
@@ -140,9 +171,10 @@ fn edge_pieces(view: &View, vis: &Visibility, e: &Edge, hidden: bool) -> Pieces 
 
 /// Clips every edge against the VTPs, then chains and orders the pieces per (leaf, kind).
 pub fn split_edges(view: &View, vis: &Visibility, edges: &[Edge], hidden: bool) -> Drawing {
+    let regions = Regions::new(vis, view.screen.face_count());
     let pieces: Vec<Pieces> = edges
         .par_iter()
-        .map(|e| edge_pieces(view, vis, e, hidden))
+        .map(|e| edge_pieces(view, &regions, e, hidden))
         .collect();
     let mut vis_groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>> = BTreeMap::new();
     let mut hid_groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>> = BTreeMap::new();

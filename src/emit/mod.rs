@@ -9,6 +9,7 @@ pub mod lines;
 pub mod marks;
 pub mod picture;
 pub mod png;
+pub mod region;
 pub mod svg;
 pub mod world;
 
