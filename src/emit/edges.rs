@@ -125,7 +125,11 @@ pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Ed
                 let (i, j) = (h.at as usize, (h.at as usize + 1) % pts.len());
                 out.push(Edge {
                     leaf,
-                    ends: if h.fwd { [pts[i], pts[j]] } else { [pts[j], pts[i]] },
+                    ends: if h.fwd {
+                        [pts[i], pts[j]]
+                    } else {
+                        [pts[j], pts[i]]
+                    },
                     faces: adj.iter().map(|h| FaceId(h.face)).collect(),
                     kind,
                 });

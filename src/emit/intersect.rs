@@ -105,9 +105,8 @@ pub fn cross(f: &WorldFace, g: &WorldFace) -> Vec<[P3; 2]> {
 /// [`cross`] with the faces' plane reference points given. The smaller face is classified
 /// first: a large face is scanned only for a pair whose other face does cross its plane.
 fn cross_with(f: &WorldFace, g: &WorldFace, rf: &[P3; 3], rg: &[P3; 3]) -> Vec<[P3; 2]> {
-    let signs = |pts: &[P3], r: &[P3; 3]| -> Vec<f64> {
-        pts.iter().map(|p| orient3d_refs(r, p)).collect()
-    };
+    let signs =
+        |pts: &[P3], r: &[P3; 3]| -> Vec<f64> { pts.iter().map(|p| orient3d_refs(r, p)).collect() };
     let straddles = |s: &[f64]| s.iter().any(|&x| x < 0.0) && s.iter().any(|&x| x > 0.0);
     let (sf, sg) = if f.points.len() <= g.points.len() {
         let sf = signs(&f.points, rg);

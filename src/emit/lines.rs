@@ -138,8 +138,8 @@ impl<'v> Regions<'v> {
         let lists: Vec<Vec<Interval>> = faces
             .iter()
             .map(|&f| {
-                let region = self.made[f.index()]
-                    .get_or_init(|| Region::new(&self.vis.face(f).visible));
+                let region =
+                    self.made[f.index()].get_or_init(|| Region::new(&self.vis.face(f).visible));
                 intervals_in_region(a, b, region)
             })
             .collect();

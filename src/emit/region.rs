@@ -250,7 +250,9 @@ mod tests {
         assert!(r.tree.is_some());
         let mut s = 1u64;
         let mut rnd = || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (s >> 11) as f64 / (1u64 << 53) as f64 * 2.4 - 1.2
         };
         let mut pts: Vec<Pt2> = (0..2000).map(|_| [rnd(), rnd()]).collect();
@@ -259,7 +261,10 @@ mod tests {
         pts.extend([[0.2, 0.0], [-0.2, 0.2], [0.0, -0.2]]);
         for p in pts {
             assert_eq!(r.locate(p), locate(&m, p), "{p:?}");
-            let full = r.edges.iter().any(|&[c, d]| dist_to_segment(c, d, p) <= 1e-3);
+            let full = r
+                .edges
+                .iter()
+                .any(|&[c, d]| dist_to_segment(c, d, p) <= 1e-3);
             assert_eq!(r.near_boundary(p, 1e-3), full, "{p:?}");
         }
         let q = Rect {

@@ -147,7 +147,7 @@ mod tests {
     fn cam(text: &str) -> Result<CameraSpec> {
         let src = Source::new(Path::new("c.kdl"), text.to_string());
         let doc = src.parse().unwrap();
-        parse_camera(&Node::new(&src, &doc.nodes()[0]))
+        parse_camera(&Node::new(&src, &doc[0]))
     }
 
     #[test]

@@ -433,7 +433,7 @@ mod tests {
     fn build_first(text: &str, xf: M4) -> Built {
         let src = Source::new(Path::new("g.kdl"), text.to_string());
         let doc = src.parse().unwrap();
-        let nodes: Vec<Node> = doc.nodes().iter().map(|n| Node::new(&src, n)).collect();
+        let nodes: Vec<Node> = doc.iter().map(|n| Node::new(&src, n)).collect();
         let faces: Vec<Node> = nodes
             .iter()
             .copied()

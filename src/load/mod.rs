@@ -3,9 +3,11 @@
 mod args;
 mod camera;
 mod geometry;
+mod kdl;
 pub mod mesh_file;
 pub mod obj;
 pub mod ply;
+mod read;
 pub mod scene_file;
 mod source;
 pub mod stl;

@@ -122,7 +122,7 @@ impl Loader<'_> {
             shown: path.to_path_buf(),
             include_at: None,
         });
-        let nodes: Vec<Node> = doc.nodes().iter().map(|n| Node::new(&src, n)).collect();
+        let nodes: Vec<Node> = doc.iter().map(|n| Node::new(&src, n)).collect();
         let result = self.top_nodes(&nodes, at.is_none());
         self.stack.pop();
         self.loaded.insert(canonical);

@@ -70,6 +70,10 @@ pub fn convex_inbox(mesh: &Mesh, tris: &Triangles) -> Option<Box3> {
     let n = mesh.vertices.len() as f64;
     let centroid = P3::from(mesh.vertices.iter().map(|p| p.coords).sum::<V3>() / n);
     let cbox = Box3::from_points(mesh.vertices.iter());
+    // A box (or any solid that fills its CBOX) is its own INBOX: one exact test, no search.
+    if tris.box_in_kernel(&cbox) {
+        return Some(cbox);
+    }
     let best = largest_box_within(&tris.half_spaces(), &centroid, &cbox)?;
     let verified = SHRINKS
         .iter()

@@ -30,8 +30,25 @@ const MAX_NEWTON: usize = 400;
 /// strictly inside all of them. None when no strictly feasible start exists or the
 /// iteration breaks down (an unbounded or degenerate region).
 pub fn largest_box(planes: &[HalfSpace], interior: &P3) -> Option<Box3> {
+    // Solved with `interior` at the origin: far from the world's origin the slacks would
+    // be small differences of large offsets, and Newton's method would crawl.
+    let c = interior.coords;
+    let planes: Vec<HalfSpace> = planes
+        .iter()
+        .map(|h| HalfSpace {
+            normal: h.normal,
+            offset: h.offset - h.normal.dot(&c),
+        })
+        .collect();
+    let b = largest_box_at_origin(&planes)?;
+    let out = Box3::new(b.lo + c, b.hi + c);
+    out.has_interior().then_some(out)
+}
+
+/// [`largest_box`] with the interior point at the origin.
+fn largest_box_at_origin(planes: &[HalfSpace]) -> Option<Box3> {
     let rows: Vec<Row> = planes.iter().map(constraint_row).collect();
-    let mut x = start(planes, interior)?;
+    let mut x = start(planes, &P3::origin())?;
     let mut t = 1.0;
     let mut steps = 0;
     loop {
