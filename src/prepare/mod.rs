@@ -15,7 +15,29 @@ use crate::scene::Scene;
 /// leaf object is left alone: an inbox prunes only other objects, so there is nothing for it
 /// to do ("model no more than a scene needs").
 pub fn prepare(scene: &mut Scene) {
-    if scene.leaves().len() >= 2 {
+    if has_two_leaves(&scene.root) {
         compute_inboxes(&mut scene.root);
     }
+}
+
+/// True when the tree has at least two leaves (instances counted, none expanded: the walk
+/// stops at the second leaf).
+fn has_two_leaves(root: &crate::scene::Object) -> bool {
+    fn count(o: &crate::scene::Object, n: &mut usize) {
+        match &o.content {
+            crate::scene::Content::Mesh(_) => *n += 1,
+            crate::scene::Content::Subobjects(s) => {
+                for c in s {
+                    if *n >= 2 {
+                        return;
+                    }
+                    count(c, n);
+                }
+            }
+            crate::scene::Content::Instance(i) => count(&i.prototype, n),
+        }
+    }
+    let mut n = 0;
+    count(root, &mut n);
+    n >= 2
 }
