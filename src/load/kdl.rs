@@ -503,12 +503,14 @@ impl Reader<'_> {
             "inf" => Value::Float(f64::INFINITY),
             "-inf" => Value::Float(f64::NEG_INFINITY),
             "nan" => Value::Float(f64::NAN),
-            _ => return self.err(
-                at,
-                format!(
+            _ => {
+                return self.err(
+                    at,
+                    format!(
                     "unknown keyword `#{word}`: expected #true, #false, #null, #inf, #-inf or #nan"
                 ),
-            ),
+                )
+            }
         };
         self.i += word.len();
         Ok(v)
@@ -622,12 +624,14 @@ impl Reader<'_> {
             );
         }
         match word.as_str() {
-            "true" | "false" | "null" => return self.err(
-                at,
-                format!(
+            "true" | "false" | "null" => {
+                return self.err(
+                    at,
+                    format!(
                     "bare `{word}` is KDL v1; scene files are KDL v2, where it is written #{word}"
                 ),
-            ),
+                )
+            }
             "inf" | "-inf" | "nan" => {
                 return self.err(
                     at,

@@ -172,8 +172,13 @@ mod tests {
         assert!(matches!(e, Error::Io(..)));
         assert!(e.to_string().starts_with("/no/such/dir/m.obj: "), "{e}");
         let at = Location::line(Path::new("s.kdl"), 2, 7);
-        let e = load_mesh_at(Path::new("."), Some(&at)).unwrap_err().to_string();
-        assert_eq!(e, "s.kdl:2:7: .: unknown mesh file extension (expected .obj, .stl or .ply)");
+        let e = load_mesh_at(Path::new("."), Some(&at))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "s.kdl:2:7: .: unknown mesh file extension (expected .obj, .stl or .ply)"
+        );
     }
 
     #[test]

@@ -289,10 +289,13 @@ impl Loader<'_> {
             }
         }
         let mut object = assemble(n, name, geoms, subs)?;
-        self.opts
-            .check(&object, &format!("{} {:?}", n.name(), object.name), &n.loc())?;
+        self.opts.check(
+            &object,
+            &format!("{} {:?}", n.name(), object.name),
+            &n.loc(),
+        )?;
         if let Some(ib) = &body.inbox {
-            object.inbox = self.inbox(ib, &xf, &object.cbox)?;
+            object.inbox = self.checked_inbox(ib, &xf, &object)?;
         }
         Ok(object)
     }
@@ -336,7 +339,7 @@ impl Loader<'_> {
             .check(&object, &format!("instance {:?}", object.name), &n.loc())?;
         check_placed(n, &object.cbox)?;
         object.inbox = match &inbox {
-            Some(ib) => self.inbox(ib, &m, &object.cbox)?,
+            Some(ib) => self.checked_inbox(ib, &m, &object)?,
             None => proto.inbox.and_then(|b| transform_box(&b, &m)),
         };
         Ok(object)
@@ -405,6 +408,22 @@ impl Loader<'_> {
             )));
         }
         Ok(Some(placed.intersection_with(cbox)))
+    }
+
+    /// The explicit INBOX `n` of `object`, checked to lie inside one of its closed solids
+    /// (as a computed one is proven); kept shrunk by the check's margin.
+    fn checked_inbox(&mut self, n: &Node, xf: &M4, object: &Object) -> Result<Option<Box3>> {
+        let Some(b) = self.inbox(n, xf, &object.cbox)? else {
+            return Ok(None);
+        };
+        match crate::prepare::contain::inside(object, &b) {
+            Ok(shrunk) => Ok(Some(shrunk)),
+            Err(why) => Err(n.invalid(format!(
+                "the INBOX {:?}..{:?} is not inside the object: {why}",
+                b.lo.coords.as_slice(),
+                b.hi.coords.as_slice()
+            ))),
+        }
     }
 }
 
@@ -965,9 +984,21 @@ mod tests {
     fn errors_name_the_chain_of_includes_and_meshes() {
         let d = dir("chain");
         std::fs::create_dir_all(d.join("parts")).unwrap();
-        write(&d, "parts/bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 zero\nf 1 2 3\n");
-        write(&d, "parts/part.kdl", "\nobject \"p\" {\n  mesh \"bad.obj\"\n}\n");
-        let top = write(&d, "top.kdl", "object \"a\" { prism 3 }\ninclude \"parts/part.kdl\"\n");
+        write(
+            &d,
+            "parts/bad.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 zero\nf 1 2 3\n",
+        );
+        write(
+            &d,
+            "parts/part.kdl",
+            "\nobject \"p\" {\n  mesh \"bad.obj\"\n}\n",
+        );
+        let top = write(
+            &d,
+            "top.kdl",
+            "object \"a\" { prism 3 }\ninclude \"parts/part.kdl\"\n",
+        );
         let mut w = Vec::new();
         let e = load_scene_file(&top, &mut w).unwrap_err();
         let p = |f: &str| d.join(f).display().to_string();
@@ -980,18 +1011,31 @@ mod tests {
                 p("parts/bad.obj")
             )
         );
-        assert_eq!(e.location().unwrap().to_string(), format!("{}:3:7", p("parts/bad.obj")));
+        assert_eq!(
+            e.location().unwrap().to_string(),
+            format!("{}:3:7", p("parts/bad.obj"))
+        );
         // A directory, a device, a path with no mesh extension: at the mesh node.
         let e = err("meshdir", "object \"a\" {\n  mesh \".\"\n}\n");
-        assert_eq!(e, "s.kdl:2:3: .: unknown mesh file extension (expected .obj, .stl or .ply)");
+        assert_eq!(
+            e,
+            "s.kdl:2:3: .: unknown mesh file extension (expected .obj, .stl or .ply)"
+        );
         let dd = dir("meshdir2");
         std::fs::create_dir_all(dd.join("d.obj")).unwrap();
         let s = write(&dd, "s.kdl", "object \"a\" { mesh \"d.obj\" }\n");
         let e = load_scene_file(&s, &mut w).unwrap_err().to_string();
-        assert!(e.ends_with("s.kdl:1:14: cannot read d.obj: it is a directory, not a file") || e.contains("s.kdl:1:14: cannot read"), "{e}");
+        assert!(
+            e.ends_with("s.kdl:1:14: cannot read d.obj: it is a directory, not a file")
+                || e.contains("s.kdl:1:14: cannot read"),
+            "{e}"
+        );
         if Path::new("/dev/zero").exists() {
             let e = err("zero", "object \"a\" { mesh \"/dev/zero.obj\" }\n");
-            assert!(e.starts_with("s.kdl:1:14: cannot read mesh file /dev/zero.obj"), "{e}");
+            assert!(
+                e.starts_with("s.kdl:1:14: cannot read mesh file /dev/zero.obj"),
+                "{e}"
+            );
         }
     }
 

@@ -11,7 +11,10 @@ pub(crate) fn decode<'a>(path: &Path, bytes: &'a [u8], first_line: usize) -> Res
         // Valid UTF-8, but no text format here has NUL bytes: UTF-16 text is full of them.
         let before = &bytes[..nul];
         let line = first_line + before.iter().filter(|&&b| b == b'\n').count();
-        let start = before.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        let start = before
+            .iter()
+            .rposition(|&b| b == b'\n')
+            .map_or(0, |i| i + 1);
         let col = String::from_utf8_lossy(&before[start..]).chars().count() + 1;
         let nuls = bytes.iter().filter(|&&b| b == 0).count();
         let msg = if nuls * 3 > bytes.len() {
@@ -299,8 +302,13 @@ mod tests {
     #[test]
     fn load_text_decode_reports_line_and_column() {
         let utf16: Vec<u8> = "v 1 2 3\n".bytes().flat_map(|b| [b, 0]).collect();
-        let e = decode(Path::new("u.obj"), &utf16, 1).unwrap_err().to_string();
-        assert_eq!(e, "u.obj:1:2: NUL bytes: not UTF-8 text (UTF-16 text has a NUL in every other byte)");
+        let e = decode(Path::new("u.obj"), &utf16, 1)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "u.obj:1:2: NUL bytes: not UTF-8 text (UTF-16 text has a NUL in every other byte)"
+        );
         let e = decode(Path::new("g.obj"), b"v 1 2 3\nv \xc3\xa9 \xff\n", 1).unwrap_err();
         assert!(matches!(e, Error::Parse(..)));
         assert!(

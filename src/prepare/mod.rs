@@ -1,5 +1,6 @@
 //! The prepare stage: view-independent bounds computed once after loading — INBOXes.
 
+pub mod contain;
 pub mod convex;
 pub mod grow;
 pub mod halfspace;
