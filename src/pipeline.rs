@@ -12,9 +12,10 @@ use crate::emit::marks::face_marks;
 use crate::emit::picture::{picture, Picture};
 use crate::emit::png::to_png;
 use crate::emit::svg::to_svg;
-use crate::error::Result;
+use crate::error::{Location, Result, Warning};
 use crate::scene::Scene;
 use crate::view::{substitute, Camera, Cull, LodOptions, LodStats, View};
+use crate::visibility::empty::why_empty;
 use crate::visibility::{solve_counted, Counters, PassOptions, Visibility};
 
 /// What to render and how.
@@ -217,6 +218,8 @@ pub struct Rendered<'s> {
     pub png: Option<Vec<u8>>,
     /// Stage times and counters.
     pub stats: RenderStats,
+    /// What the caller should be told about the result (why it is empty, when it is).
+    pub warnings: Vec<Warning>,
 }
 
 impl Rendered<'_> {
@@ -281,6 +284,7 @@ pub fn render_with<'s>(
         View::from_cull(&scene, *camera, &cull)
     });
     drop(cull);
+    crate::view::finite::check_screen(&view.screen)?;
     let pass = PassOptions {
         use_inbox: !opts.no_inbox,
     };
@@ -291,6 +295,13 @@ pub fn render_with<'s>(
     let visibility = solve_counted(&view, pass, progress.map(Progress::done_counter));
     stats.times.push((Stage::Visibility, t.elapsed()));
     stats.counters = visibility.counters;
+    let mut warnings = Vec::new();
+    if let Some(why) = why_empty(scene.face_count(), &view, &visibility) {
+        warnings.push(Warning {
+            location: Location::file(&scene.source),
+            message: why,
+        });
+    }
     // Emitting needs the screen faces, not the tree: free it before the drawing's own memory.
     view.tree = Default::default();
     let out = &opts.outputs;
@@ -309,6 +320,7 @@ pub fn render_with<'s>(
         svg: None,
         png: None,
         stats: RenderStats::default(),
+        warnings,
     };
     stats.timed(Stage::Emit, progress, || -> Result<()> {
         if out.json {

@@ -18,10 +18,12 @@ pub(crate) struct CameraArgs {
     /// Point looked at (X,Y,Z); default the centre of the scene.
     #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
     pub(crate) target: Option<String>,
-    /// Vertical field of view in degrees (perspective).
-    #[arg(long, default_value_t = 40.0)]
-    pub(crate) fov: f64,
-    /// With --eye/--target: orthographic along target - eye.
+    /// Vertical field of view in degrees (perspective): with --eye (default 45, as in scene
+    /// files), or alone to change the scene's perspective camera.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub(crate) fov: Option<f64>,
+    /// Orthographic along target - eye: with --eye/--target, or alone to make the scene's
+    /// perspective camera orthographic.
     #[arg(long)]
     pub(crate) ortho: bool,
     /// Up vector (X,Y,Z); default +Y.
@@ -54,13 +56,16 @@ impl CameraArgs {
         if self.target.is_some() && self.eye.is_none() {
             bail!("--target needs --eye");
         }
+        if self.dir.is_some() && (self.eye.is_some() || self.ortho || self.fov.is_some()) {
+            bail!("--dir is an orthographic view of its own: it takes no --eye, --target, --fov or --ortho");
+        }
         let vec =
             |s: &Option<String>, flag: &str| s.as_deref().map(|s| parse_vec3(s, flag)).transpose();
         let req = CameraRequest {
             dir: vec(&self.dir, "dir")?,
             eye: vec(&self.eye, "eye")?.map(P3::from),
             target: vec(&self.target, "target")?.map(P3::from),
-            fov_deg: Some(self.fov),
+            fov_deg: self.fov,
             ortho: self.ortho,
             up: vec(&self.up, "up")?,
         };

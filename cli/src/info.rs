@@ -25,8 +25,8 @@ pub(crate) struct InfoArgs {
 }
 
 /// Runs `kepler info`.
-pub(crate) fn run(a: InfoArgs) -> Result<ExitCode> {
-    let scene = load(&a.scene, a.quiet)?;
+pub(crate) fn run(a: InfoArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
+    let scene = load(&a.scene, a.quiet, opts)?;
     if a.json {
         out(&object_json(&scene.root, "scene"));
     } else {

@@ -16,6 +16,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use kepler_hsr::scene::Scene;
+use kepler_hsr::LoadOptions;
 
 use camera_args::CameraArgs;
 
@@ -25,6 +26,10 @@ use camera_args::CameraArgs;
 pub struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Refuse scenes with more faces than this once their instances are placed (counted
+    /// before anything is expanded). The default fits a render in 24 GiB of memory.
+    #[arg(long, global = true, value_name = "N", default_value_t = kepler_hsr::load::DEFAULT_MAX_FACES)]
+    max_faces: usize,
 }
 
 #[derive(Subcommand, Debug)]
@@ -45,27 +50,30 @@ enum Command {
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<ExitCode> {
+    let opts = LoadOptions {
+        max_faces: cli.max_faces,
+    };
     match cli.command {
-        Command::Render(a) => render::run(a),
-        Command::Query(a) => query::run(a),
-        Command::Flatten(a) => flatten::run(a),
-        Command::Info(a) => info::run(a),
-        Command::Check(a) => check::run(a),
-        Command::Tribox(a) => tribox::run(a),
+        Command::Render(a) => render::run(a, &opts),
+        Command::Query(a) => query::run(a, &opts),
+        Command::Flatten(a) => flatten::run(a, &opts),
+        Command::Info(a) => info::run(a, &opts),
+        Command::Check(a) => check::run(a, &opts),
+        Command::Tribox(a) => tribox::run(a, &opts),
     }
 }
 
 /// Loads a scene and runs the prepare stage (INBOXes), printing warnings to standard error.
-fn load(path: &Path, quiet: bool) -> Result<Scene> {
-    let mut scene = load_only(path, quiet)?;
+fn load(path: &Path, quiet: bool, opts: &LoadOptions) -> Result<Scene> {
+    let mut scene = load_only(path, quiet, opts)?;
     kepler_hsr::prepare(&mut scene);
     Ok(scene)
 }
 
 /// Loads a scene without preparing it, printing its warnings to standard error.
-fn load_only(path: &Path, quiet: bool) -> Result<Scene> {
+fn load_only(path: &Path, quiet: bool, opts: &LoadOptions) -> Result<Scene> {
     let mut warnings = Vec::new();
-    let scene = kepler_hsr::load_scene(path, &mut warnings)?;
+    let scene = kepler_hsr::load_scene_with(path, opts, &mut warnings)?;
     if !quiet {
         print_warnings(&warnings);
     }
@@ -91,7 +99,20 @@ fn out(text: &str) {
         .and_then(|_| o.write_all(b"\n"));
 }
 
-/// Writes a file, naming it in the error.
+/// Writes a file atomically, naming it in the error: the bytes go to a temporary file beside
+/// it, which then replaces it, so a failed run never leaves a truncated file in place of a
+/// good one.
 fn write(path: &PathBuf, bytes: impl AsRef<[u8]>) -> Result<()> {
-    std::fs::write(path, bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
+    let name = path
+        .file_name()
+        .ok_or_else(|| anyhow::anyhow!("{}: not a file name", path.display()))?;
+    let mut tmp_name = std::ffi::OsString::from(".");
+    tmp_name.push(name);
+    tmp_name.push(format!(".kepler-{}.tmp", std::process::id()));
+    let tmp = path.with_file_name(tmp_name);
+    let done = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    done.map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        anyhow::anyhow!("{}: {e}", path.display())
+    })
 }

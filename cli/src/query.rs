@@ -38,8 +38,8 @@ pub(crate) struct QueryArgs {
 }
 
 /// Runs `kepler query`.
-pub(crate) fn run(a: QueryArgs) -> Result<ExitCode> {
-    let scene = load(&a.scene, a.quiet)?;
+pub(crate) fn run(a: QueryArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
+    let scene = load(&a.scene, a.quiet, opts)?;
     let asked = a.include.is_some() as u8
         + a.visp.is_some() as u8
         + a.visobj.is_some() as u8

@@ -5,8 +5,7 @@ use crate::error::Result;
 use crate::geom::{P3, V3};
 use crate::scene::CameraSpec;
 
-/// Vertical field of view when a perspective camera gives none, degrees.
-pub(super) const DEFAULT_FOV_DEG: f64 = 45.0;
+use crate::view::camera::DEFAULT_FOV_DEG;
 
 /// The nodes a `camera` block may hold.
 const CAMERA_NODES: [&str; 6] = ["eye", "target", "up", "fov", "ortho", "dir"];
