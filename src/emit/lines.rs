@@ -193,11 +193,28 @@ pub fn split_edges(view: &View, vis: &Visibility, edges: &[Edge], hidden: bool) 
 pub fn strokes(groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>>) -> Vec<Stroke> {
     let mut out = Vec::new();
     for ((leaf, kind), segs) in groups {
-        for pts in order(chain(&segs)) {
+        let lines = chain(&segs).into_iter().filter(|l| !is_dot(l)).collect();
+        for pts in order(lines) {
             out.push(Stroke { leaf, kind, pts });
         }
     }
     out
+}
+
+/// Relative length under which a polyline is rounding noise, not a line: clipping an edge
+/// against regions that touch it at a point leaves pieces about 1e-15 long, which a round cap
+/// would draw as a dot. No picture (at most 32768 pixels across) resolves 1e-9 of its size.
+const DOT: f64 = 1e-9;
+
+/// Whether polyline `pts` is a dot: its length is at most [`DOT`] times the magnitude of its
+/// coordinates (the scale of the rounding that made it).
+pub fn is_dot(pts: &[Pt2]) -> bool {
+    let scale = pts.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
+    let length: f64 = pts
+        .windows(2)
+        .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+        .sum();
+    length <= DOT * scale
 }
 
 /// Total length of polylines.
@@ -231,6 +248,20 @@ mod tests {
         assert_eq!(d.visible.len(), 1, "one closed outline");
         // The back square's outline coincides with the front's; side edges project to points.
         assert!(total_length(&d.hidden) <= 4.0 + 1e-12);
+    }
+
+    #[test]
+    fn rounding_dots_are_dropped_real_short_lines_kept() {
+        let mut groups = BTreeMap::new();
+        let real = [[0.0, 0.0], [1e-6, 0.0]];
+        let dot = [[0.5, 0.5], [0.5 + 1e-15, 0.5]];
+        let far_dot = [[1e6, 1e6], [1e6, 1e6 + 1e-7]];
+        groups.insert((0, EdgeKind::Border), vec![real, dot, far_dot]);
+        let s = strokes(groups);
+        assert_eq!(s.len(), 1);
+        assert_eq!(s[0].pts, real.to_vec());
+        assert!(is_dot(&[[0.0, 0.0], [0.0, 0.0]]));
+        assert!(!is_dot(&[[1e-300, 0.0], [0.0, 0.0]]));
     }
 
     #[test]

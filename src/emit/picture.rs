@@ -68,10 +68,10 @@ impl Pen {
     }
 }
 
-/// One face's visible region, flat shaded.
+/// The visible regions of the faces of one grey, flat shaded.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fill {
-    /// Rings of the visible region (even-odd fill).
+    /// Rings of the visible regions (even-odd fill; the regions are disjoint).
     pub rings: Vec<Ring>,
     /// Grey level.
     pub grey: u8,
@@ -91,7 +91,7 @@ pub struct Layer {
 pub struct Picture {
     /// The framed part of the screen plane; line widths scale with its unit.
     pub frame: Frame,
-    /// Fills, under everything.
+    /// Fills, one per grey, under everything.
     pub fills: Vec<Fill>,
     /// Line layers, one per object that has lines, in object order.
     pub layers: Vec<Layer>,
@@ -140,24 +140,30 @@ pub fn picture(
     }
 }
 
-/// Flat-shaded visible regions, one per face with something visible.
+/// Flat-shaded visible regions, one fill per grey holding the regions of every face of that
+/// grey. Visible regions are disjoint, so the even-odd fill of their union is each of them;
+/// drawn as one path, the triangles of one flat surface meet without the light anti-aliasing
+/// seam that two separately filled, half-covered edge pixels blend to.
 fn fills(view: &View, vis: &Visibility) -> Vec<Fill> {
     let m = &view.camera.matrix;
     let row = |r: usize| V3::new(m[(r, 0)], m[(r, 1)], m[(r, 2)]).normalize();
     let (u, v) = (row(0), row(1));
     let w = u.cross(&v);
     let light = (u * -0.4 + v * 0.6 + w).normalize();
-    vis.iter()
-        .filter(|(_, fv)| !fv.visible.is_empty())
-        .map(|(f, fv)| {
-            let n = world_normal(view, f);
-            let n = if n.dot(&w) < 0.0 { -n } else { n };
-            let shade = n.try_normalize(0.0).map_or(0.0, |n| n.dot(&light).max(0.0));
-            Fill {
-                rings: fv.visible.iter().flatten().cloned().collect(),
-                grey: (110.0 + 140.0 * shade).round().clamp(0.0, 255.0) as u8,
-            }
-        })
+    let mut by_grey: BTreeMap<u8, Vec<Ring>> = BTreeMap::new();
+    for (f, fv) in vis.iter().filter(|(_, fv)| !fv.visible.is_empty()) {
+        let n = world_normal(view, f);
+        let n = if n.dot(&w) < 0.0 { -n } else { n };
+        let shade = n.try_normalize(0.0).map_or(0.0, |n| n.dot(&light).max(0.0));
+        let grey = (110.0 + 140.0 * shade).round().clamp(0.0, 255.0) as u8;
+        by_grey
+            .entry(grey)
+            .or_default()
+            .extend(fv.visible.iter().flatten().cloned());
+    }
+    by_grey
+        .into_iter()
+        .map(|(grey, rings)| Fill { rings, grey })
         .collect()
 }
 
@@ -172,6 +178,23 @@ fn world_normal(view: &View, f: FaceId) -> V3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn faces_of_one_grey_fill_as_one_path() {
+        use crate::scene::testing::unit_square_scene;
+        use crate::view::Camera;
+        use crate::{render, RenderOptions};
+        // The unit square as two triangles, seen from the front: one grey, one fill.
+        let scene = unit_square_scene(vec![vec![0, 1, 2], vec![0, 2, 3]]);
+        let cam = Camera::orthographic(V3::new(0.1, 0.2, -1.), V3::y()).unwrap();
+        let r = render(&scene, &cam, &RenderOptions::default()).unwrap();
+        let pic = r.picture(&crate::PictureOptions {
+            size: 100,
+            fill: true,
+        });
+        assert_eq!(pic.fills.len(), 1);
+        assert_eq!(pic.fills[0].rings.len(), 2);
+    }
 
     #[test]
     fn pens_by_kind() {

@@ -140,4 +140,32 @@ mod tests {
         let bytes = to_png(&pic, 110).unwrap();
         assert_eq!(&bytes[1..4], b"PNG");
     }
+
+    #[test]
+    fn triangles_of_one_surface_fill_without_seams() {
+        // A dark square made of two triangles (a flat face of a triangle mesh), diagonal at
+        // odd angles to the pixels, in one fill as `picture` groups them; every pixel well
+        // inside the square must be the fill grey (two fills drawn one after the other leave
+        // a light seam along the diagonal: grey 58 here).
+        let (a, b, c, d) = ([0., 0.], [10., 0.], [10., 7.], [0., 7.]);
+        let pic = Picture {
+            frame: crate::view::Frame {
+                rect: crate::geom::Rect::new(-0.5, -0.5, 10.5, 7.5),
+                unit: 10.0,
+            },
+            fills: vec![Fill {
+                rings: vec![vec![a, b, c], vec![a, c, d]],
+                grey: 40,
+            }],
+            layers: Vec::new(),
+        };
+        let pm = rasterise(&pic, 333).unwrap();
+        let (w, h) = (pm.width(), pm.height());
+        let lightest = (h / 10..h * 9 / 10)
+            .flat_map(|y| (w / 10..w * 9 / 10).map(move |x| (x, y)))
+            .map(|(x, y)| pm.pixel(x, y).unwrap().red())
+            .max()
+            .unwrap();
+        assert!(lightest <= 44, "seam: grey {lightest} inside a fill of 40");
+    }
 }
