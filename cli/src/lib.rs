@@ -5,6 +5,7 @@ mod camera_args;
 mod check;
 mod flatten;
 mod info;
+mod output;
 pub mod progress;
 mod query;
 mod render;
@@ -19,6 +20,7 @@ use kepler_hsr::scene::Scene;
 use kepler_hsr::LoadOptions;
 
 use camera_args::CameraArgs;
+use output::write;
 
 /// kepler: exact hidden-surface removal for polyhedral scenes.
 #[derive(Parser, Debug)]
@@ -97,22 +99,4 @@ fn out(text: &str) {
     let _ = o
         .write_all(text.as_bytes())
         .and_then(|_| o.write_all(b"\n"));
-}
-
-/// Writes a file atomically, naming it in the error: the bytes go to a temporary file beside
-/// it, which then replaces it, so a failed run never leaves a truncated file in place of a
-/// good one.
-fn write(path: &PathBuf, bytes: impl AsRef<[u8]>) -> Result<()> {
-    let name = path
-        .file_name()
-        .ok_or_else(|| anyhow::anyhow!("{}: not a file name", path.display()))?;
-    let mut tmp_name = std::ffi::OsString::from(".");
-    tmp_name.push(name);
-    tmp_name.push(format!(".kepler-{}.tmp", std::process::id()));
-    let tmp = path.with_file_name(tmp_name);
-    let done = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
-    done.map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        anyhow::anyhow!("{}: {e}", path.display())
-    })
 }
