@@ -284,7 +284,7 @@ pub fn render_with<'s>(
         View::from_cull(&scene, *camera, &cull)
     });
     drop(cull);
-    crate::view::finite::check_screen(&view.screen)?;
+    crate::view::finite::check_screen(&view.screen, &view.camera)?;
     let pass = PassOptions {
         use_inbox: !opts.no_inbox,
     };

@@ -59,6 +59,11 @@ impl CameraArgs {
         if self.dir.is_some() && (self.eye.is_some() || self.ortho || self.fov.is_some()) {
             bail!("--dir is an orthographic view of its own: it takes no --eye, --target, --fov or --ortho");
         }
+        if let Some(fov) = self.fov {
+            if !(fov > 0.0 && fov < 180.0) {
+                bail!("--fov {fov}: expected degrees between 0 and 180 (both excluded)");
+            }
+        }
         let vec =
             |s: &Option<String>, flag: &str| s.as_deref().map(|s| parse_vec3(s, flag)).transpose();
         let req = CameraRequest {

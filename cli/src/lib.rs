@@ -11,7 +11,7 @@ mod query;
 mod render;
 mod tribox;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ExitCode;
 
 use anyhow::Result;

@@ -4,13 +4,16 @@
 
 use crate::error::{Error, Result};
 
+use super::camera::{Camera, Projection};
 use super::screen::ScreenFaces;
 
 /// Largest screen coordinate accepted: products of two (areas) stay far from overflow.
 pub const SCREEN_LIMIT: f64 = 1e30;
 
-/// An error when a projected point is not finite or beyond [`SCREEN_LIMIT`].
-pub fn check_screen(screen: &ScreenFaces) -> Result<()> {
+/// An error naming `camera` when a point projected by it is not finite or beyond
+/// [`SCREEN_LIMIT`] (world coordinates are at most 1e12, so only a narrow perspective view
+/// gets there).
+pub fn check_screen(screen: &ScreenFaces, camera: &Camera) -> Result<()> {
     let mut worst = 0.0f64;
     for p in &screen.points {
         for &c in p {
@@ -29,8 +32,21 @@ pub fn check_screen(screen: &ScreenFaces) -> Result<()> {
     } else {
         "infinity".into()
     };
+    let m = &camera.matrix;
+    let camera = match camera.projection {
+        Projection::Perspective => {
+            // The focal factor f = 1 / tan(fov / 2) scales the first row.
+            // (Scaled first: the square of a focal factor of 1e300 overflows.)
+            let row = m.fixed_view::<1, 3>(0, 0);
+            let a = row.amax();
+            let f = a * (row / a).norm();
+            let fov = 2.0 * (1.0 / f).atan().to_degrees();
+            format!("the perspective camera's field of view of {fov:.3e} degrees")
+        }
+        Projection::Orthographic => "the orthographic camera".to_string(),
+    };
     Err(Error::Usage(format!(
-        "the view magnifies the scene to screen coordinates of {size}, beyond the {SCREEN_LIMIT:e} kepler computes with: the field of view is too narrow for the scene"
+        "{camera} magnifies the scene to screen coordinates of {size}, beyond the {SCREEN_LIMIT:e} kepler computes with: the field of view is too narrow for the scene"
     )))
 }
 
