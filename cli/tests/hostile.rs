@@ -120,6 +120,15 @@ fn meshes_that_are_not_files_name_the_scene_line() {
 }
 
 #[test]
+fn errors_name_the_line_through_include_and_mesh_chains() {
+    error_at(
+        &["info", "hostile_chain.kdl"],
+        "hostile_chain.kdl:2:1 -> hostile_chain_part.kdl:3:5 -> hostile_chain_mesh.obj:4:7",
+        "invalid vertex reference 'x'",
+    );
+}
+
+#[test]
 fn an_explicit_inbox_outside_its_object_is_an_error_at_its_line() {
     error_at(
         &["info", "hostile_bad_inbox.kdl"],
