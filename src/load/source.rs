@@ -35,40 +35,39 @@ impl Source {
 
     /// Reads `path`; `at` is where the file was asked for (an include node), if anywhere.
     /// Text that is not UTF-8 is a parse error at the first bad byte; so is a NUL byte
-    /// (UTF-16 text without a byte-order mark is valid UTF-8 full of them).
+    /// (UTF-16 text without a byte-order mark is valid UTF-8 full of them), whichever is first.
     pub(super) fn read(path: &Path, at: Option<&Location>) -> Result<Self> {
         let bytes = super::read::read_file(path, at)?;
-        let not_text = |src: Source, offset: usize, why: &str| {
-            Error::parse(
-                src.loc(offset),
-                format!("the file is not UTF-8 text{why} (a scene file is KDL text)"),
-            )
-        };
-        if let Some(nul) = bytes.iter().position(|&b| b == 0) {
-            let prefix = String::from_utf8_lossy(&bytes[..nul]).into_owned();
-            let nuls = bytes.iter().filter(|&&b| b == 0).count();
-            let why = if nuls * 3 > bytes.len() {
-                ": it is full of NUL bytes, as UTF-16 text is"
-            } else {
-                ": it holds a NUL byte"
-            };
-            return Err(not_text(Source::new(path, prefix), nul, why));
-        }
-        match String::from_utf8(bytes) {
-            Ok(text) => Ok(Source::new(path, text)),
-            Err(e) => {
-                let valid = e.utf8_error().valid_up_to();
-                let bytes = e.into_bytes();
+        let nul = bytes.iter().position(|&b| b == 0);
+        let valid = std::str::from_utf8(&bytes).err().map(|e| e.valid_up_to());
+        let (offset, why) = match (nul, valid) {
+            (None, None) => {
+                let text = String::from_utf8(bytes).unwrap_or_default();
+                return Ok(Source::new(path, text));
+            }
+            (Some(n), v) if v.is_none_or(|v| n < v) => {
+                let why = if super::text::looks_like_utf16(&bytes) {
+                    ": it is full of NUL bytes, as UTF-16 text is"
+                } else {
+                    ": it holds a NUL byte"
+                };
+                (n, why)
+            }
+            (_, v) => {
                 let bom16 = bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]);
-                let prefix = String::from_utf8_lossy(&bytes[..valid]).into_owned();
                 let why = if bom16 {
                     ": it starts with a UTF-16 byte-order mark"
                 } else {
                     ""
                 };
-                Err(not_text(Source::new(path, prefix), valid, why))
+                (v.unwrap_or_default(), why)
             }
-        }
+        };
+        let prefix = String::from_utf8_lossy(&bytes[..offset]).into_owned();
+        Err(Error::parse(
+            Source::new(path, prefix).loc(offset),
+            format!("the file is not UTF-8 text{why} (a scene file is KDL text)"),
+        ))
     }
 
     /// The 1-based line and column (in characters) of byte `offset`.

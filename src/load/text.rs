@@ -43,7 +43,7 @@ pub(crate) fn decode<'a>(path: &Path, bytes: &'a [u8], first_line: usize) -> Res
 
 /// Whether `bytes` look like UTF-16 text: at least a third of them NUL, nine in ten of those
 /// at even offsets or nine in ten at odd ones (every other byte of mostly-ASCII UTF-16).
-fn looks_like_utf16(bytes: &[u8]) -> bool {
+pub(crate) fn looks_like_utf16(bytes: &[u8]) -> bool {
     let nuls = bytes.iter().filter(|&&b| b == 0).count();
     let even = bytes.iter().step_by(2).filter(|&&b| b == 0).count();
     let one_side = even.max(nuls - even);
