@@ -6,6 +6,7 @@ pub mod accuracy;
 pub mod chart;
 pub mod coverage;
 pub mod generate;
+pub mod hostile;
 pub mod rays;
 pub mod report;
 pub mod suite;
@@ -47,6 +48,17 @@ pub struct BenchArgs {
     /// 10,30,100 with --quick).
     #[arg(long, value_name = "N,...", value_delimiter = ',')]
     pub town: Option<Vec<usize>>,
+    /// Time the hostile inputs of issue 16 instead (65536-gons, a 20-deep instancing tree,
+    /// long comments, many objects): a table of medians, `hostile.csv`, and exit 1 when a
+    /// case is over its time bound.
+    #[arg(long)]
+    pub hostile: bool,
+    /// Internal: one hostile run of this scene file in this process.
+    #[arg(long, hide = true, value_name = "F")]
+    pub hostile_child: Option<PathBuf>,
+    /// Internal: with --hostile-child, render too.
+    #[arg(long, hide = true)]
+    pub hostile_render: bool,
     /// Internal: run one case once in this process and print its peak memory and stage
     /// times (every timed run is such a fresh process).
     #[arg(long, hide = true, value_name = "CASE/VIEW")]
@@ -286,6 +298,14 @@ pub fn run(a: BenchArgs) -> Result<ExitCode> {
     let models = models_dir(&a);
     if let Some(spec) = &a.child {
         return child(spec, &models);
+    }
+    if let Some(path) = &a.hostile_child {
+        return hostile::child(path, a.hostile_render);
+    }
+    if a.hostile {
+        let scenes = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes"));
+        let runs = a.runs.map_or(if a.quick { 3 } else { 5 }, |r| r as usize);
+        return hostile::run(&scenes, &a.out, runs);
     }
     let plan = Plan::of(&a);
     std::fs::create_dir_all(&a.out).with_context(|| format!("{}", a.out.display()))?;
