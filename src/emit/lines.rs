@@ -206,7 +206,7 @@ pub fn strokes(groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>>) -> Vec<Stroke> 
 /// would draw as a dot. No picture (at most 32768 pixels across) resolves 1e-9 of its size.
 const DOT: f64 = 1e-9;
 
-/// Whether polyline `pts` is a dot: its length is at most [`DOT`] times the magnitude of its
+/// Whether polyline `pts` is a dot: its length is at most `DOT` (1e-9) times the magnitude of its
 /// coordinates (the scale of the rounding that made it).
 pub fn is_dot(pts: &[Pt2]) -> bool {
     let scale = pts.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));

@@ -77,7 +77,7 @@ impl<'a> Region<'a> {
     }
 
     /// Exact location of `p` (non-zero winding over all rings), as
-    /// [`locate`](crate::geom::poly2::locate).
+    /// [`crate::geom::poly2::locate`].
     pub fn locate(&self, p: Pt2) -> Side {
         let Some(t) = &self.tree else {
             return locate(self.m, p);

@@ -302,13 +302,7 @@ impl Reader<'_> {
 
     /// One node and its terminator.
     fn node(&mut self) -> Res<Node> {
-        let ty = if self.peek() == Some('(') {
-            let t = self.annotation()?;
-            self.node_space()?;
-            Some(t)
-        } else {
-            None
-        };
+        let ty = self.type_annotation()?;
         let at = self.i;
         let name = match self.string()? {
             Some(value) => Ident { value, at },
@@ -382,6 +376,16 @@ impl Reader<'_> {
         Ok(nodes)
     }
 
+    /// A type annotation `(ty)` and the space after it, if one starts here.
+    fn type_annotation(&mut self) -> Res<Option<Ident>> {
+        if self.peek() != Some('(') {
+            return Ok(None);
+        }
+        let t = self.annotation()?;
+        self.node_space()?;
+        Ok(Some(t))
+    }
+
     /// `(type)`.
     fn annotation(&mut self) -> Res<Ident> {
         self.i += 1;
@@ -431,13 +435,7 @@ impl Reader<'_> {
         };
         self.i += 1;
         self.node_space()?;
-        let ty = if self.peek() == Some('(') {
-            let t = self.annotation()?;
-            self.node_space()?;
-            Some(t)
-        } else {
-            None
-        };
+        let ty = self.type_annotation()?;
         let (value, literal) = self.value()?;
         Ok(Entry {
             name: Some(Ident { value: key, at }),
