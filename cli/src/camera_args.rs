@@ -53,17 +53,7 @@ impl CameraArgs {
     /// The camera the flags ask for (see [`Camera::for_scene`]: flags first, then the
     /// scene's camera block, then the three-quarter view).
     pub(crate) fn camera(&self, scene: &Scene) -> Result<Camera> {
-        if self.target.is_some() && self.eye.is_none() {
-            bail!("--target needs --eye");
-        }
-        if self.dir.is_some() && (self.eye.is_some() || self.ortho || self.fov.is_some()) {
-            bail!("--dir is an orthographic view of its own: it takes no --eye, --target, --fov or --ortho");
-        }
-        if let Some(fov) = self.fov {
-            if !(fov > 0.0 && fov < 180.0) {
-                bail!("--fov {fov}: expected degrees between 0 and 180 (both excluded)");
-            }
-        }
+        self.check()?;
         let vec =
             |s: &Option<String>, flag: &str| s.as_deref().map(|s| parse_vec3(s, flag)).transpose();
         let req = CameraRequest {
@@ -75,5 +65,32 @@ impl CameraArgs {
             up: vec(&self.up, "up")?,
         };
         Ok(Camera::for_scene(scene, &req)?)
+    }
+
+    /// The checks of the flags alone, before any scene is loaded: combinations that cannot
+    /// apply and values out of range.
+    pub(crate) fn check(&self) -> Result<()> {
+        if self.target.is_some() && self.eye.is_none() {
+            bail!("--target needs --eye");
+        }
+        if self.dir.is_some() && (self.eye.is_some() || self.ortho || self.fov.is_some()) {
+            bail!("--dir is an orthographic view of its own: it takes no --eye, --target, --fov or --ortho");
+        }
+        if let Some(fov) = self.fov {
+            if !(fov > 0.0 && fov < 180.0) {
+                bail!("--fov {fov}: expected degrees between 0 and 180 (both excluded)");
+            }
+        }
+        for (s, flag) in [
+            (&self.dir, "dir"),
+            (&self.eye, "eye"),
+            (&self.target, "target"),
+            (&self.up, "up"),
+        ] {
+            if let Some(s) = s {
+                parse_vec3(s, flag)?;
+            }
+        }
+        Ok(())
     }
 }

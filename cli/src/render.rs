@@ -125,6 +125,7 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         anyhow::bail!("nothing to write: give --json F, --svg F or --png F");
     }
     let opts = a.options()?;
+    a.camera.check()?;
     let start = Instant::now();
     // The bar follows loading and preparing too: a big scene shows a sign of life from the
     // start. Load warnings wait until the bar is gone.

@@ -281,6 +281,19 @@ fn camera_flags_are_applied_or_refused_never_ignored() {
             &[says],
         );
     }
+    // Flags are checked before the scene is loaded (this scene would fail to load).
+    expect(
+        &[
+            "render",
+            "hostile_instance_bomb.kdl",
+            "--json",
+            "/dev/null",
+            "--fov",
+            "-5",
+        ],
+        1,
+        &["--fov -5: expected degrees between 0 and 180"],
+    );
     // A direction whose length overflows still has a direction.
     let huge = matrix(
         &["render", "hostile_cam.kdl", "--dir", "1e308,1e308,1e308"],
