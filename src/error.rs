@@ -78,6 +78,11 @@ pub enum Error {
     /// A request that makes no sense for this scene (an unknown object path, a degenerate camera).
     #[error("{0}")]
     Usage(String),
+    /// An error in a file that another file asked for: the asking node (an include or a
+    /// `mesh` node), then the error, so that a chain reads
+    /// `scene.kdl:12:5 -> part.kdl:3:1 -> mesh.obj:88:1: ...`.
+    #[error("{0} -> {1}")]
+    Via(Location, Box<Error>),
 }
 
 impl Error {
@@ -88,6 +93,25 @@ impl Error {
     /// An invalid-input error at a location.
     pub fn invalid(loc: Location, msg: impl Into<String>) -> Self {
         Error::Invalid(loc, msg.into())
+    }
+
+    /// This error as found through the node at `at` (an include or `mesh` node): unchanged
+    /// when it is already reported there.
+    pub fn via(self, at: &Location) -> Self {
+        match &self {
+            Error::Io(l, _) | Error::Parse(l, _) | Error::Invalid(l, _) if l == at => self,
+            _ => Error::Via(at.clone(), Box::new(self)),
+        }
+    }
+
+    /// Where the error is, innermost: the file and position the user fixes (None for a
+    /// usage error).
+    pub fn location(&self) -> Option<&Location> {
+        match self {
+            Error::Io(l, _) | Error::Parse(l, _) | Error::Invalid(l, _) => Some(l),
+            Error::Via(_, inner) => inner.location(),
+            Error::Usage(_) => None,
+        }
     }
 }
 

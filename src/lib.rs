@@ -40,7 +40,7 @@ pub mod visibility;
 
 pub use emit::{Drawing, EdgeKind, EdgeOptions, EdgeSet, LineOptions};
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
-pub use load::load_scene;
+pub use load::{load_scene, load_scene_with, LoadOptions};
 pub use pipeline::{
     render, render_with, Outputs, PictureOptions, Progress, RenderOptions, RenderStats, Rendered,
     Stage,

@@ -13,10 +13,11 @@ use crate::emit::picture::{Picture, PlotStats};
 use crate::emit::plot::picture;
 use crate::emit::png::to_png;
 use crate::emit::svg::to_svg;
-use crate::error::Result;
+use crate::error::{Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
 use crate::scene::Scene;
 use crate::view::{substitute, Camera, Cull, LodOptions, LodStats, View};
+use crate::visibility::empty::why_empty;
 use crate::visibility::{solve_counted, Counters, PassOptions, Visibility};
 
 /// What to render and how.
@@ -208,6 +209,8 @@ pub struct Rendered<'s> {
     pub png: Option<Vec<u8>>,
     /// Stage times and counters.
     pub stats: RenderStats,
+    /// What the caller should be told about the result (why it is empty, when it is).
+    pub warnings: Vec<Warning>,
 }
 
 impl Rendered<'_> {
@@ -284,6 +287,7 @@ pub fn render_with<'s>(
         View::from_cull(&scene, *camera, &cull)
     });
     drop(cull);
+    crate::view::finite::check_screen(&view.screen, &view.camera)?;
     let pass = PassOptions {
         use_inbox: !opts.no_inbox,
     };
@@ -294,6 +298,13 @@ pub fn render_with<'s>(
     let visibility = solve_counted(&view, pass, progress.map(Progress::done_counter));
     stats.times.push((Stage::Visibility, t.elapsed()));
     stats.counters = visibility.counters;
+    let mut warnings = Vec::new();
+    if let Some(why) = why_empty(scene.face_count(), &view, &visibility) {
+        warnings.push(Warning {
+            location: Location::file(&scene.source),
+            message: why,
+        });
+    }
     // Emitting needs the screen faces, not the tree: free it before the drawing's own memory.
     view.tree = Default::default();
     let out = &opts.outputs;
@@ -312,6 +323,7 @@ pub fn render_with<'s>(
         svg: None,
         png: None,
         stats: RenderStats::default(),
+        warnings,
     };
     let mut plot = None;
     stats.timed(Stage::Emit, progress, || -> Result<()> {

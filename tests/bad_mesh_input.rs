@@ -100,7 +100,7 @@ fn bad_mesh_files_give_exact_messages() {
         ("obj_missing_coord.obj", ":2:6: missing z coordinate"),
         ("obj_bad_number.obj", ":3:5: invalid number '1.0.0'"),
         ("obj_no_faces.obj", ": the file contains no faces"),
-        ("obj_binary_data.obj", ":1:115: invalid UTF-8 (byte 0x80)"),
+        ("obj_binary_data.obj", ":1:82: a NUL byte: not a text file?"),
         ("stl_empty.stl", ": empty file"),
         ("stl_truncated.stl", ": byte 334: file is 351 bytes, header says 12 triangles needing 684: truncated binary STL"),
         ("stl_trailing_bytes.stl", ": byte 684: file is 686 bytes, header says 12 triangles needing 684: trailing bytes"),

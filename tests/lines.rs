@@ -265,3 +265,41 @@ fn crossing_faces_draw_their_intersection_exactly() {
     want.sort_by(|a, b| a.partial_cmp(b).unwrap());
     assert_eq!(got, want);
 }
+
+/// No stroke of the example scenes' drawings is a dot of rounding noise (pieces about 1e-15
+/// long, left where an edge touches a visible region at a point, used to be drawn as dots
+/// with round caps: 7 in assembly, 58 in town).
+#[test]
+fn example_drawings_have_no_zero_length_strokes() {
+    use kepler_hsr::emit::lines::is_dot;
+    use kepler_hsr::view::CameraRequest;
+    use kepler_hsr::{render, Outputs, RenderOptions};
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    for name in ["assembly", "town", "polyhedra"] {
+        let mut scene = load(&root.join(format!("{name}.kdl")));
+        kepler_hsr::prepare(&mut scene);
+        let camera = Camera::for_scene(&scene, &CameraRequest::default()).unwrap();
+        let opts = RenderOptions {
+            lines: LineOptions {
+                hidden: true,
+                ..Default::default()
+            },
+            outputs: Outputs {
+                drawing: true,
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        let r = render(&scene, &camera, &opts).unwrap();
+        let d = r.drawing.as_ref().expect("drawing asked for");
+        assert!(!d.visible.is_empty(), "{name}");
+        for s in d.visible.iter().chain(&d.hidden) {
+            let length: f64 = s
+                .pts
+                .windows(2)
+                .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+                .sum();
+            assert!(length > 1e-9 && !is_dot(&s.pts), "{name}: dot {:?}", s.pts);
+        }
+    }
+}

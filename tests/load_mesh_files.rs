@@ -123,11 +123,27 @@ fn ply_ascii_little_and_big_endian_cubes_agree() {
     );
 }
 
-/// The shared models directory: `$KEPLER_MODELS`, else `/work/shared/models`, if it exists.
+/// The shared models directory: `$KEPLER_MODELS` (which, when set, must be a directory: a
+/// mistyped path fails rather than skips), else `../shared/models` beside the crate; None,
+/// with a message, when that default is absent.
 fn models_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("KEPLER_MODELS")
-        .map_or_else(|| PathBuf::from("/work/shared/models"), PathBuf::from);
-    dir.is_dir().then_some(dir)
+    if let Some(dir) = std::env::var_os("KEPLER_MODELS").map(PathBuf::from) {
+        assert!(
+            dir.is_dir(),
+            "KEPLER_MODELS={} is not a directory",
+            dir.display()
+        );
+        return Some(dir);
+    }
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models");
+    if !dir.is_dir() {
+        println!(
+            "skipped: no models at {} (set KEPLER_MODELS to the models directory)",
+            dir.display()
+        );
+        return None;
+    }
+    Some(dir)
 }
 
 #[test]
@@ -148,18 +164,23 @@ fn suzanne_has_500_faces_468_of_them_quads() {
 #[test]
 fn every_shared_model_loads() {
     let Some(dir) = models_dir() else {
-        println!("skipped: no models directory (set KEPLER_MODELS)");
         return;
     };
     let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .map(|rd| rd.filter_map(|e| e.ok().map(|e| e.path())).collect())
-        .unwrap_or_default();
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
     paths.retain(|p| {
         p.extension()
             .and_then(|e| e.to_str())
             .is_some_and(|e| ["obj", "stl", "ply"].contains(&e))
     });
     paths.sort();
+    assert!(
+        !paths.is_empty(),
+        "{} holds no .obj, .stl or .ply file: an empty or mistyped models directory",
+        dir.display()
+    );
     for path in paths {
         let t = Instant::now();
         let m = load_mesh(&path).unwrap_or_else(|e| panic!("{e}"));

@@ -6,6 +6,7 @@ pub mod accuracy;
 pub mod chart;
 pub mod coverage;
 pub mod generate;
+pub mod hostile;
 pub mod rays;
 pub mod report;
 pub mod suite;
@@ -52,6 +53,17 @@ pub struct BenchArgs {
     /// moving instances over this many steps), written to OUT/trees.md.
     #[arg(long, value_name = "STEPS")]
     pub trees: Option<usize>,
+    /// Time the hostile inputs of issue 16 instead (65536-gons, a 20-deep instancing tree,
+    /// long comments, many objects): a table of medians, `hostile.csv`, and exit 1 when a
+    /// case is over its time bound.
+    #[arg(long)]
+    pub hostile: bool,
+    /// Internal: one hostile run of this scene file in this process.
+    #[arg(long, hide = true, value_name = "F")]
+    pub hostile_child: Option<PathBuf>,
+    /// Internal: with --hostile-child, render too.
+    #[arg(long, hide = true)]
+    pub hostile_render: bool,
     /// Internal: run one case once in this process and print its peak memory and stage
     /// times (every timed run is such a fresh process).
     #[arg(long, hide = true, value_name = "CASE/VIEW")]
@@ -297,6 +309,14 @@ pub fn run(a: BenchArgs) -> Result<ExitCode> {
         let doc = trees::run_tables(&models, &a.out, steps, &suite::MODELS)?;
         println!("{doc}");
         return Ok(ExitCode::SUCCESS);
+    }
+    if let Some(path) = &a.hostile_child {
+        return hostile::child(path, a.hostile_render);
+    }
+    if a.hostile {
+        let scenes = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes"));
+        let runs = a.runs.map_or(if a.quick { 3 } else { 5 }, |r| r as usize);
+        return hostile::run(&scenes, &a.out, runs);
     }
     let plan = Plan::of(&a);
     std::fs::create_dir_all(&a.out).with_context(|| format!("{}", a.out.display()))?;

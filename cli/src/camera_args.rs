@@ -18,10 +18,12 @@ pub(crate) struct CameraArgs {
     /// Point looked at (X,Y,Z); default the centre of the scene.
     #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
     pub(crate) target: Option<String>,
-    /// Vertical field of view in degrees (perspective).
-    #[arg(long, default_value_t = 40.0)]
-    pub(crate) fov: f64,
-    /// With --eye/--target: orthographic along target - eye.
+    /// Vertical field of view in degrees (perspective): with --eye (default 45, as in scene
+    /// files), or alone to change the scene's perspective camera.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub(crate) fov: Option<f64>,
+    /// Orthographic along target - eye: with --eye/--target, or alone to make the scene's
+    /// perspective camera orthographic.
     #[arg(long)]
     pub(crate) ortho: bool,
     /// Up vector (X,Y,Z); default +Y.
@@ -51,19 +53,44 @@ impl CameraArgs {
     /// The camera the flags ask for (see [`Camera::for_scene`]: flags first, then the
     /// scene's camera block, then the three-quarter view).
     pub(crate) fn camera(&self, scene: &Scene) -> Result<Camera> {
-        if self.target.is_some() && self.eye.is_none() {
-            bail!("--target needs --eye");
-        }
+        self.check()?;
         let vec =
             |s: &Option<String>, flag: &str| s.as_deref().map(|s| parse_vec3(s, flag)).transpose();
         let req = CameraRequest {
             dir: vec(&self.dir, "dir")?,
             eye: vec(&self.eye, "eye")?.map(P3::from),
             target: vec(&self.target, "target")?.map(P3::from),
-            fov_deg: Some(self.fov),
+            fov_deg: self.fov,
             ortho: self.ortho,
             up: vec(&self.up, "up")?,
         };
         Ok(Camera::for_scene(scene, &req)?)
+    }
+
+    /// The checks of the flags alone, before any scene is loaded: combinations that cannot
+    /// apply and values out of range.
+    pub(crate) fn check(&self) -> Result<()> {
+        if self.target.is_some() && self.eye.is_none() {
+            bail!("--target needs --eye");
+        }
+        if self.dir.is_some() && (self.eye.is_some() || self.ortho || self.fov.is_some()) {
+            bail!("--dir is an orthographic view of its own: it takes no --eye, --target, --fov or --ortho");
+        }
+        if let Some(fov) = self.fov {
+            if !(fov > 0.0 && fov < 180.0) {
+                bail!("--fov {fov}: expected degrees between 0 and 180 (both excluded)");
+            }
+        }
+        for (s, flag) in [
+            (&self.dir, "dir"),
+            (&self.eye, "eye"),
+            (&self.target, "target"),
+            (&self.up, "up"),
+        ] {
+            if let Some(s) = s {
+                parse_vec3(s, flag)?;
+            }
+        }
+        Ok(())
     }
 }

@@ -36,7 +36,12 @@ pub(crate) struct CheckArgs {
     #[arg(long)]
     pub(crate) exact: bool,
     /// Largest allowed change of a face's visible region, relative to its area.
-    #[arg(long, value_name = "T", default_value_t = 1e-9)]
+    #[arg(
+        long,
+        value_name = "T",
+        default_value_t = 1e-9,
+        allow_negative_numbers = true
+    )]
     pub(crate) tol: f64,
     /// Write the golden from this render instead of comparing.
     #[arg(long)]
@@ -56,11 +61,11 @@ struct GoldenFace {
 }
 
 /// Runs `kepler check`.
-pub(crate) fn run(a: CheckArgs) -> Result<ExitCode> {
+pub(crate) fn run(a: CheckArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
     if !(a.tol >= 0.0 && a.tol.is_finite()) {
         anyhow::bail!("--tol {}: expected a finite number >= 0", a.tol);
     }
-    let scene = load(&a.scene, a.quiet)?;
+    let scene = load(&a.scene, a.quiet, opts)?;
     let camera = a.camera.camera(&scene)?;
     let opts = RenderOptions {
         outputs: Outputs {

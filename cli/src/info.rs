@@ -37,8 +37,8 @@ pub(crate) struct InfoArgs {
 }
 
 /// Runs `kepler info`.
-pub(crate) fn run(a: InfoArgs) -> Result<ExitCode> {
-    let mut scene = load(&a.scene, a.quiet)?;
+pub(crate) fn run(a: InfoArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
+    let mut scene = load(&a.scene, a.quiet, opts)?;
     // The render skips INBOXes where they cannot help (one object); info always shows them.
     kepler_hsr::prepare::compute_inboxes(&mut scene.root);
     if let Some(f) = &a.components {

@@ -7,6 +7,7 @@ mod components;
 mod flatten;
 mod hierarchy_arg;
 mod info;
+mod output;
 mod plot_args;
 pub mod progress;
 mod query;
@@ -14,14 +15,16 @@ mod render;
 mod tribox;
 mod views;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ExitCode;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use kepler_hsr::scene::Scene;
+use kepler_hsr::LoadOptions;
 
 use camera_args::CameraArgs;
+use output::write;
 
 /// kepler: exact hidden-surface removal for polyhedral scenes.
 #[derive(Parser, Debug)]
@@ -29,6 +32,10 @@ use camera_args::CameraArgs;
 pub struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Refuse scenes with more faces than this once their instances are placed (counted
+    /// before anything is expanded). The default fits a render in 24 GiB of memory.
+    #[arg(long, global = true, value_name = "N", default_value_t = kepler_hsr::load::DEFAULT_MAX_FACES)]
+    max_faces: usize,
 }
 
 #[derive(Subcommand, Debug)]
@@ -49,37 +56,46 @@ enum Command {
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<ExitCode> {
+    let opts = LoadOptions {
+        max_faces: cli.max_faces,
+    };
     match cli.command {
-        Command::Render(a) => render::run(a),
-        Command::Query(a) => query::run(a),
-        Command::Flatten(a) => flatten::run(a),
-        Command::Info(a) => info::run(a),
-        Command::Check(a) => check::run(a),
-        Command::Tribox(a) => tribox::run(a),
+        Command::Render(a) => render::run(a, &opts),
+        Command::Query(a) => query::run(a, &opts),
+        Command::Flatten(a) => flatten::run(a, &opts),
+        Command::Info(a) => info::run(a, &opts),
+        Command::Check(a) => check::run(a, &opts),
+        Command::Tribox(a) => tribox::run(a, &opts),
     }
 }
 
-/// Loads a scene and runs the prepare stage (INBOXes, object trees), printing warnings to
-/// standard error.
-fn load(path: &Path, quiet: bool) -> Result<Scene> {
-    load_with(path, quiet, &kepler_hsr::prepare::PrepareOptions::default())
+/// Loads a scene and runs the prepare stage (solidity, INBOXes, object trees), printing
+/// warnings to standard error.
+fn load(path: &Path, quiet: bool, opts: &LoadOptions) -> Result<Scene> {
+    load_with(
+        path,
+        quiet,
+        opts,
+        &kepler_hsr::prepare::PrepareOptions::default(),
+    )
 }
 
 /// [`load`] with the prepare stage's options.
 fn load_with(
     path: &Path,
     quiet: bool,
-    opts: &kepler_hsr::prepare::PrepareOptions,
+    opts: &LoadOptions,
+    prepare: &kepler_hsr::prepare::PrepareOptions,
 ) -> Result<Scene> {
-    let mut scene = load_only(path, quiet)?;
-    kepler_hsr::prepare::prepare_with(&mut scene, opts);
+    let mut scene = load_only(path, quiet, opts)?;
+    kepler_hsr::prepare::prepare_with(&mut scene, prepare);
     Ok(scene)
 }
 
 /// Loads a scene without preparing it, printing its warnings to standard error.
-fn load_only(path: &Path, quiet: bool) -> Result<Scene> {
+fn load_only(path: &Path, quiet: bool, opts: &LoadOptions) -> Result<Scene> {
     let mut warnings = Vec::new();
-    let scene = kepler_hsr::load_scene(path, &mut warnings)?;
+    let scene = kepler_hsr::load_scene_with(path, opts, &mut warnings)?;
     if !quiet {
         print_warnings(&warnings);
     }
@@ -103,9 +119,4 @@ fn out(text: &str) {
     let _ = o
         .write_all(text.as_bytes())
         .and_then(|_| o.write_all(b"\n"));
-}
-
-/// Writes a file, naming it in the error.
-fn write(path: &PathBuf, bytes: impl AsRef<[u8]>) -> Result<()> {
-    std::fs::write(path, bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }

@@ -49,8 +49,8 @@ pub(crate) struct QueryArgs {
 }
 
 /// Runs `kepler query`.
-pub(crate) fn run(a: QueryArgs) -> Result<ExitCode> {
-    let scene = load_with(&a.scene, a.quiet, &a.hierarchy.prepare())?;
+pub(crate) fn run(a: QueryArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
+    let scene = load_with(&a.scene, a.quiet, opts, &a.hierarchy.prepare())?;
     let asked = a.include.is_some() as u8
         + a.visp.is_some() as u8
         + a.visobj.is_some() as u8

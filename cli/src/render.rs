@@ -18,7 +18,7 @@ use super::camera_args::parse_vec3;
 use super::plot_args::PlotArgs;
 use super::progress::follow;
 use super::views::{numbered, read_views};
-use super::{load_only, write, CameraArgs};
+use super::{print_warnings, write, CameraArgs};
 
 /// A render that has taken this long shows a progress bar (on a terminal).
 const PROGRESS_AFTER: Duration = Duration::from_millis(500);
@@ -47,7 +47,12 @@ pub(crate) struct RenderArgs {
     #[arg(long, value_enum, value_name = "SET")]
     pub(crate) edges: Option<EdgesArg>,
     /// Crease threshold: dihedral angle in degrees above which an edge is a crease.
-    #[arg(long, value_name = "DEG", default_value_t = 30.0)]
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 30.0,
+        allow_negative_numbers = true
+    )]
     pub(crate) crease: f64,
     /// Draw hidden lines too (grey dashes, each dash a stroke, on their own layer).
     #[arg(long)]
@@ -133,15 +138,29 @@ impl RenderArgs {
 }
 
 /// Runs `kepler render`.
-pub(crate) fn run(a: RenderArgs) -> Result<ExitCode> {
+pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
+    if a.json.is_none() && a.svg.is_none() && a.png.is_none() {
+        anyhow::bail!("nothing to write: give --json F, --svg F or --png F");
+    }
     let opts = a.options()?;
+    a.camera.check()?;
     let start = Instant::now();
-    let t = Instant::now();
-    let mut scene = load_only(&a.scene, a.quiet)?;
-    let load = t.elapsed();
-    let t = Instant::now();
-    kepler_hsr::prepare::prepare_with(&mut scene, &a.hierarchy.prepare());
-    let prepare = t.elapsed();
+    // The bar follows loading and preparing too: a big scene shows a sign of life from the
+    // start. Load warnings wait until the bar is gone.
+    let progress = Progress::new();
+    let mut warnings = Vec::new();
+    let (scene, load, prepare) = follow(&progress, PROGRESS_AFTER, || -> Result<_> {
+        let t = Instant::now();
+        let mut scene = kepler_hsr::load_scene_with(&a.scene, load_opts, &mut warnings)?;
+        let load = t.elapsed();
+        progress.enter(Stage::Prepare, 0);
+        let t = Instant::now();
+        kepler_hsr::prepare::prepare_with(&mut scene, &a.hierarchy.prepare());
+        Ok((scene, load, t.elapsed()))
+    })?;
+    if !a.quiet {
+        print_warnings(&warnings);
+    }
     let (cameras, frame) = a.cameras(&scene)?;
     let many = a.views.is_some() || a.turntable.is_some();
     for (k, camera) in cameras.iter().enumerate() {
@@ -152,6 +171,9 @@ pub(crate) fn run(a: RenderArgs) -> Result<ExitCode> {
         let r = follow(&progress, delay, || {
             render_with(&scene, camera, &opts, Some(&progress))
         })?;
+        if !a.quiet {
+            print_warnings(&r.warnings);
+        }
         let t = Instant::now();
         for (path, bytes) in [
             (&a.json, r.json.as_ref().map(String::as_bytes)),

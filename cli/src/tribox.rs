@@ -24,11 +24,16 @@ use super::{load_only, out, write, CameraArgs};
 pub(crate) struct LodArgs {
     /// Draw every object whose projected size is under PX pixels as its tribox (a
     /// level-of-detail substitute that takes part in visibility like any object).
-    #[arg(long, value_name = "PX")]
+    #[arg(long, value_name = "PX", allow_negative_numbers = true)]
     pub(crate) lod: Option<f64>,
     /// With --lod: draw small meshes as hierarchical triboxes at the shallowest cut whose
     /// error is at most PX pixels, instead of one tribox.
-    #[arg(long, value_name = "PX", requires = "lod")]
+    #[arg(
+        long,
+        value_name = "PX",
+        requires = "lod",
+        allow_negative_numbers = true
+    )]
     pub(crate) lod_error: Option<f64>,
 }
 
@@ -75,10 +80,10 @@ pub(crate) struct TriboxArgs {
     #[arg(short, long, value_name = "DIR")]
     pub(crate) out: Option<PathBuf>,
     /// Simplification tolerance of each tribox, as a fraction of the object's CBOX diagonal.
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
     pub(crate) tol: f64,
     /// Least relative area reduction of a split (the stop rule).
-    #[arg(long, default_value_t = 0.02)]
+    #[arg(long, default_value_t = 0.02, allow_negative_numbers = true)]
     pub(crate) min_gain: f64,
     /// Skip the convex-hull volumes.
     #[arg(long)]
@@ -104,11 +109,11 @@ struct Part {
 }
 
 /// Runs `kepler tribox`.
-pub(crate) fn run(a: TriboxArgs) -> Result<ExitCode> {
+pub(crate) fn run(a: TriboxArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
     if !(a.tol.is_finite() && a.tol >= 0.0 && a.min_gain.is_finite() && a.min_gain < 1.0) {
         bail!("--tol must be 0 or more and --min-gain below 1");
     }
-    let scene = load_only(&a.scene, a.quiet)?;
+    let scene = load_only(&a.scene, a.quiet, opts)?;
     let opts = HierarchyOptions {
         max_depth: a.levels as usize - 1,
         min_gain: a.min_gain,

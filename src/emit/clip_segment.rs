@@ -1,7 +1,8 @@
 //! A screen segment against a closed region: the parameter intervals where it lies in the
 //! region or on its boundary, from exact crossings (orient2d) and exact location tests.
 
-use crate::geom::poly2::{locate, MultiPolygon, Pt2, Side};
+use super::region::Region;
+use crate::geom::poly2::{MultiPolygon, Pt2, Side};
 use crate::geom::{orient2d, Rect};
 
 /// A closed parameter interval [t0, t1] along a segment a → b (point a + t (b - a)).
@@ -22,11 +23,16 @@ pub fn at(a: Pt2, b: Pt2, t: f64) -> Pt2 {
 /// The sub-intervals of [0, 1] where the segment a → b lies in the closed region `m`, sorted
 /// and disjoint (touching intervals merged). A zero-length segment gives nothing.
 pub fn intervals_in(a: Pt2, b: Pt2, m: &MultiPolygon) -> Vec<Interval> {
-    if a == b || m.is_empty() {
+    intervals_in_region(a, b, &Region::new(m))
+}
+
+/// [`intervals_in`] for a region already indexed (many segments against one large region).
+pub fn intervals_in_region(a: Pt2, b: Pt2, region: &Region) -> Vec<Interval> {
+    if a == b || region.is_empty() {
         return Vec::new();
     }
     let sb = Rect::of_points([a, b].iter());
-    let mb = Rect::of_points(m.iter().flatten().flatten());
+    let mb = region.rect();
     let scale = [a[0], a[1], b[0], b[1], mb.xmin, mb.ymin, mb.xmax, mb.ymax]
         .iter()
         .fold(0.0f64, |s, x| s.max(x.abs()));
@@ -35,17 +41,15 @@ pub fn intervals_in(a: Pt2, b: Pt2, m: &MultiPolygon) -> Vec<Interval> {
         return Vec::new();
     }
     let mut ts = vec![0.0, 1.0];
-    for r in m.iter().flatten() {
-        for i in 0..r.len() {
-            splits(a, b, r[i], r[(i + 1) % r.len()], &sb, eps, &mut ts);
-        }
+    for [c, d] in region.edges_near(&sb.padded(eps)) {
+        splits(a, b, c, d, &sb, eps, &mut ts);
     }
     ts.sort_by(f64::total_cmp);
     ts.dedup();
     let mut out: Vec<Interval> = Vec::new();
     for w in ts.windows(2) {
         let mid = at(a, b, 0.5 * (w[0] + w[1]));
-        if locate(m, mid) != Side::Outside || near_boundary(m, mid, eps) {
+        if region.locate(mid) != Side::Outside || region.near_boundary(mid, eps) {
             push_merged(&mut out, [w[0], w[1]]);
         }
     }
@@ -91,25 +95,6 @@ fn param(a: Pt2, b: Pt2, p: Pt2) -> f64 {
 fn dist_to_line(a: Pt2, b: Pt2, p: Pt2) -> f64 {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     ((p[0] - a[0]) * dy - (p[1] - a[1]) * dx).abs() / dx.hypot(dy)
-}
-
-/// Distance of `p` from the segment c → d.
-fn dist_to_segment(c: Pt2, d: Pt2, p: Pt2) -> f64 {
-    let (dx, dy) = (d[0] - c[0], d[1] - c[1]);
-    let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 {
-        (((p[0] - c[0]) * dx + (p[1] - c[1]) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p[0] - c[0] - t * dx).hypot(p[1] - c[1] - t * dy)
-}
-
-/// True when `p` lies within `eps` of a ring edge of `m`.
-fn near_boundary(m: &MultiPolygon, p: Pt2, eps: f64) -> bool {
-    m.iter()
-        .flatten()
-        .any(|r| (0..r.len()).any(|i| dist_to_segment(r[i], r[(i + 1) % r.len()], p) <= eps))
 }
 
 /// Appends an interval, merging it with the last one when they touch.

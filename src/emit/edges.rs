@@ -96,12 +96,18 @@ struct HalfEdge {
     b: u32,
     seq: u32,
     face: u32,
+    /// The edge runs from the face's corner `at` to the next.
+    at: u32,
     fwd: bool,
 }
 
 /// The mesh edges of every leaf (in order of first appearance), classified, filtered by `opts.set`.
 pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Edge> {
     let cos_crease = opts.crease_deg.to_radians().cos();
+    // Each face's facing once (a warped face's is a sum over its pieces).
+    let facing: Vec<Facing> = (0..view.screen.face_count())
+        .map(|f| view.screen.face_facing(FaceId(f as u32)))
+        .collect();
     let mut out = Vec::new();
     let mut start = 0;
     while start < world.faces.len() {
@@ -112,13 +118,18 @@ pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Ed
         let half = half_edges(world, start, end);
         for g in edge_groups(&half) {
             let adj = &half[g];
-            let kind = classify(adj, world, view, cos_crease);
+            let kind = classify(adj, world, &facing, cos_crease);
             if opts.set == EdgeSet::All || kind != EdgeKind::Plain {
-                let f0 = &world.faces[adj[0].face as usize];
-                let at = |k: u32| f0.points[f0.vertices.iter().position(|&v| v == k).unwrap_or(0)];
+                let h = &adj[0];
+                let pts = &world.faces[h.face as usize].points;
+                let (i, j) = (h.at as usize, (h.at as usize + 1) % pts.len());
                 out.push(Edge {
                     leaf,
-                    ends: [at(adj[0].a), at(adj[0].b)],
+                    ends: if h.fwd {
+                        [pts[i], pts[j]]
+                    } else {
+                        [pts[j], pts[i]]
+                    },
                     faces: adj.iter().map(|h| FaceId(h.face)).collect(),
                     kind,
                 });
@@ -143,6 +154,7 @@ fn half_edges(world: &WorldFaces, start: usize, end: usize) -> Vec<HalfEdge> {
                     b: p.max(q),
                     seq: half.len() as u32,
                     face: f as u32,
+                    at: i as u32,
                     fwd: p < q,
                 });
             }
@@ -167,13 +179,12 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<std::ops::Range<usize>> {
 }
 
 /// Kind of a mesh edge in this view.
-fn classify(adj: &[HalfEdge], world: &WorldFaces, view: &View, cos_crease: f64) -> EdgeKind {
+fn classify(adj: &[HalfEdge], world: &WorldFaces, facing: &[Facing], cos_crease: f64) -> EdgeKind {
     let [(f, f_fwd), (g, g_fwd)] = match adj {
         [x, y] => [(x.face, x.fwd), (y.face, y.fwd)],
         _ => return EdgeKind::Border,
     };
-    let facing = |k: u32| view.screen.face_facing(FaceId(k));
-    let (ff, fg) = (facing(f), facing(g));
+    let (ff, fg) = (facing[f as usize], facing[g as usize]);
     let drawn = |x: Facing| matches!(x, Facing::Front | Facing::Back);
     if ff == Facing::Clipped || fg == Facing::Clipped {
         return EdgeKind::Border;

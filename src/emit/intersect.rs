@@ -20,15 +20,30 @@ pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sy
         .filter(|&f| keep(FaceId(f as u32)) && faces[f].points.len() >= 3)
         .collect();
     let boxes: Vec<_> = ids.iter().map(|&f| faces[f].bbox).collect();
+    // Per face, once: its plane's reference points, and its corners sorted when many (so
+    // that a pair's adjacency costs what the smaller face has, not the product).
+    let refs: Vec<[P3; 3]> = ids.iter().map(|&f| plane_refs(&faces[f].points)).collect();
+    let sorted: Vec<Option<Vec<u32>>> = ids
+        .iter()
+        .map(|&f| {
+            let v = &faces[f].vertices;
+            (v.len() > SORT_ABOVE).then(|| {
+                let mut s = v.clone();
+                s.sort_unstable();
+                s
+            })
+        })
+        .collect();
     // Results come in ascending (position, position) pair order, so in (face, face) order:
     // fixed whatever the thread count.
     let found = filter_map_pairs(&boxes, |i, j| {
-        let (lo, hi) = (ids[i as usize], ids[j as usize]);
+        let (i, j) = (i as usize, j as usize);
+        let (lo, hi) = (ids[i], ids[j]);
         let (f, g) = (&faces[lo], &faces[hi]);
-        let segs = if adjacent(f, g) {
+        let segs = if adjacent(f, g, &sorted[i], &sorted[j]) {
             Vec::new()
         } else {
-            cross(f, g)
+            cross_with(f, g, &refs[i], &refs[j])
         };
         (!segs.is_empty()).then(|| {
             segs.into_iter()
@@ -44,9 +59,24 @@ pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sy
     found.into_iter().flatten().collect()
 }
 
-/// Faces of one leaf that share a vertex (neighbours meet, they do not cross).
-fn adjacent(f: &WorldFace, g: &WorldFace) -> bool {
-    f.leaf == g.leaf && f.vertices.iter().any(|v| g.vertices.contains(v))
+/// Faces with more corners than this are searched through a sorted copy.
+const SORT_ABOVE: usize = 16;
+
+/// Faces of one leaf that share a vertex (neighbours meet, they do not cross); `sf` and
+/// `sg` are their sorted corners, where made.
+fn adjacent(f: &WorldFace, g: &WorldFace, sf: &Option<Vec<u32>>, sg: &Option<Vec<u32>>) -> bool {
+    if f.leaf != g.leaf {
+        return false;
+    }
+    let (small, big, sorted) = if f.vertices.len() <= g.vertices.len() {
+        (f, g, sg)
+    } else {
+        (g, f, sf)
+    };
+    match sorted {
+        Some(s) => small.vertices.iter().any(|v| s.binary_search(v).is_ok()),
+        None => small.vertices.iter().any(|v| big.vertices.contains(v)),
+    }
 }
 
 /// Three well-spread points of a face's plane.
@@ -69,10 +99,28 @@ fn plane_refs(p: &[P3]) -> [P3; 3] {
 
 /// Segments of the intersection of faces `f` and `g` (empty unless they cross).
 pub fn cross(f: &WorldFace, g: &WorldFace) -> Vec<[P3; 2]> {
-    let (rf, rg) = (plane_refs(&f.points), plane_refs(&g.points));
-    let sf: Vec<f64> = f.points.iter().map(|p| orient3d_refs(&rg, p)).collect();
-    let sg: Vec<f64> = g.points.iter().map(|p| orient3d_refs(&rf, p)).collect();
+    cross_with(f, g, &plane_refs(&f.points), &plane_refs(&g.points))
+}
+
+/// [`cross`] with the faces' plane reference points given. The smaller face is classified
+/// first: a large face is scanned only for a pair whose other face does cross its plane.
+fn cross_with(f: &WorldFace, g: &WorldFace, rf: &[P3; 3], rg: &[P3; 3]) -> Vec<[P3; 2]> {
+    let signs =
+        |pts: &[P3], r: &[P3; 3]| -> Vec<f64> { pts.iter().map(|p| orient3d_refs(r, p)).collect() };
     let straddles = |s: &[f64]| s.iter().any(|&x| x < 0.0) && s.iter().any(|&x| x > 0.0);
+    let (sf, sg) = if f.points.len() <= g.points.len() {
+        let sf = signs(&f.points, rg);
+        if !straddles(&sf) {
+            return Vec::new();
+        }
+        (sf, signs(&g.points, rf))
+    } else {
+        let sg = signs(&g.points, rf);
+        if !straddles(&sg) {
+            return Vec::new();
+        }
+        (signs(&f.points, rg), sg)
+    };
     if !straddles(&sf) || !straddles(&sg) {
         return Vec::new();
     }

@@ -7,6 +7,7 @@
 //! ([`super::once`]).
 
 use std::collections::BTreeMap;
+use std::sync::OnceLock;
 
 use rayon::prelude::*;
 
@@ -17,11 +18,12 @@ use crate::view::{Camera, Projection, View};
 use crate::visibility::Visibility;
 
 use super::chain::{chain, order};
-use super::clip_segment::{at, complement, intervals_in, union, Interval};
+use super::clip_segment::{at, complement, intervals_in, intervals_in_region, union, Interval};
 use super::edges::{mesh_edges, Edge, EdgeKind, EdgeOptions};
 use super::intersect::intersection_edges;
 use super::json::Lines;
 use super::once::{stroke_once, Ranked};
+use super::region::Region;
 use super::world::WorldFaces;
 
 /// Options of the line drawing.
@@ -119,17 +121,46 @@ pub fn visible_intervals(a: Pt2, b: Pt2, faces: &[FaceId], vis: &Visibility) -> 
     union(&lists)
 }
 
+/// The VTP of every face as an indexed [`Region`], made when first asked for: the edges of
+/// one face are clipped against its region many times.
+struct Regions<'v> {
+    vis: &'v Visibility,
+    made: Vec<OnceLock<Region<'v>>>,
+}
+
+impl<'v> Regions<'v> {
+    fn new(vis: &'v Visibility, faces: usize) -> Self {
+        Regions {
+            vis,
+            made: (0..faces).map(|_| OnceLock::new()).collect(),
+        }
+    }
+
+    /// [`visible_intervals`] with the regions indexed once.
+    fn visible_intervals(&self, a: Pt2, b: Pt2, faces: &[FaceId]) -> Vec<Interval> {
+        let lists: Vec<Vec<Interval>> = faces
+            .iter()
+            .map(|&f| {
+                let region =
+                    self.made[f.index()].get_or_init(|| Region::new(&self.vis.face(f).visible));
+                intervals_in_region(a, b, region)
+            })
+            .collect();
+        union(&lists)
+    }
+}
+
 /// Visible and hidden pieces of one edge.
 type Pieces = (Vec<[Pt2; 2]>, Vec<[Pt2; 2]>);
 
-fn edge_pieces(view: &View, vis: &Visibility, e: &Edge, hidden: bool) -> Pieces {
+fn edge_pieces(view: &View, regions: &Regions, e: &Edge, hidden: bool) -> Pieces {
     let Some([a, b]) = project_segment(&view.camera, &e.ends[0], &e.ends[1]) else {
         return (Vec::new(), Vec::new());
     };
     if a == b {
         return (Vec::new(), Vec::new());
     }
-    let shown = visible_intervals(a, b, &e.faces, vis);
+    let shown = regions.visible_intervals(a, b, &e.faces);
     let seg = |iv: &Interval| [at(a, b, iv[0]), at(a, b, iv[1])];
     let keep = |iv: &&Interval| iv[1] > iv[0];
     let vis_pieces = shown.iter().filter(keep).map(seg).collect();
@@ -144,9 +175,10 @@ fn edge_pieces(view: &View, vis: &Visibility, e: &Edge, hidden: bool) -> Pieces 
 /// Clips every edge against the VTPs, strokes every piece of line once ([`stroke_once`]),
 /// then chains and orders the pieces per (leaf, kind).
 pub fn split_edges(view: &View, vis: &Visibility, edges: &[Edge], hidden: bool) -> Drawing {
+    let regions = Regions::new(vis, view.screen.face_count());
     let pieces: Vec<Pieces> = edges
         .par_iter()
-        .map(|e| edge_pieces(view, vis, e, hidden))
+        .map(|e| edge_pieces(view, &regions, e, hidden))
         .collect();
     // Every piece of line once: shared parts go to the higher-ranked edge, and hidden lines
     // give way to visible ones.
@@ -193,11 +225,28 @@ pub fn split_edges(view: &View, vis: &Visibility, edges: &[Edge], hidden: bool) 
 pub fn strokes(groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>>) -> Vec<Stroke> {
     let mut out = Vec::new();
     for ((leaf, kind), segs) in groups {
-        for pts in order(chain(&segs)) {
+        let lines = chain(&segs).into_iter().filter(|l| !is_dot(l)).collect();
+        for pts in order(lines) {
             out.push(Stroke { leaf, kind, pts });
         }
     }
     out
+}
+
+/// Relative length under which a polyline is rounding noise, not a line: clipping an edge
+/// against regions that touch it at a point leaves pieces about 1e-15 long, which a round cap
+/// would draw as a dot. No picture (at most 32768 pixels across) resolves 1e-9 of its size.
+const DOT: f64 = 1e-9;
+
+/// Whether polyline `pts` is a dot: its length is at most `DOT` (1e-9) times the magnitude of its
+/// coordinates (the scale of the rounding that made it).
+pub fn is_dot(pts: &[Pt2]) -> bool {
+    let scale = pts.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
+    let length: f64 = pts
+        .windows(2)
+        .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+        .sum();
+    length <= DOT * scale
 }
 
 /// Total length of polylines.
@@ -231,6 +280,22 @@ mod tests {
         assert_eq!(d.visible.len(), 1, "one closed outline");
         // The back square's outline coincides with the front's; side edges project to points.
         assert!(total_length(&d.hidden) <= 4.0 + 1e-12);
+    }
+
+    #[test]
+    fn rounding_dots_are_dropped_real_short_lines_kept() {
+        let mut groups = BTreeMap::new();
+        let real = [[0.0, 0.0], [1e-6, 0.0]];
+        let dot = [[0.5, 0.5], [0.5 + 1e-15, 0.5]];
+        let far_dot = [[1e6, 1e6], [1e6, 1e6 + 1e-7]];
+        groups.insert((0, EdgeKind::Border), vec![real, dot, far_dot]);
+        let s = strokes(groups);
+        assert_eq!(s.len(), 1);
+        let mut kept = s[0].pts.clone();
+        kept.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        assert_eq!(kept, real.to_vec());
+        assert!(is_dot(&[[0.0, 0.0], [0.0, 0.0]]));
+        assert!(!is_dot(&[[1e-300, 0.0], [0.0, 0.0]]));
     }
 
     #[test]

@@ -18,6 +18,7 @@ pub mod page;
 pub mod picture;
 pub mod plot;
 pub mod png;
+pub mod region;
 pub mod shade;
 pub mod svg;
 pub mod tour;

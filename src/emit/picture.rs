@@ -161,10 +161,10 @@ impl Default for PictureOptions {
     }
 }
 
-/// One face's visible region on the page, flat shaded.
+/// The visible regions of the faces of one grey on the page, flat shaded.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fill {
-    /// Rings of the visible region (even-odd fill), in mm.
+    /// Rings of the visible regions (even-odd fill; the regions are disjoint), in mm.
     pub rings: Vec<Ring>,
     /// Grey level.
     pub grey: u8,

@@ -325,7 +325,11 @@ fn ordered_runs(strokes: Vec<(Pen, Vec<Pt2>)>) -> Vec<Run> {
     runs
 }
 
-/// Flat-shaded visible regions on the page, clipped to the drawing area.
+/// Flat-shaded visible regions on the page, clipped to the drawing area: one fill per grey
+/// holding the regions of every face of that grey. Visible regions are disjoint, so the
+/// even-odd fill of their union is each of them; drawn as one path, the triangles of one flat
+/// surface meet without the light anti-aliasing seam that two separately filled, half-covered
+/// edge pixels blend to.
 fn fills(
     view: &View,
     vis: &Visibility,
@@ -333,22 +337,24 @@ fn fills(
     light: Option<crate::geom::V3>,
 ) -> Vec<Fill> {
     let light = light_direction(&view.camera, light);
-    vis.iter()
-        .filter(|(_, fv)| !fv.visible.is_empty())
-        .filter_map(|(f, fv): (FaceId, _)| {
-            let rings: Vec<Vec<Pt2>> = fv
-                .visible
-                .iter()
-                .flatten()
-                .map(|r| r.iter().map(|&p| layout.to_page(p)).collect::<Vec<Pt2>>())
-                .map(|r| layout.area.clip_ring(&r))
-                .filter(|r| r.len() >= 3)
-                .collect();
-            let shade = face_shade(view, f, &light);
-            (!rings.is_empty()).then(|| Fill {
-                rings,
-                grey: (110.0 + 140.0 * shade).round().clamp(0.0, 255.0) as u8,
-            })
-        })
+    let mut by_grey: BTreeMap<u8, Vec<Vec<Pt2>>> = BTreeMap::new();
+    for (f, fv) in vis.iter().filter(|(_, fv)| !fv.visible.is_empty()) {
+        let f: FaceId = f;
+        let rings = fv
+            .visible
+            .iter()
+            .flatten()
+            .map(|r| r.iter().map(|&p| layout.to_page(p)).collect::<Vec<Pt2>>())
+            .map(|r| layout.area.clip_ring(&r))
+            .filter(|r| r.len() >= 3);
+        let grey = (110.0 + 140.0 * face_shade(view, f, &light))
+            .round()
+            .clamp(0.0, 255.0) as u8;
+        by_grey.entry(grey).or_default().extend(rings);
+    }
+    by_grey
+        .into_iter()
+        .filter(|(_, rings)| !rings.is_empty())
+        .map(|(grey, rings)| Fill { rings, grey })
         .collect()
 }

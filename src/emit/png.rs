@@ -185,4 +185,31 @@ mod tests {
         let (a, b) = (across(2.0), across(8.0));
         assert!((a - b).abs() < 0.75, "{a} mm vs {b} mm");
     }
+
+    #[test]
+    fn triangles_of_one_surface_fill_without_seams() {
+        // A dark rectangle made of two triangles (a flat face of a triangle mesh), diagonal
+        // at odd angles to the pixels, in one fill as `plot` groups them; every pixel well
+        // inside must be the fill grey (two fills drawn one after the other leave a light
+        // seam along the diagonal: grey 58 here).
+        let (a, b, c, d) = ([0.5, 0.5], [10.5, 0.5], [10.5, 7.5], [0.5, 7.5]);
+        let mut pic = pic();
+        pic.page = PageSize {
+            width: 11.0,
+            height: 8.0,
+        };
+        pic.fills = vec![Fill {
+            rings: vec![vec![a, b, c], vec![a, c, d]],
+            grey: 40,
+        }];
+        pic.layers.clear();
+        let pm = rasterise(&pic, 30.3).unwrap();
+        let (w, h) = (pm.width(), pm.height());
+        let lightest = (h / 10..h * 9 / 10)
+            .flat_map(|y| (w / 10..w * 9 / 10).map(move |x| (x, y)))
+            .map(|(x, y)| pm.pixel(x, y).unwrap().red())
+            .max()
+            .unwrap();
+        assert!(lightest <= 44, "seam: grey {lightest} inside a fill of 40");
+    }
 }

@@ -20,7 +20,7 @@ pub use box3::Box3;
 pub use normal::{newell, newell_indexed};
 pub use poly2::{MultiPolygon, Polygon, Pt2, Ring};
 pub use polymesh::PolyMesh;
-pub use predicates::{orient2d, orient3d, orient3d_refs, winding};
+pub use predicates::{orient2d, orient3d, orient3d_refs, winding, winding_step};
 pub use rect::Rect;
 
 /// A point in 3-space (f64).

@@ -44,20 +44,25 @@ pub fn winding(r: &[Pt2], p: Pt2) -> Option<i32> {
     let n = r.len();
     let mut w = 0;
     for i in 0..n {
-        let (a, b) = (r[i], r[(i + 1) % n]);
-        let o = orient2d(a, b, p);
-        if o == 0.0 && on_segment_collinear(a, b, p) {
-            return None;
-        }
-        if a[1] <= p[1] {
-            if b[1] > p[1] && o > 0.0 {
-                w += 1;
-            }
-        } else if b[1] <= p[1] && o < 0.0 {
-            w -= 1;
-        }
+        w += winding_step(r[i], r[(i + 1) % n], p)?;
     }
     Some(w)
+}
+
+/// What the edge a → b adds to the winding number around `p` (+1 or -1 where it crosses
+/// the ray from `p` toward +x, else 0), or None when `p` lies on it (exact). Only an edge
+/// through `p`, or meeting the ray's line at or right of `p`, gives anything but 0.
+#[inline]
+pub fn winding_step(a: Pt2, b: Pt2, p: Pt2) -> Option<i32> {
+    let o = orient2d(a, b, p);
+    if o == 0.0 && on_segment_collinear(a, b, p) {
+        return None;
+    }
+    if a[1] <= p[1] {
+        Some(i32::from(b[1] > p[1] && o > 0.0))
+    } else {
+        Some(-i32::from(b[1] <= p[1] && o < 0.0))
+    }
 }
 
 /// For `p` collinear with a and b: true when it lies on the closed segment.

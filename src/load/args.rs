@@ -1,7 +1,6 @@
 //! Checked access to a KDL node's arguments, properties and children, with positioned errors.
 
-use kdl::{KdlEntry, KdlNode, KdlValue};
-
+use super::kdl::{Entry as KdlEntry, Node as KdlNode, Value as KdlValue};
 use super::source::Source;
 use crate::error::{Error, Location, Result};
 
@@ -25,7 +24,7 @@ impl<'a> Node<'a> {
 
     /// The node's name.
     pub(super) fn name(&self) -> &'a str {
-        self.node.name().value()
+        &self.node.name.value
     }
 
     /// The node's position.
@@ -46,35 +45,35 @@ impl<'a> Node<'a> {
     /// The positional arguments, in order.
     pub(super) fn args(&self) -> Vec<&'a KdlEntry> {
         self.node
-            .entries()
+            .entries
             .iter()
-            .filter(|e| e.name().is_none())
+            .filter(|e| e.name.is_none())
             .collect()
     }
 
     /// The property `key`, if given.
     pub(super) fn prop(&self, key: &str) -> Option<&'a KdlEntry> {
         self.node
-            .entries()
+            .entries
             .iter()
-            .find(|e| e.name().is_some_and(|n| n.value() == key))
+            .find(|e| e.name.as_ref().is_some_and(|n| n.value == key))
     }
 
     /// Checks that every property is one of `allowed` and given once, and that no type
     /// annotation is used.
     pub(super) fn check_props(&self, allowed: &[&str]) -> Result<()> {
-        if self.node.ty().is_some() {
+        if self.node.ty.is_some() {
             return Err(self.parse_err("type annotations are not used in scene files"));
         }
         let mut seen: Vec<&str> = Vec::new();
-        for e in self.node.entries() {
-            if e.ty().is_some() {
+        for e in &self.node.entries {
+            if e.ty.is_some() {
                 return Err(Error::parse(
                     self.src.entry_loc(e),
                     "type annotations are not used in scene files",
                 ));
             }
-            let Some(key) = e.name().map(|n| n.value()) else {
+            let Some(key) = e.name.as_ref().map(|n| n.value.as_str()) else {
                 continue;
             };
             if !allowed.contains(&key) {
@@ -149,22 +148,22 @@ impl<'a> Node<'a> {
 
     /// The children, or an error when the node has no `{ }` block.
     pub(super) fn children(&self) -> Result<Vec<Node<'a>>> {
-        match self.node.children() {
-            Some(doc) => Ok(doc.nodes().iter().map(|n| Node::new(self.src, n)).collect()),
+        match &self.node.children {
+            Some(nodes) => Ok(nodes.iter().map(|n| Node::new(self.src, n)).collect()),
             None => Err(self.parse_err(format!("`{}` needs a {{ ... }} block", self.name()))),
         }
     }
 
     /// The children if there is a block, else none.
     pub(super) fn children_or_none(&self) -> Vec<Node<'a>> {
-        self.node.children().map_or_else(Vec::new, |doc| {
-            doc.nodes().iter().map(|n| Node::new(self.src, n)).collect()
+        self.node.children.as_ref().map_or_else(Vec::new, |nodes| {
+            nodes.iter().map(|n| Node::new(self.src, n)).collect()
         })
     }
 
     /// An error when the node has a non-empty `{ }` block.
     pub(super) fn no_children(&self) -> Result<()> {
-        match self.node.children().and_then(|d| d.nodes().first()) {
+        match self.node.children.as_ref().and_then(|d| d.first()) {
             Some(first) => Err(Error::parse(
                 self.src.node_loc(first),
                 format!("`{}` takes no child nodes", self.name()),
@@ -176,7 +175,7 @@ impl<'a> Node<'a> {
 
 /// A number argument: an integer or a float, finite and at most [`MAX_NUMBER`] in magnitude.
 pub(super) fn number(src: &Source, e: &KdlEntry) -> Result<f64> {
-    let x = match e.value() {
+    let x = match &e.value {
         KdlValue::Integer(i) => *i as f64,
         KdlValue::Float(f) => *f,
         other => {
@@ -186,16 +185,22 @@ pub(super) fn number(src: &Source, e: &KdlEntry) -> Result<f64> {
             ))
         }
     };
+    let literal = src.literal(e);
     if !x.is_finite() {
+        let why = if literal.starts_with('#') {
+            "is not finite"
+        } else {
+            "is out of range: it overflows a 64-bit float"
+        };
         return Err(Error::invalid(
             src.entry_loc(e),
-            format!("number {x} is not finite"),
+            format!("number {literal} {why}"),
         ));
     }
     if x.abs() > MAX_NUMBER {
         return Err(Error::invalid(
             src.entry_loc(e),
-            format!("number {x:e} is too large (the limit is {MAX_NUMBER:e})"),
+            format!("number {literal} is too large (the limit is {MAX_NUMBER:e})"),
         ));
     }
     Ok(x)
@@ -203,7 +208,7 @@ pub(super) fn number(src: &Source, e: &KdlEntry) -> Result<f64> {
 
 /// An integer argument.
 pub(super) fn integer(src: &Source, e: &KdlEntry) -> Result<i128> {
-    match e.value() {
+    match &e.value {
         KdlValue::Integer(i) => Ok(*i),
         other => Err(Error::parse(
             src.entry_loc(e),
@@ -214,7 +219,7 @@ pub(super) fn integer(src: &Source, e: &KdlEntry) -> Result<i128> {
 
 /// A string argument.
 pub(super) fn string<'a>(src: &Source, e: &'a KdlEntry) -> Result<&'a str> {
-    match e.value() {
+    match &e.value {
         KdlValue::String(s) => Ok(s),
         other => Err(Error::parse(
             src.entry_loc(e),
@@ -225,7 +230,7 @@ pub(super) fn string<'a>(src: &Source, e: &'a KdlEntry) -> Result<&'a str> {
 
 /// A boolean argument (`#true` / `#false`).
 pub(super) fn boolean(src: &Source, e: &KdlEntry) -> Result<bool> {
-    match e.value() {
+    match &e.value {
         KdlValue::Bool(b) => Ok(*b),
         other => Err(Error::parse(
             src.entry_loc(e),
@@ -264,7 +269,7 @@ mod tests {
     fn with_node<T>(text: &str, f: impl FnOnce(Node) -> T) -> T {
         let src = Source::new(Path::new("a.kdl"), text.to_string());
         let doc = src.parse().unwrap();
-        f(Node::new(&src, &doc.nodes()[0]))
+        f(Node::new(&src, &doc[0]))
     }
 
     #[test]
@@ -286,9 +291,17 @@ mod tests {
             "a.kdl:1:11: `box` takes 1 or 3 numbers, found 4"
         );
         let e = with_node("t 1 #nan", |n| n.numbers(&[2], "n").unwrap_err());
-        assert!(e.to_string().starts_with("a.kdl:1:5: number NaN"), "{e}");
+        assert_eq!(e.to_string(), "a.kdl:1:5: number #nan is not finite");
         let e = with_node("t 1e13", |n| n.numbers(&[1], "n").unwrap_err());
-        assert!(e.to_string().contains("too large"), "{e}");
+        assert_eq!(
+            e.to_string(),
+            "a.kdl:1:3: number 1e13 is too large (the limit is 1e12)"
+        );
+        let e = with_node("t 1e400", |n| n.numbers(&[1], "n").unwrap_err());
+        assert_eq!(
+            e.to_string(),
+            "a.kdl:1:3: number 1e400 is out of range: it overflows a 64-bit float"
+        );
         let e = with_node("t \"x\"", |n| n.numbers(&[1], "n").unwrap_err());
         assert_eq!(
             e.to_string(),

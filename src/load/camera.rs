@@ -5,8 +5,7 @@ use crate::error::Result;
 use crate::geom::{P3, V3};
 use crate::scene::CameraSpec;
 
-/// Vertical field of view when a perspective camera gives none, degrees.
-pub(super) const DEFAULT_FOV_DEG: f64 = 45.0;
+use crate::view::camera::DEFAULT_FOV_DEG;
 
 /// The nodes a `camera` block may hold.
 const CAMERA_NODES: [&str; 6] = ["eye", "target", "up", "fov", "ortho", "dir"];
@@ -147,7 +146,7 @@ mod tests {
     fn cam(text: &str) -> Result<CameraSpec> {
         let src = Source::new(Path::new("c.kdl"), text.to_string());
         let doc = src.parse().unwrap();
-        parse_camera(&Node::new(&src, &doc.nodes()[0]))
+        parse_camera(&Node::new(&src, &doc[0]))
     }
 
     #[test]

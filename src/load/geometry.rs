@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::args::{integer, quoted_list, Node};
-use super::mesh_file::{load_mesh, MeshFile};
+use super::mesh_file::{load_mesh_at, MeshFile};
 use super::transform::mirrors;
 use crate::error::{Error, Location, Pos, Result, Warning, Warnings};
 use crate::geom::MAX_COORD;
@@ -167,8 +167,8 @@ pub(super) fn mesh_prototype(
     if let Some(p) = cache.files.get(&canonical) {
         return Ok(p.clone());
     }
-    let file = load_mesh(path)?;
-    let mut objects = mesh_file_objects(&file, warnings)?;
+    let file = load_mesh_at(path, Some(at)).map_err(|e| e.via(at))?;
+    let mut objects = mesh_file_objects(&file, warnings).map_err(|e| e.via(at))?;
     let proto = if objects.len() == 1 {
         objects.pop().map(Arc::new)
     } else {
@@ -433,7 +433,7 @@ mod tests {
     fn build_first(text: &str, xf: M4) -> Built {
         let src = Source::new(Path::new("g.kdl"), text.to_string());
         let doc = src.parse().unwrap();
-        let nodes: Vec<Node> = doc.nodes().iter().map(|n| Node::new(&src, n)).collect();
+        let nodes: Vec<Node> = doc.iter().map(|n| Node::new(&src, n)).collect();
         let faces: Vec<Node> = nodes
             .iter()
             .copied()

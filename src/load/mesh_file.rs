@@ -72,8 +72,17 @@ fn format_of(path: &Path) -> Result<Format> {
 /// [`Error::Usage`] for an unknown extension, [`Error::Io`] if the file cannot be read, and the
 /// format parser's [`Error::Parse`] or [`Error::Invalid`] (with the position) for bad contents.
 pub fn load_mesh(path: &Path) -> Result<MeshFile> {
+    load_mesh_at(path, None)
+}
+
+/// [`load_mesh`] for the node at `at` (a scene file's `mesh` node): an unknown extension, a
+/// missing file, a directory or a device is reported there.
+pub(crate) fn load_mesh_at(path: &Path, at: Option<&Location>) -> Result<MeshFile> {
+    if let (Err(e), Some(at)) = (format_of(path), at) {
+        return Err(Error::invalid(at.clone(), e.to_string()));
+    }
     format_of(path)?;
-    let bytes = std::fs::read(path).map_err(|e| Error::Io(Location::file(path), e))?;
+    let bytes = super::read::read_file(path, at)?;
     parse_mesh(path, &bytes)
 }
 
@@ -162,6 +171,14 @@ mod tests {
         let e = load_mesh(Path::new("/no/such/dir/m.obj")).unwrap_err();
         assert!(matches!(e, Error::Io(..)));
         assert!(e.to_string().starts_with("/no/such/dir/m.obj: "), "{e}");
+        let at = Location::line(Path::new("s.kdl"), 2, 7);
+        let e = load_mesh_at(Path::new("."), Some(&at))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "s.kdl:2:7: .: unknown mesh file extension (expected .obj, .stl or .ply)"
+        );
     }
 
     #[test]

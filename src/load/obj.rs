@@ -316,7 +316,7 @@ mod tests {
             ("v 0 0 0\n\n\tcurv 1 2\n", "dir/m.obj:3:2: unknown OBJ statement 'curv'"),
             ("v 0 0 0\nv é 0 0\n", "dir/m.obj:2:3: invalid number 'é'"),
             ("v 0 0 0\nvé 0 0\n", "dir/m.obj:2:1: unknown OBJ statement 'vé'"),
-            ("v 0 0 0\nv 1 \x00 0\n", "dir/m.obj:2:5: invalid number '\\0'"),
+            ("v 0 0 0\nv 1 \x00 0\n", "dir/m.obj:2:5: a NUL byte: not a text file?"),
             ("# only comments\no a\n", "dir/m.obj: the file contains no faces"),
         ];
         for (text, want) in cases {

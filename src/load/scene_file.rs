@@ -12,6 +12,7 @@ use std::sync::Arc;
 use super::args::{quoted_list, Node};
 use super::camera::parse_camera;
 use super::geometry::{self, is_geometry, GeomCtx, MeshCache};
+use super::limits::LoadOptions;
 use super::source::Source;
 use super::transform::{compose, is_transform, transform_box};
 use crate::error::{Error, Location, Result, Warning, Warnings};
@@ -25,7 +26,18 @@ const TOP_NODES: [&str; 5] = ["camera", "include", "prototype", "object", "insta
 /// Loads the scene file at `path` (and the files it includes and the meshes it uses).
 /// Repairs made on the way are appended to `warnings`.
 pub fn load_scene_file(path: &Path, warnings: &mut Warnings) -> Result<Scene> {
+    load_scene_file_with(path, &LoadOptions::default(), warnings)
+}
+
+/// [`load_scene_file`] with limits: an instance, object or scene with more faces than
+/// `opts.max_faces` is an error at its node, found from counts before anything is expanded.
+pub fn load_scene_file_with(
+    path: &Path,
+    opts: &LoadOptions,
+    warnings: &mut Warnings,
+) -> Result<Scene> {
     let mut loader = Loader {
+        opts: *opts,
         warnings,
         meshes: MeshCache::default(),
         prototypes: HashMap::new(),
@@ -77,6 +89,7 @@ struct Open {
 
 /// The state of one load.
 struct Loader<'w> {
+    opts: LoadOptions,
     warnings: &'w mut Warnings,
     meshes: MeshCache,
     prototypes: HashMap<String, Prototype>,
@@ -122,7 +135,7 @@ impl Loader<'_> {
             shown: path.to_path_buf(),
             include_at: None,
         });
-        let nodes: Vec<Node> = doc.nodes().iter().map(|n| Node::new(&src, n)).collect();
+        let nodes: Vec<Node> = doc.iter().map(|n| Node::new(&src, n)).collect();
         let result = self.top_nodes(&nodes, at.is_none());
         self.stack.pop();
         self.loaded.insert(canonical);
@@ -145,9 +158,12 @@ impl Loader<'_> {
     }
 
     fn top_nodes(&mut self, nodes: &[Node], top: bool) -> Result<Vec<Placed>> {
-        let mut placed = Vec::new();
+        let mut placed: Vec<Placed> = Vec::new();
         let later = prototype_definitions(nodes);
+        let mut faces = 0usize;
         for n in nodes {
+            // The scene so far, with everything this node adds (includes too).
+            let before = placed.len();
             match n.name() {
                 "camera" => self.camera_node(n, top)?,
                 "include" => placed.extend(self.include(n)?),
@@ -167,6 +183,21 @@ impl Loader<'_> {
                     });
                 }
                 other => return Err(top_level_error(n, other)),
+            }
+            for p in &placed[before..] {
+                faces = faces.saturating_add(p.object.face_count());
+            }
+            if faces > self.opts.max_faces {
+                let so_far = Object::group("", placed.drain(..).map(|p| p.object).collect());
+                return Err(Error::invalid(
+                    n.loc(),
+                    format!(
+                        "with this node the scene has {} faces once its instances are placed, more than the limit of {} (--max-faces){}",
+                        faces,
+                        self.opts.max_faces,
+                        chain_note(&so_far)
+                    ),
+                ));
             }
         }
         Ok(placed)
@@ -197,7 +228,17 @@ impl Loader<'_> {
         if let Some(open) = self.stack.last_mut() {
             open.include_at = Some(at.clone());
         }
-        self.file(&path, Some(&at))
+        self.file(&path, Some(&at)).map_err(|e| {
+            // An include cycle is reported in a file still open, naming the whole chain.
+            let open = e
+                .location()
+                .is_some_and(|l| self.stack.iter().any(|o| o.shown == l.file));
+            if open {
+                e
+            } else {
+                e.via(&at)
+            }
+        })
     }
 
     fn prototype(&mut self, n: &Node, later: &HashMap<String, Location>) -> Result<()> {
@@ -248,8 +289,13 @@ impl Loader<'_> {
             }
         }
         let mut object = assemble(n, name, geoms, subs)?;
+        self.opts.check(
+            &object,
+            &format!("{} {:?}", n.name(), object.name),
+            &n.loc(),
+        )?;
         if let Some(ib) = &body.inbox {
-            object.inbox = self.inbox(ib, &xf, &object.cbox)?;
+            object.inbox = self.checked_inbox(ib, &xf, &object)?;
         }
         Ok(object)
     }
@@ -289,9 +335,11 @@ impl Loader<'_> {
         }
         let m = xf * compose(&transforms)?;
         let mut object = Object::instance(name, proto.clone(), m);
+        self.opts
+            .check(&object, &format!("instance {:?}", object.name), &n.loc())?;
         check_placed(n, &object.cbox)?;
         object.inbox = match &inbox {
-            Some(ib) => self.inbox(ib, &m, &object.cbox)?,
+            Some(ib) => self.checked_inbox(ib, &m, &object)?,
             None => proto.inbox.and_then(|b| transform_box(&b, &m)),
         };
         Ok(object)
@@ -360,6 +408,32 @@ impl Loader<'_> {
             )));
         }
         Ok(Some(placed.intersection_with(cbox)))
+    }
+
+    /// The explicit INBOX `n` of `object`, checked to lie inside one of its closed solids
+    /// (as a computed one is proven); kept shrunk by the check's margin.
+    fn checked_inbox(&mut self, n: &Node, xf: &M4, object: &Object) -> Result<Option<Box3>> {
+        let Some(b) = self.inbox(n, xf, &object.cbox)? else {
+            return Ok(None);
+        };
+        match crate::prepare::contain::inside(object, &b) {
+            Ok(shrunk) => Ok(Some(shrunk)),
+            Err(why) => Err(n.invalid(format!(
+                "the INBOX {:?}..{:?} is not inside the object: {why}",
+                b.lo.coords.as_slice(),
+                b.hi.coords.as_slice()
+            ))),
+        }
+    }
+}
+
+/// `" (prototype chain: ...)"` for an object that has one, else nothing.
+fn chain_note(o: &Object) -> String {
+    let chain = super::limits::prototype_chain(o);
+    if chain.is_empty() {
+        chain
+    } else {
+        format!(" (prototype chain: {chain})")
     }
 }
 
@@ -904,6 +978,65 @@ mod tests {
             e.starts_with("s.kdl:1:14: cannot read mesh file nope.obj"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn errors_name_the_chain_of_includes_and_meshes() {
+        let d = dir("chain");
+        std::fs::create_dir_all(d.join("parts")).unwrap();
+        write(
+            &d,
+            "parts/bad.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 zero\nf 1 2 3\n",
+        );
+        write(
+            &d,
+            "parts/part.kdl",
+            "\nobject \"p\" {\n  mesh \"bad.obj\"\n}\n",
+        );
+        let top = write(
+            &d,
+            "top.kdl",
+            "object \"a\" { prism 3 }\ninclude \"parts/part.kdl\"\n",
+        );
+        let mut w = Vec::new();
+        let e = load_scene_file(&top, &mut w).unwrap_err();
+        let p = |f: &str| d.join(f).display().to_string();
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "{}:2:1 -> {}:3:3 -> {}:3:7: invalid number 'zero'",
+                p("top.kdl"),
+                p("parts/part.kdl"),
+                p("parts/bad.obj")
+            )
+        );
+        assert_eq!(
+            e.location().unwrap().to_string(),
+            format!("{}:3:7", p("parts/bad.obj"))
+        );
+        // A directory, a device, a path with no mesh extension: at the mesh node.
+        let e = err("meshdir", "object \"a\" {\n  mesh \".\"\n}\n");
+        assert_eq!(
+            e,
+            "s.kdl:2:3: .: unknown mesh file extension (expected .obj, .stl or .ply)"
+        );
+        let dd = dir("meshdir2");
+        std::fs::create_dir_all(dd.join("d.obj")).unwrap();
+        let s = write(&dd, "s.kdl", "object \"a\" { mesh \"d.obj\" }\n");
+        let e = load_scene_file(&s, &mut w).unwrap_err().to_string();
+        assert!(
+            e.ends_with("s.kdl:1:14: cannot read d.obj: it is a directory, not a file")
+                || e.contains("s.kdl:1:14: cannot read"),
+            "{e}"
+        );
+        if Path::new("/dev/zero").exists() {
+            let e = err("zero", "object \"a\" { mesh \"/dev/zero.obj\" }\n");
+            assert!(
+                e.starts_with("s.kdl:1:14: cannot read mesh file /dev/zero.obj"),
+                "{e}"
+            );
+        }
     }
 
     #[test]

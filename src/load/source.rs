@@ -2,8 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use kdl::{KdlDocument, KdlEntry, KdlNode};
-
+use super::kdl::{self, Entry, Node as KdlNode};
 use crate::error::{Error, Location, Result};
 
 /// The text of one scene file, with the start offset of every line for positions.
@@ -20,7 +19,13 @@ impl Source {
     /// A source from text already in memory.
     pub(super) fn new(path: &Path, text: String) -> Self {
         let mut line_starts = vec![0];
-        line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
+        let b = text.as_bytes();
+        // A line ends at LF, CR LF or a lone CR.
+        line_starts.extend((0..b.len()).filter_map(|i| match b[i] {
+            b'\n' => Some(i + 1),
+            b'\r' if b.get(i + 1) != Some(&b'\n') => Some(i + 1),
+            _ => None,
+        }));
         Source {
             path: path.to_path_buf(),
             text,
@@ -29,26 +34,40 @@ impl Source {
     }
 
     /// Reads `path`; `at` is where the file was asked for (an include node), if anywhere.
-    /// Text that is not UTF-8 is a parse error at the first bad byte.
+    /// Text that is not UTF-8 is a parse error at the first bad byte; so is a NUL byte
+    /// (UTF-16 text without a byte-order mark is valid UTF-8 full of them), whichever is first.
     pub(super) fn read(path: &Path, at: Option<&Location>) -> Result<Self> {
-        let bytes = std::fs::read(path).map_err(|e| {
-            let loc = at.cloned().unwrap_or_else(|| Location::file(path));
-            let msg = format!("cannot read {}: {e}", path.display());
-            Error::Io(loc, std::io::Error::new(e.kind(), msg))
-        })?;
-        match String::from_utf8(bytes) {
-            Ok(text) => Ok(Source::new(path, text)),
-            Err(e) => {
-                let valid = e.utf8_error().valid_up_to();
-                let bytes = e.into_bytes();
-                let prefix = String::from_utf8_lossy(&bytes[..valid]).into_owned();
-                let src = Source::new(path, prefix);
-                Err(Error::parse(
-                    src.loc(valid),
-                    "the file is not UTF-8 text (a scene file is KDL text)",
-                ))
+        let bytes = super::read::read_file(path, at)?;
+        let nul = bytes.iter().position(|&b| b == 0);
+        let valid = std::str::from_utf8(&bytes).err().map(|e| e.valid_up_to());
+        let (offset, why) = match (nul, valid) {
+            (None, None) => {
+                let text = String::from_utf8(bytes).unwrap_or_default();
+                return Ok(Source::new(path, text));
             }
-        }
+            (Some(n), v) if v.is_none_or(|v| n < v) => {
+                let why = if super::text::looks_like_utf16(&bytes) {
+                    ": it is full of NUL bytes, as UTF-16 text is"
+                } else {
+                    ": it holds a NUL byte"
+                };
+                (n, why)
+            }
+            (_, v) => {
+                let bom16 = bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]);
+                let why = if bom16 {
+                    ": it starts with a UTF-16 byte-order mark"
+                } else {
+                    ""
+                };
+                (v.unwrap_or_default(), why)
+            }
+        };
+        let prefix = String::from_utf8_lossy(&bytes[..offset]).into_owned();
+        Err(Error::parse(
+            Source::new(path, prefix).loc(offset),
+            format!("the file is not UTF-8 text{why} (a scene file is KDL text)"),
+        ))
     }
 
     /// The 1-based line and column (in characters) of byte `offset`.
@@ -69,124 +88,29 @@ impl Source {
         Location::line(&self.path, line, col)
     }
 
-    /// The location of a node (its name, or its type annotation).
+    /// The location of a node (its name).
     pub(super) fn node_loc(&self, node: &KdlNode) -> Location {
-        self.loc(node.span().offset())
+        self.loc(node.name.at)
     }
 
     /// The location of an argument or property (a property's key).
-    pub(super) fn entry_loc(&self, entry: &KdlEntry) -> Location {
-        self.loc(entry.span().offset())
+    pub(super) fn entry_loc(&self, entry: &Entry) -> Location {
+        self.loc(entry.at)
     }
 
-    /// Parses the text as a KDL v2 document; a syntax error names the first diagnostic's
-    /// position. Blocks nested deeper than [`MAX_DEPTH`] are refused before parsing.
-    pub(super) fn parse(&self) -> Result<KdlDocument> {
-        if let Some(at) = too_deep(self.text.as_bytes(), MAX_DEPTH) {
-            return Err(Error::parse(
-                self.loc(at),
-                format!("blocks are nested more than {MAX_DEPTH} deep"),
-            ));
-        }
-        KdlDocument::parse_v2(&self.text).map_err(|e| {
-            let Some(d) = e.diagnostics.first() else {
-                return Error::parse(self.loc(0), "KDL syntax error");
-            };
-            let mut msg = format!(
-                "KDL syntax error: {}",
-                d.message.as_deref().unwrap_or("unexpected input")
-            );
-            if let Some(help) = &d.help {
-                msg.push_str(" (");
-                msg.push_str(help);
-                msg.push(')');
-            }
-            Error::parse(self.loc(d.span.offset()), msg)
-        })
+    /// The text of an entry's value as written (for messages about numbers).
+    pub(super) fn literal(&self, entry: &Entry) -> &str {
+        self.text
+            .get(entry.literal.0..entry.literal.1)
+            .unwrap_or("")
     }
-}
 
-/// The deepest `{ }` nesting accepted (the KDL parser recurses once per level).
-pub(super) const MAX_DEPTH: usize = 64;
-
-/// The offset of the first `{` nested deeper than `max`, if any. Braces in comments and
-/// strings do not count (a rough scan of KDL's comment and string forms).
-fn too_deep(b: &[u8], max: usize) -> Option<usize> {
-    let mut depth = 0usize;
-    let mut i = 0;
-    while i < b.len() {
-        match (b[i], b.get(i + 1).copied()) {
-            (b'/', Some(b'/')) => i = skip_to(b, i, b"\n"),
-            (b'/', Some(b'*')) => i = skip_block_comment(b, i),
-            (b'"', _) if b[i..].starts_with(b"\"\"\"") => i = skip_to(b, i + 3, b"\"\"\""),
-            (b'"', _) => i = skip_quoted(b, i + 1),
-            (b'#', Some(b'#' | b'"')) => i = skip_raw(b, i),
-            (b'{', _) => {
-                depth += 1;
-                if depth > max {
-                    return Some(i);
-                }
-                i += 1;
-            }
-            (b'}', _) => {
-                depth = depth.saturating_sub(1);
-                i += 1;
-            }
-            _ => i += 1,
-        }
+    /// Parses the text as a KDL v2 document; a syntax error names its position. Blocks
+    /// nested deeper than [`kdl::MAX_DEPTH`] are an error (the reader stops there).
+    pub(super) fn parse(&self) -> Result<Vec<KdlNode>> {
+        kdl::parse(&self.text)
+            .map_err(|e| Error::parse(self.loc(e.at), format!("KDL syntax error: {}", e.msg)))
     }
-    None
-}
-
-/// The offset just past the first `end` at or after `from` (or the end of the text).
-fn skip_to(b: &[u8], from: usize, end: &[u8]) -> usize {
-    b.get(from..)
-        .and_then(|rest| rest.windows(end.len()).position(|w| w == end))
-        .map_or(b.len(), |k| from + k + end.len())
-}
-
-/// Past a `/* ... */` comment (they nest in KDL) starting at `i`.
-fn skip_block_comment(b: &[u8], mut i: usize) -> usize {
-    let mut nest = 0usize;
-    while i < b.len() {
-        if b[i..].starts_with(b"/*") {
-            nest += 1;
-            i += 2;
-        } else if b[i..].starts_with(b"*/") {
-            nest -= 1;
-            i += 2;
-            if nest == 0 {
-                return i;
-            }
-        } else {
-            i += 1;
-        }
-    }
-    b.len()
-}
-
-/// Past a quoted string whose body starts at `i` (ends at an unescaped quote or a newline).
-fn skip_quoted(b: &[u8], mut i: usize) -> usize {
-    while i < b.len() {
-        match b[i] {
-            b'\\' => i += 2,
-            b'"' | b'\n' => return i + 1,
-            _ => i += 1,
-        }
-    }
-    b.len()
-}
-
-/// Past a raw string `#"..."#` (any number of `#`) starting at `i`.
-fn skip_raw(b: &[u8], i: usize) -> usize {
-    let hashes = b[i..].iter().take_while(|&&c| c == b'#').count();
-    let open = i + hashes;
-    if b.get(open) != Some(&b'"') {
-        return open;
-    }
-    let mut end = vec![b'"'];
-    end.extend(std::iter::repeat_n(b'#', hashes));
-    skip_to(b, open + 1, &end)
 }
 
 #[cfg(test)]
@@ -215,13 +139,21 @@ mod tests {
     fn syntax_error_has_position() {
         let e = src("a 1\nb 1.\n").parse().unwrap_err().to_string();
         assert!(e.starts_with("s.kdl:2:3: KDL syntax error"), "{e}");
+        let e = src("a\rb true").parse().unwrap_err().to_string();
+        assert!(
+            e.starts_with("s.kdl:2:3: KDL syntax error: bare `true` is KDL v1"),
+            "{e}"
+        );
     }
 
     #[test]
-    fn deep_nesting_is_refused_before_parsing() {
+    fn deep_nesting_is_refused() {
         let deep = "a {\n".repeat(5000) + &"}\n".repeat(5000);
         let e = src(&deep).parse().unwrap_err().to_string();
-        assert_eq!(e, "s.kdl:65:3: blocks are nested more than 64 deep");
+        assert_eq!(
+            e,
+            "s.kdl:65:3: KDL syntax error: blocks are nested more than 64 deep"
+        );
         // Braces in comments and strings do not count.
         let braces = "{".repeat(100);
         for text in [
@@ -234,17 +166,15 @@ mod tests {
         ] {
             assert!(src(&text).parse().is_ok(), "{text}");
         }
-        assert!(too_deep(b"a { b { c } }", 2).is_none());
-        assert_eq!(too_deep(b"a { b { c { } } }", 2), Some(10));
     }
 
     #[test]
     fn node_positions() {
         let s = src("// c\n  /* x */ foo 1 k=2\n");
         let doc = s.parse().unwrap();
-        let n = &doc.nodes()[0];
+        let n = &doc[0];
         assert_eq!(s.node_loc(n).to_string(), "s.kdl:2:11");
-        assert_eq!(s.entry_loc(&n.entries()[1]).to_string(), "s.kdl:2:17");
+        assert_eq!(s.entry_loc(&n.entries[1]).to_string(), "s.kdl:2:17");
     }
 
     #[test]
@@ -258,6 +188,13 @@ mod tests {
             e.ends_with("bad.kdl:2:4: the file is not UTF-8 text (a scene file is KDL text)"),
             "{e}"
         );
+        let utf16: Vec<u8> = "object \"a\" { prism 3 }"
+            .bytes()
+            .flat_map(|b| [b, 0])
+            .collect();
+        std::fs::write(&p, &utf16).unwrap();
+        let e = Source::read(&p, None).unwrap_err().to_string();
+        assert!(e.ends_with("bad.kdl:1:2: the file is not UTF-8 text: it is full of NUL bytes, as UTF-16 text is (a scene file is KDL text)"), "{e}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -221,6 +221,12 @@ impl<'a> AsciiStl<'a> {
         loop {
             let w = self.next("'vertex' or 'endloop'")?;
             if is(w, "vertex") {
+                if self.face.len() == 3 {
+                    return Err(Error::invalid(
+                        w.loc(self.path),
+                        "a fourth vertex: an ASCII STL facet is a triangle (3 vertices)",
+                    ));
+                }
                 let p = self.point()?;
                 let i = self
                     .welder
@@ -236,7 +242,7 @@ impl<'a> AsciiStl<'a> {
         self.expect("endfacet")?;
         let n = self.face.len();
         if n < 3 {
-            let msg = format!("facet has {n} vertices; a face needs at least 3");
+            let msg = format!("facet has {n} vertices; a facet is a triangle (3 vertices)");
             return Err(Error::invalid(facet.loc(self.path), msg));
         }
         self.group.mesh.faces.push(self.face.clone());
@@ -415,20 +421,20 @@ mod tests {
         assert!(e.starts_with("t/s.stl: byte 134: file is 150 bytes"), "{e}");
     }
 
-    const ASCII: &str = "solid cube part\n  facet normal 0 0 -1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n    endloop\n  endfacet\n  FACET NORMAL 0 0 1\n    OUTER LOOP\n      VERTEX 1 0 0\n      VERTEX 1 1 0\n      VERTEX -0 1 0\n      VERTEX 0.5 2 0\n    ENDLOOP\n  ENDFACET\nendsolid cube part\nsolid two\nfacet normal 0 0 0 outer loop vertex 0 0 0 vertex 0 1 0 vertex 0 0 1 endloop endfacet\nendsolid\n";
+    const ASCII: &str = "solid cube part\n  facet normal 0 0 -1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n    endloop\n  endfacet\n  FACET NORMAL 0 0 1\n    OUTER LOOP\n      VERTEX 1 0 0\n      VERTEX 1 1 0\n      VERTEX -0 1 0\n    ENDLOOP\n  ENDFACET\nendsolid cube part\nsolid two\nfacet normal 0 0 0 outer loop vertex 0 0 0 vertex 0 1 0 vertex 0 0 1 endloop endfacet\nendsolid\n";
 
     #[test]
     fn load_stl_ascii() {
         let m = parse(ASCII.as_bytes()).unwrap();
         let g = &m.groups[0];
-        assert_eq!(g.mesh.vertices.len(), 6);
+        assert_eq!(g.mesh.vertices.len(), 5);
         assert_eq!(
             g.mesh.faces,
-            vec![vec![0, 1, 2], vec![1, 3, 2, 4], vec![0, 2, 5]]
+            vec![vec![0, 1, 2], vec![1, 3, 2], vec![0, 2, 4]]
         );
         assert_eq!(g.face_pos[1], Pos::Line { line: 9, col: 3 });
-        assert_eq!(g.face_pos[2], Pos::Line { line: 19, col: 1 });
-        assert_eq!(g.mesh.vertices[5], P3::new(0., 0., 1.));
+        assert_eq!(g.face_pos[2], Pos::Line { line: 18, col: 1 });
+        assert_eq!(g.mesh.vertices[4], P3::new(0., 0., 1.));
     }
 
     #[test]
@@ -454,6 +460,10 @@ mod tests {
             (
                 format!("{head}vertex 0 0 0\nvertex 1 0 0\nvertex 0 1"),
                 "t/s.stl:6:11: unexpected end of file: expected a coordinate",
+            ),
+            (
+                format!("{head}vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 2 0\nvertex 1 2 0\nendloop\n"),
+                "t/s.stl:7:1: a fourth vertex: an ASCII STL facet is a triangle (3 vertices)",
             ),
             (
                 format!("{head}vertex 0 0 0\nnormal 1 0 0\n"),

@@ -4,26 +4,50 @@ use std::path::Path;
 
 use crate::error::{Error, Location, Pos, Result};
 
-/// `bytes` as text, or a parse error at the line and column of the first byte that is not UTF-8.
+/// `bytes` as text, or a parse error at the line and column of the first byte that is not
+/// text: the first byte that is not UTF-8, or the first NUL byte (valid UTF-8, but no text
+/// format here has one; UTF-16 text is full of them), whichever comes first.
 /// `first_line` is the 1-based line number of the first byte of `bytes`.
 pub(crate) fn decode<'a>(path: &Path, bytes: &'a [u8], first_line: usize) -> Result<&'a str> {
-    match std::str::from_utf8(bytes) {
-        Ok(s) => Ok(s),
-        Err(e) => {
-            let good = e.valid_up_to();
-            let before = bytes.get(..good).unwrap_or_default();
-            let line_start = before
-                .iter()
-                .rposition(|&b| b == b'\n')
-                .map_or(0, |i| i + 1);
-            let line = first_line + before.iter().filter(|&&b| b == b'\n').count();
-            let start = before.get(line_start..).unwrap_or_default();
-            let col = std::str::from_utf8(start).map_or(1, |s| s.chars().count() + 1);
-            let byte = bytes.get(good).copied().unwrap_or(0);
-            let msg = format!("invalid UTF-8 (byte 0x{byte:02X}): not a text file?");
-            Err(Error::parse(Location::line(path, line, col), msg))
+    let utf8 = std::str::from_utf8(bytes);
+    let bad = utf8.as_ref().err().map(|e| e.valid_up_to());
+    let nul = bytes.iter().position(|&b| b == 0);
+    let (at, msg) = match (nul, bad) {
+        (None, None) => return Ok(utf8.unwrap_or_default()),
+        (Some(n), b) if b.is_none_or(|b| n < b) => {
+            let msg = if looks_like_utf16(bytes) {
+                "NUL bytes: not UTF-8 text (UTF-16 text has a NUL in every other byte)".to_string()
+            } else {
+                "a NUL byte: not a text file?".to_string()
+            };
+            (n, msg)
         }
-    }
+        (_, b) => {
+            let b = b.unwrap_or_default();
+            let byte = bytes.get(b).copied().unwrap_or(0);
+            (
+                b,
+                format!("invalid UTF-8 (byte 0x{byte:02X}): not a text file?"),
+            )
+        }
+    };
+    let before = bytes.get(..at).unwrap_or_default();
+    let line = first_line + before.iter().filter(|&&b| b == b'\n').count();
+    let start = before
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
+    let col = String::from_utf8_lossy(&before[start..]).chars().count() + 1;
+    Err(Error::parse(Location::line(path, line, col), msg))
+}
+
+/// Whether `bytes` look like UTF-16 text: at least a third of them NUL, nine in ten of those
+/// at even offsets or nine in ten at odd ones (every other byte of mostly-ASCII UTF-16).
+pub(crate) fn looks_like_utf16(bytes: &[u8]) -> bool {
+    let nuls = bytes.iter().filter(|&&b| b == 0).count();
+    let even = bytes.iter().step_by(2).filter(|&&b| b == 0).count();
+    let one_side = even.max(nuls - even);
+    nuls * 3 > bytes.len() && one_side * 10 >= nuls * 9
 }
 
 /// The 1-based column (in characters) of byte `offset` of `line`.
@@ -67,10 +91,35 @@ impl Word<'_> {
     }
 }
 
+/// The lines of a text, ended by LF, CR LF or a lone CR (old Mac files).
+#[derive(Clone)]
+struct Lines<'a> {
+    rest: Option<&'a str>,
+}
+
+impl<'a> Iterator for Lines<'a> {
+    type Item = &'a str;
+
+    fn next(&mut self) -> Option<&'a str> {
+        let rest = self.rest?;
+        match rest.find(['\n', '\r']) {
+            None => {
+                self.rest = None;
+                Some(rest)
+            }
+            Some(k) => {
+                let skip = if rest[k..].starts_with("\r\n") { 2 } else { 1 };
+                self.rest = Some(&rest[k + skip..]);
+                Some(&rest[..k])
+            }
+        }
+    }
+}
+
 /// The words of a text, line by line, with optional `\` line continuation and end-of-line comments.
 #[derive(Clone)]
 pub(crate) struct Words<'a> {
-    lines: std::str::Split<'a, char>,
+    lines: Lines<'a>,
     line_text: &'a str,
     line: usize,
     pos: usize,
@@ -86,7 +135,7 @@ impl<'a> Words<'a> {
     /// The words of `text`, whose first line is line `first_line`.
     pub(super) fn new(text: &'a str, first_line: usize) -> Self {
         Words {
-            lines: text.split('\n'),
+            lines: Lines { rest: Some(text) },
             line_text: "",
             line: first_line.saturating_sub(1),
             pos: 0,
@@ -244,7 +293,29 @@ mod tests {
     }
 
     #[test]
+    fn load_text_lines_end_at_lf_crlf_or_lone_cr() {
+        let mut w = Words::new("a b\rc\r\nd\n\re", 1);
+        let v = words_of(&mut w);
+        let lines: Vec<(&str, usize)> = v
+            .iter()
+            .map(|(t, p)| match p {
+                Pos::Line { line, .. } => (t.as_str(), *line),
+                _ => unreachable!(),
+            })
+            .collect();
+        assert_eq!(lines, [("a", 1), ("b", 1), ("c", 2), ("d", 3), ("e", 5)]);
+    }
+
+    #[test]
     fn load_text_decode_reports_line_and_column() {
+        let utf16: Vec<u8> = "v 1 2 3\n".bytes().flat_map(|b| [b, 0]).collect();
+        let e = decode(Path::new("u.obj"), &utf16, 1)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "u.obj:1:2: NUL bytes: not UTF-8 text (UTF-16 text has a NUL in every other byte)"
+        );
         let e = decode(Path::new("g.obj"), b"v 1 2 3\nv \xc3\xa9 \xff\n", 1).unwrap_err();
         assert!(matches!(e, Error::Parse(..)));
         assert!(

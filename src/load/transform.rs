@@ -193,7 +193,7 @@ mod tests {
     fn composed(text: &str) -> Result<M4> {
         let src = Source::new(Path::new("t.kdl"), text.to_string());
         let doc = src.parse().unwrap();
-        let nodes: Vec<Node> = doc.nodes().iter().map(|n| Node::new(&src, n)).collect();
+        let nodes: Vec<Node> = doc.iter().map(|n| Node::new(&src, n)).collect();
         compose(&nodes)
     }
 

@@ -1,10 +1,12 @@
 //! INBOX of a convex closed mesh: the largest-volume axis-aligned box inside it, found by a
 //! convex optimisation over its face planes, shrunk a little and verified exactly.
 
+use std::collections::HashMap;
+
 use crate::geom::{newell_indexed, Box3, P3, V3};
 use crate::scene::Mesh;
 
-use super::halfspace::largest_box;
+use super::halfspace::largest_box_within;
 use super::solid::{shrink, Triangles};
 
 /// Relative distance (of the mesh's size) a vertex may lie in front of a neighbouring face's
@@ -15,19 +17,26 @@ const CONVEX_TOL: f64 = 1e-9;
 /// Relative shrinks tried, in order, until the box verifies.
 const SHRINKS: [f64; 4] = [1e-9, 1e-7, 1e-5, 1e-3];
 
-/// True when every vertex of every face sharing a vertex with a face lies on or behind that
-/// face's plane (within `CONVEX_TOL`): local convexity, which for a closed, consistently
-/// oriented surface means convexity.
+/// True when, across every edge, the faces meeting there bend away from each other: the
+/// corners of the neighbouring face next to the edge lie on or behind the face's plane
+/// (within `CONVEX_TOL` of the mesh's size). For a closed, consistently oriented surface this
+/// local convexity means convexity. One pass over the edges: linear in the mesh's size, even
+/// for faces of a million corners (a face is never scanned once per neighbour).
 pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
     let cbox = Box3::from_points(mesh.vertices.iter());
     let scale = cbox.size().iter().fold(0.0f64, |a, &b| a.max(b));
-    let mut incident: Vec<Vec<u32>> = vec![Vec::new(); mesh.vertices.len()];
+    let tol = CONVEX_TOL * scale;
+    let sign = if flipped { -1.0 } else { 1.0 };
+    // Each directed edge (a, b) -> (face, position of a in it).
+    let mut edges: HashMap<(u32, u32), (u32, u32)> =
+        HashMap::with_capacity(mesh.faces.iter().map(|f| f.vertices.len()).sum());
     for (k, f) in mesh.faces.iter().enumerate() {
-        for &v in &f.vertices {
-            incident[v as usize].push(k as u32);
+        let v = &f.vertices;
+        for i in 0..v.len() {
+            edges.insert((v[i], v[(i + 1) % v.len()]), (k as u32, i as u32));
         }
     }
-    let sign = if flipped { -1.0 } else { 1.0 };
+    let at = |f: &[u32], i: usize| mesh.vertices[f[i % f.len()] as usize].coords;
     mesh.faces.iter().all(|f| {
         let n = newell_indexed(&mesh.vertices, &f.vertices) * sign;
         let len = n.norm();
@@ -35,18 +44,22 @@ pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
             return false;
         }
         let n = n / len;
-        let d = f
-            .vertices
+        let v = &f.vertices;
+        let d = v
             .iter()
-            .map(|&v| n.dot(&mesh.vertices[v as usize].coords))
+            .map(|&k| n.dot(&mesh.vertices[k as usize].coords))
             .fold(f64::NEG_INFINITY, f64::max);
-        f.vertices.iter().all(|&v| {
-            incident[v as usize].iter().all(|&g| {
-                mesh.faces[g as usize]
-                    .vertices
-                    .iter()
-                    .all(|&w| n.dot(&mesh.vertices[w as usize].coords) <= d + CONVEX_TOL * scale)
-            })
+        (0..v.len()).all(|i| {
+            let (a, b) = (v[i], v[(i + 1) % v.len()]);
+            let Some(&(g, j)) = edges.get(&(b, a)) else {
+                return false;
+            };
+            // The neighbour runs b -> a at position j: its corners before b and after a.
+            let gv = &mesh.faces[g as usize].vertices;
+            let (j, m) = (j as usize, gv.len());
+            [at(gv, j + m - 1), at(gv, j + 2)]
+                .iter()
+                .all(|p| n.dot(p) <= d + tol)
         })
     })
 }
@@ -56,12 +69,16 @@ pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
 pub fn convex_inbox(mesh: &Mesh, tris: &Triangles) -> Option<Box3> {
     let n = mesh.vertices.len() as f64;
     let centroid = P3::from(mesh.vertices.iter().map(|p| p.coords).sum::<V3>() / n);
-    let best = largest_box(&tris.half_spaces(), &centroid)?;
+    let cbox = Box3::from_points(mesh.vertices.iter());
+    // A box (or any solid that fills its CBOX) is its own INBOX: one exact test, no search.
+    if tris.box_in_kernel(&cbox) {
+        return Some(cbox);
+    }
+    let best = largest_box_within(&tris.half_spaces(), &centroid, &cbox)?;
     let verified = SHRINKS
         .iter()
         .map(|&eps| shrink(&best, eps))
         .find(|b| tris.box_in_kernel(b))?;
-    let cbox = Box3::from_points(mesh.vertices.iter());
     Some(snap_to(&verified, &cbox, tris))
 }
 

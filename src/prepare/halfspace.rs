@@ -30,8 +30,25 @@ const MAX_NEWTON: usize = 400;
 /// strictly inside all of them. None when no strictly feasible start exists or the
 /// iteration breaks down (an unbounded or degenerate region).
 pub fn largest_box(planes: &[HalfSpace], interior: &P3) -> Option<Box3> {
+    // Solved with `interior` at the origin: far from the world's origin the slacks would
+    // be small differences of large offsets, and Newton's method would crawl.
+    let c = interior.coords;
+    let planes: Vec<HalfSpace> = planes
+        .iter()
+        .map(|h| HalfSpace {
+            normal: h.normal,
+            offset: h.offset - h.normal.dot(&c),
+        })
+        .collect();
+    let b = largest_box_at_origin(&planes)?;
+    let out = Box3::new(b.lo + c, b.hi + c);
+    out.has_interior().then_some(out)
+}
+
+/// [`largest_box`] with the interior point at the origin.
+fn largest_box_at_origin(planes: &[HalfSpace]) -> Option<Box3> {
     let rows: Vec<Row> = planes.iter().map(constraint_row).collect();
-    let mut x = start(planes, interior)?;
+    let mut x = start(planes, &P3::origin())?;
     let mut t = 1.0;
     let mut steps = 0;
     loop {
@@ -43,6 +60,105 @@ pub fn largest_box(planes: &[HalfSpace], interior: &P3) -> Option<Box3> {
     }
     let b = Box3::new(P3::new(x[0], x[1], x[2]), P3::new(x[3], x[4], x[5]));
     (b.has_interior() && (0..3).all(|i| b.lo[i].is_finite() && b.hi[i].is_finite())).then_some(b)
+}
+
+/// Up to this many half-spaces, [`largest_box_within`] solves with all of them at once.
+const DIRECT: usize = 48;
+/// Most violated half-spaces added to the working set per round.
+const ADD: usize = 32;
+/// Rounds of adding violated half-spaces before solving with all of them.
+const ROUNDS: usize = 40;
+
+/// [`largest_box`] for many half-spaces whose intersection lies in `bounds`: solved on a
+/// small working set (the bounds' six walls and the planes met first along 26 rays from
+/// `interior`), adding the half-spaces the working set's box still violates until it
+/// violates none. The walls are implied by the planes, so the box found is optimal for
+/// all of them; each round costs one pass over the planes, not a Newton step per plane.
+pub fn largest_box_within(planes: &[HalfSpace], interior: &P3, bounds: &Box3) -> Option<Box3> {
+    if planes.len() <= DIRECT {
+        return largest_box(planes, interior);
+    }
+    let mut chosen = vec![false; planes.len()];
+    let mut working = walls(bounds);
+    for d in directions() {
+        if let Some(k) = first_hit(planes, interior, &d) {
+            if !std::mem::replace(&mut chosen[k], true) {
+                working.push(planes[k]);
+            }
+        }
+    }
+    for _ in 0..ROUNDS {
+        let b = largest_box(&working, interior)?;
+        let mut violated: Vec<(f64, usize)> = planes
+            .iter()
+            .enumerate()
+            .filter(|&(k, _)| !chosen[k])
+            .filter_map(|(k, h)| {
+                let e = excess(h, &b);
+                (e > 0.0).then_some((e, k))
+            })
+            .collect();
+        if violated.is_empty() {
+            return Some(b);
+        }
+        violated.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        for &(_, k) in violated.iter().take(ADD) {
+            chosen[k] = true;
+            working.push(planes[k]);
+        }
+    }
+    largest_box(planes, interior)
+}
+
+/// The six half-spaces of a box.
+fn walls(b: &Box3) -> Vec<HalfSpace> {
+    let mut out = Vec::with_capacity(6);
+    for i in 0..3 {
+        let mut n = V3::zeros();
+        n[i] = 1.0;
+        out.push(HalfSpace {
+            normal: n,
+            offset: b.hi[i],
+        });
+        out.push(HalfSpace {
+            normal: -n,
+            offset: -b.lo[i],
+        });
+    }
+    out
+}
+
+/// The 26 directions to the faces, edges and corners of a cube.
+fn directions() -> impl Iterator<Item = V3> {
+    (0..27).filter(|&k| k != 13).map(|k| {
+        V3::new(
+            (k % 3) as f64 - 1.0,
+            (k / 3 % 3) as f64 - 1.0,
+            (k / 9) as f64 - 1.0,
+        )
+    })
+}
+
+/// The plane a ray from `p` along `d` meets first, if any.
+fn first_hit(planes: &[HalfSpace], p: &P3, d: &V3) -> Option<usize> {
+    planes
+        .iter()
+        .enumerate()
+        .filter_map(|(k, h)| {
+            let along = h.normal.dot(d);
+            (along > 0.0).then(|| ((h.offset - h.normal.dot(&p.coords)) / along, k))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, k)| k)
+}
+
+/// How far the corner of `b` farthest along the half-space's normal lies beyond it.
+fn excess(h: &HalfSpace, b: &Box3) -> f64 {
+    let n = h.normal;
+    (0..3)
+        .map(|i| n[i] * if n[i] > 0.0 { b.hi[i] } else { b.lo[i] })
+        .sum::<f64>()
+        - h.offset
 }
 
 /// A linear constraint on (lo, hi) with three non-zero coefficients: Σ val·x[idx] ≤ offset.
@@ -205,6 +321,29 @@ mod tests {
         }
         let b = largest_box(&planes, &P3::origin()).unwrap();
         assert!((b.volume() - 8.0 / 27.0).abs() < 1e-5, "{b:?}");
+    }
+
+    #[test]
+    fn working_set_finds_the_box_of_all_planes() {
+        // A prism over a regular 2000-gon of circumradius 1, z in [0, 1]: the best box has
+        // the inscribed square's corners on the polygon (half-size about 1/sqrt(2)).
+        let n = 2000;
+        let mut planes = vec![hs([0., 0., 1.], 1.), hs([0., 0., -1.], 0.)];
+        let apothem = (std::f64::consts::PI / n as f64).cos();
+        for k in 0..n {
+            let a = (k as f64 + 0.5) * std::f64::consts::TAU / n as f64;
+            planes.push(hs([a.cos(), a.sin(), 0.], apothem));
+        }
+        let bounds = Box3::new(P3::new(-1., -1., 0.), P3::new(1., 1., 1.));
+        let p = P3::new(0.1, 0., 0.5);
+        let fast = largest_box_within(&planes, &p, &bounds).unwrap();
+        let slow = largest_box(&planes, &p).unwrap();
+        assert!(
+            (fast.volume() - slow.volume()).abs() < 1e-4 * slow.volume(),
+            "{fast:?} {slow:?}"
+        );
+        assert!(planes.iter().all(|h| excess(h, &fast) <= 0.0));
+        assert!((fast.volume() - 2.0).abs() < 1e-3, "{fast:?}");
     }
 
     #[test]

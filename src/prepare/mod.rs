@@ -3,6 +3,7 @@
 //! (paper 002).
 
 pub mod bvtree;
+pub mod contain;
 pub mod convex;
 pub mod grow;
 pub mod halfspace;
@@ -36,11 +37,12 @@ pub fn prepare(scene: &mut Scene) {
 }
 
 /// The prepare stage for a whole scene: every mesh's solidity (once per prototype), INBOXes
-/// for every object lacking one, and an object tree for every large leaf mesh. A scene of one leaf object gets no inboxes: an inbox prunes
-/// only other objects, so there is nothing for it to do ("model no more than a scene needs").
+/// for every object lacking one, and an object tree for every large leaf mesh. A scene of one
+/// leaf object gets no inboxes: an inbox prunes only other objects, so there is nothing for it
+/// to do ("model no more than a scene needs").
 pub fn prepare_with(scene: &mut Scene, opts: &PrepareOptions) {
     mark_solids(&mut scene.root);
-    let several = scene.leaves().len() >= 2;
+    let several = has_two_leaves(&scene.root);
     if several {
         compute_inboxes(&mut scene.root);
     }
@@ -51,4 +53,26 @@ pub fn prepare_with(scene: &mut Scene, opts: &PrepareOptions) {
         Some(HierarchyKind::Median) => {}
         None => trees::attach_trees(&mut scene.root, HierarchyKind::Simplify, several, true),
     }
+}
+
+/// True when the tree has at least two leaves (instances counted, none expanded: the walk
+/// stops at the second leaf).
+fn has_two_leaves(root: &crate::scene::Object) -> bool {
+    fn count(o: &crate::scene::Object, n: &mut usize) {
+        match &o.content {
+            crate::scene::Content::Mesh(_) => *n += 1,
+            crate::scene::Content::Subobjects(s) => {
+                for c in s {
+                    if *n >= 2 {
+                        return;
+                    }
+                    count(c, n);
+                }
+            }
+            crate::scene::Content::Instance(i) => count(&i.prototype, n),
+        }
+    }
+    let mut n = 0;
+    count(root, &mut n);
+    n >= 2
 }

@@ -45,12 +45,32 @@ impl Triangles {
     }
 
     /// Exact test: every corner of `b` is on the inner side of (or on) every triangle's
-    /// plane. Such a box lies in the kernel of the polyhedron, hence inside it.
+    /// plane. Such a box lies in the kernel of the polyhedron, hence inside it. Per triangle
+    /// only the corner farthest along its normal is tested (exact `orient3d`); on an axis
+    /// where the normal's sign is within rounding of zero, both corners are.
     pub fn box_in_kernel(&self, b: &Box3) -> bool {
-        let corners = b.corners();
         self.tris.iter().all(|t| {
+            let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+            let n = e1.cross(&e2);
+            // Each component of the f64 cross product is within this of the exact one.
+            let err = 1e-12 * e1.norm() * e2.norm();
+            let both: [[f64; 2]; 3] = std::array::from_fn(|i| [b.lo[i], b.hi[i]]);
+            let c: [&[f64]; 3] = std::array::from_fn(|i| {
+                if n[i] > err {
+                    &both[i][1..]
+                } else if n[i] < -err {
+                    &both[i][..1]
+                } else {
+                    &both[i][..]
+                }
+            });
             // orient3d > 0: the point lies below the counter-clockwise triangle, i.e. inside.
-            corners.iter().all(|p| orient3d_refs(t, p) >= 0.0)
+            c[0].iter().all(|&x| {
+                c[1].iter().all(|&y| {
+                    c[2].iter()
+                        .all(|&z| orient3d_refs(t, &P3::new(x, y, z)) >= 0.0)
+                })
+            })
         })
     }
 

@@ -95,11 +95,19 @@ pub struct Object {
     /// a prepared copy but must not change the number of faces below.
     pub content: Content,
     /// Faces in the subtree, instances expanded (kept so that culling can skip a subtree in
-    /// constant time).
+    /// constant time, and so that a scene's size is known before anything is expanded);
+    /// saturating at `usize::MAX`.
     faces: usize,
     /// The object tree of a leaf mesh (paper 002), built by the prepare stage.
     pub tree: Option<Arc<ObjectTree>>,
+    /// Vertices in the subtree, instances expanded; saturating.
+    vertices: usize,
 }
+
+/// A placed prototype whose expansion has more vertices than this gets the CBOX of its
+/// prototype's CBOX corners (a valid CBOX, looser under rotations) instead of the box of
+/// every placed vertex: placing it costs the same whatever it expands to.
+const EXACT_PLACED_CBOX: usize = 1 << 20;
 
 impl Object {
     /// A leaf object; its CBOX is computed.
@@ -110,6 +118,7 @@ impl Object {
             cbox,
             inbox: None,
             faces: mesh.faces.len(),
+            vertices: mesh.vertices.len(),
             content: Content::Mesh(mesh),
             tree: None,
         }
@@ -122,25 +131,35 @@ impl Object {
             name: name.into(),
             cbox,
             inbox: None,
-            faces: subs.iter().map(|s| s.faces).sum(),
+            faces: subs.iter().fold(0, |n, s| n.saturating_add(s.faces)),
+            vertices: subs.iter().fold(0, |n, s| n.saturating_add(s.vertices)),
             content: Content::Subobjects(subs),
             tree: None,
         }
     }
 
-    /// A placement of `prototype` with `transform`; its CBOX is that of the placed vertices.
+    /// A placement of `prototype` with `transform`; its CBOX is that of the placed vertices
+    /// (for a prototype that expands to more than `EXACT_PLACED_CBOX` vertices, that of its
+    /// CBOX's placed corners). Nothing is expanded beyond that bound.
     pub fn instance(name: impl Into<String>, prototype: Arc<Object>, transform: M4) -> Self {
         let mut cbox = Box3::empty();
-        prototype.for_each_mesh(&transform, &mut |_, mesh, m| {
-            for v in &mesh.vertices {
-                cbox.add_point(&m.transform_point(v));
+        if prototype.vertices <= EXACT_PLACED_CBOX {
+            prototype.for_each_mesh(&transform, &mut |_, mesh, m| {
+                for v in &mesh.vertices {
+                    cbox.add_point(&m.transform_point(v));
+                }
+            });
+        } else if !prototype.cbox.is_empty() {
+            for c in prototype.cbox.corners() {
+                cbox.add_point(&transform.transform_point(&c));
             }
-        });
+        }
         Object {
             name: name.into(),
             cbox,
             inbox: None,
             faces: prototype.faces,
+            vertices: prototype.vertices,
             content: Content::Instance(Instance {
                 prototype,
                 transform,
@@ -180,13 +199,9 @@ impl Object {
         self.faces
     }
 
-    /// Number of vertices in the whole subtree, instances expanded.
+    /// Number of vertices in the whole subtree, instances expanded (saturating).
     pub fn vertex_count(&self) -> usize {
-        match &self.content {
-            Content::Mesh(m) => m.vertices.len(),
-            Content::Subobjects(s) => s.iter().map(Object::vertex_count).sum(),
-            Content::Instance(i) => i.prototype.vertex_count(),
-        }
+        self.vertices
     }
 
     /// True when every leaf below is a closed, consistently oriented solid.

@@ -1,6 +1,12 @@
 //! Ear-clipping triangulation of a simple polygon in space (used to split non-planar faces).
 
+use crate::geom::poly2::ring_area;
 use crate::geom::{P3, V3};
+
+/// Polygons of up to this many corners are clipped by the plain search with exact
+/// predicates; larger ones by earcut's ear clipping over a z-order index, near-linear in
+/// the corner count (a million-corner polygon is normal input), its result checked.
+const SMALL: usize = 64;
 
 /// Triangulates the polygon `pts` (simple, not necessarily planar or convex), projected along
 /// the dominant axis of `normal`. Returns index triples into `pts`, each counter-clockwise
@@ -18,6 +24,11 @@ pub fn ear_clip(pts: &[P3], normal: &V3) -> Vec<[usize; 3]> {
 pub fn ear_clip_simple(pts: &[P3], normal: &V3) -> Option<Vec<[usize; 3]>> {
     let (ax, ay, flip) = projection_axes(normal);
     let p2: Vec<[f64; 2]> = pts.iter().map(|p| [p[ax], p[ay]]).collect();
+    if pts.len() > SMALL {
+        // None unless earcut's triangles provably tile the ring: treated as not simple (safe:
+        // such a mesh is never culled).
+        return earcut_checked(&p2, flip).filter(|t| tiles_exactly(&p2, t, flip));
+    }
     let mut ring: Vec<usize> = (0..pts.len()).collect();
     if flip {
         ring.reverse();
@@ -82,6 +93,63 @@ fn find_ear(p: &[[f64; 2]], ring: &[usize]) -> Option<usize> {
     })
 }
 
+/// Earcut's triangles of the ring `p` (counter-clockwise in projection unless `flip`),
+/// oriented like the ring; None unless every triangle turns the ring's way (or not at all)
+/// and their areas add up to the ring's.
+fn earcut_checked(p: &[[f64; 2]], flip: bool) -> Option<Vec<[usize; 3]>> {
+    let mut idx: Vec<u32> = Vec::with_capacity(3 * p.len());
+    earcut::Earcut::new().earcut(p.iter().copied(), &[] as &[u32], &mut idx);
+    let want = if flip { -1.0 } else { 1.0 };
+    let mut tris = Vec::with_capacity(idx.len() / 3);
+    let mut sum = 0.0;
+    for t in idx.chunks_exact(3) {
+        let mut t = [t[0] as usize, t[1] as usize, t[2] as usize];
+        let o = orient(p[t[0]], p[t[1]], p[t[2]]);
+        if o * want < 0.0 {
+            t.swap(1, 2);
+        }
+        sum += ring_area(&[p[t[0]], p[t[1]], p[t[2]]]).abs();
+        tris.push(t);
+    }
+    let area = ring_area(p);
+    let consistent = area * want > 0.0 && (sum - area.abs()).abs() <= 1e-9 * area.abs();
+    consistent.then_some(tris)
+}
+
+/// True when the triangles tile the ring exactly: each turns the ring's way strictly (exact
+/// orient2d), and their directed edges cancel pairwise except the ring's own edges, each
+/// once. Then every point is covered by as many triangles as the ring winds round it, so a
+/// simple ring is covered once and nothing outside it is covered.
+fn tiles_exactly(p: &[[f64; 2]], tris: &[[usize; 3]], flip: bool) -> bool {
+    use std::collections::HashMap;
+    let n = p.len();
+    let want = if flip { -1.0 } else { 1.0 };
+    let mut edges: HashMap<(usize, usize), i32> = HashMap::with_capacity(3 * tris.len());
+    for t in tris {
+        if orient(p[t[0]], p[t[1]], p[t[2]]) * want <= 0.0 {
+            return false;
+        }
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if a < b {
+                *edges.entry((a, b)).or_default() += 1;
+            } else {
+                *edges.entry((b, a)).or_default() -= 1;
+            }
+        }
+    }
+    // The ring's own edges: triangles turning the ring's way run them in its direction.
+    for i in 0..n {
+        let (a, b) = (i, (i + 1) % n);
+        if a < b {
+            *edges.entry((a, b)).or_default() -= 1;
+        } else {
+            *edges.entry((b, a)).or_default() += 1;
+        }
+    }
+    edges.values().all(|&c| c == 0)
+}
+
 fn fan(n: usize, flip: bool) -> Vec<[usize; 3]> {
     (1..n - 1)
         .map(|i| if flip { [0, i + 1, i] } else { [0, i, i + 1] })
@@ -109,6 +177,50 @@ mod tests {
         assert!((area - 3.0).abs() < 1e-15);
     }
 
+    /// The triangles cover the polygon exactly: each turns the normal's way and their areas
+    /// add up to the polygon's.
+    fn assert_covers(pts: &[P3], tris: &[[usize; 3]], normal: &V3) {
+        assert_eq!(tris.len(), pts.len() - 2);
+        let mut area = 0.0;
+        for t in tris {
+            let a2 = (pts[t[1]] - pts[t[0]])
+                .cross(&(pts[t[2]] - pts[t[0]]))
+                .dot(normal);
+            assert!(a2 >= 0.0, "{t:?}");
+            area += a2 / 2.0;
+        }
+        let want = crate::geom::newell(pts).dot(normal) / 2.0;
+        assert!((area - want).abs() <= 1e-9 * want, "{area} vs {want}");
+    }
+
+    #[test]
+    fn large_polygons_take_the_near_linear_path() {
+        // A 4096-gon (convex) and a 3000-point star (non-convex), both ways round.
+        let n = 4096;
+        let circle: Vec<P3> = (0..n)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / n as f64;
+                P3::new(a.cos(), a.sin(), 0.25)
+            })
+            .collect();
+        let star: Vec<P3> = (0..3000)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 3000.0;
+                let r = if k % 2 == 0 { 1.0 } else { 0.3 };
+                P3::new(r * a.cos(), 0.5, r * a.sin())
+            })
+            .collect();
+        for pts in [circle, star] {
+            let normal = crate::geom::newell(&pts).normalize();
+            let (ax, ay, flip) = projection_axes(&normal);
+            let p2: Vec<[f64; 2]> = pts.iter().map(|p| [p[ax], p[ay]]).collect();
+            assert!(earcut_checked(&p2, flip).is_some());
+            assert_covers(&pts, &ear_clip(&pts, &normal), &normal);
+            let rev: Vec<P3> = pts.iter().rev().copied().collect();
+            assert_covers(&rev, &ear_clip(&rev, &-normal), &-normal);
+        }
+    }
+
     #[test]
     fn clockwise_seen_from_normal_is_handled() {
         let pts: Vec<P3> = [(0., 0.), (0., 1.), (1., 1.), (1., 0.)]
@@ -118,5 +230,29 @@ mod tests {
         for t in ear_clip(&pts, &-V3::z()) {
             assert!((pts[t[1]] - pts[t[0]]).cross(&(pts[t[2]] - pts[t[0]])).z < 0.0);
         }
+    }
+
+    #[test]
+    fn big_polygons_are_proven_tiled_or_refused() {
+        let n = 200;
+        let ring = |k: usize| -> Vec<P3> {
+            (0..n)
+                .map(|i| {
+                    let a = (k * i) as f64 * std::f64::consts::TAU / n as f64;
+                    P3::new(a.cos(), a.sin(), 0.0)
+                })
+                .collect()
+        };
+        // A convex 200-gon, wound either way about its normal.
+        let round = ring(1);
+        let mut back = round.clone();
+        back.reverse();
+        for (pts, normal) in [(&round, V3::z()), (&back, -V3::z())] {
+            let t = ear_clip_simple(pts, &normal).expect("simple");
+            assert_eq!(t.len(), n - 2);
+        }
+        // The same corners visited in a star order cross themselves: refused.
+        let star = ring(67);
+        assert!(ear_clip_simple(&star, &V3::z()).is_none());
     }
 }

@@ -4,8 +4,9 @@ use crate::error::{Error, Result};
 use crate::geom::{M4, P3, V3};
 use crate::scene::{CameraSpec, Scene};
 
-/// Field of view of a perspective camera asked for by an eye point alone, degrees.
-pub const DEFAULT_FOV_DEG: f64 = 40.0;
+/// Vertical field of view of a perspective camera that names none (an eye point on the
+/// command line, or a scene file's camera block), degrees.
+pub const DEFAULT_FOV_DEG: f64 = 45.0;
 
 /// What a caller asks of the camera (the command line's `--dir`, `--eye`, `--target`,
 /// `--fov`, `--ortho`, `--up`); what it leaves unset comes from the scene's camera block, then
@@ -18,9 +19,11 @@ pub struct CameraRequest {
     pub eye: Option<P3>,
     /// With `eye`: the point looked at (default: the centre of the scene's CBOX).
     pub target: Option<P3>,
-    /// With `eye`: vertical field of view in degrees (default [`DEFAULT_FOV_DEG`]).
+    /// Vertical field of view in degrees, for `eye` (default [`DEFAULT_FOV_DEG`]) or alone
+    /// for the scene's perspective camera.
     pub fov_deg: Option<f64>,
-    /// With `eye`: orthographic along `target - eye` instead of perspective.
+    /// Orthographic along `target - eye` instead of perspective: with `eye`, or alone for
+    /// the scene's perspective camera.
     pub ortho: bool,
     /// Up vector (default +Y).
     pub up: Option<V3>,
@@ -51,26 +54,53 @@ pub struct Camera {
 }
 
 /// The orthonormal frame (u, v, w) of a view direction: w = -dir, u = up x w, v = w x u.
+/// Vectors are scaled by their largest component first, so that huge or tiny ones whose
+/// length overflows or underflows still have a direction.
 fn frame(dir: &V3, up: &V3) -> Result<(V3, V3, V3)> {
-    let d = dir.norm();
-    if !(d > 0.0 && d.is_finite()) {
+    let Some(d) = direction(dir) else {
         return Err(Error::Usage(format!(
             "view direction {:?} has no length",
             dir.as_slice()
         )));
-    }
-    let w = -dir / d;
+    };
+    let w = -d;
+    let parallel = || {
+        Error::Usage(format!(
+            "up vector {:?} is parallel to the view direction",
+            up.as_slice()
+        ))
+    };
+    // `up` as given when its length is a normal number (DESIGN's frame, bit for bit), else
+    // scaled to unit length first.
+    let up = if up.norm().is_normal() {
+        *up
+    } else {
+        direction(up).ok_or_else(parallel)?
+    };
     let u = up.cross(&w);
     let ul = u.norm();
     // Written so that a NaN length also fails.
     if ul.is_nan() || ul <= 1e-12 * up.norm() {
-        return Err(Error::Usage(format!(
-            "up vector {:?} is parallel to the view direction",
-            up.as_slice()
-        )));
+        return Err(parallel());
     }
     let u = u / ul;
     Ok((u, w.cross(&u), w))
+}
+
+/// The unit vector along `v`, if it has a finite, non-zero direction: `v / |v|` (DESIGN's
+/// frame, bit for bit) when the length is a normal finite number, else `v` scaled by its
+/// largest component first so that a length that overflows or underflows still gives one.
+fn direction(v: &V3) -> Option<V3> {
+    let n = v.norm();
+    if n.is_normal() {
+        return Some(v / n);
+    }
+    let m = v.amax();
+    if !(m > 0.0 && m.is_finite()) {
+        return None;
+    }
+    let s = v / m;
+    Some(s / s.norm())
 }
 
 impl Camera {
@@ -104,6 +134,11 @@ impl Camera {
         }
         let (u, v, w) = frame(&(target - eye), &up)?;
         let f = 1.0 / (fov_deg.to_radians() / 2.0).tan();
+        if !(f.is_finite() && f > 0.0) {
+            return Err(Error::Usage(format!(
+                "field of view {fov_deg} degrees is too narrow to compute with"
+            )));
+        }
         let e = eye.coords;
         #[rustfmt::skip]
         let matrix = M4::new(
@@ -133,17 +168,42 @@ impl Camera {
         }
     }
 
-    /// The camera a request asks for, for `scene`: `dir` first, then `eye` (with `target`,
-    /// `fov_deg`, `ortho`), then the scene's own camera (with `up` overriding its up vector),
-    /// then the three-quarter view.
+    /// The camera a request asks for, for `scene`. `dir` (orthographic) and `eye`
+    /// (perspective, or orthographic with `ortho`; `target` and `fov_deg` with it) each
+    /// replace the scene's camera, and cannot be combined. Without them, `fov_deg`, `ortho`
+    /// and `up` change the scene's own camera (the three-quarter view when it has none).
+    /// Nothing asked for is ignored: a request that cannot apply is an error.
     pub fn for_scene(scene: &Scene, req: &CameraRequest) -> Result<Camera> {
+        let usage = |m: &str| Err(Error::Usage(m.into()));
+        if let Some(fov) = req.fov_deg {
+            if !(fov > 0.0 && fov < 180.0) {
+                return Err(Error::Usage(format!(
+                    "field of view {fov} is not between 0 and 180 degrees"
+                )));
+            }
+        }
         let up = req.up.unwrap_or(V3::y());
         if let Some(dir) = req.dir {
+            if req.eye.is_some() || req.target.is_some() {
+                return usage(
+                    "a camera has either a direction (orthographic) or an eye and target, not both",
+                );
+            }
+            if req.fov_deg.is_some() {
+                return usage(
+                    "a field of view needs a perspective camera (an eye), not a direction",
+                );
+            }
             return Camera::orthographic(dir, up);
         }
         if let Some(eye) = req.eye {
             let target = req.target.unwrap_or_else(|| scene.cbox().center());
             let spec = if req.ortho {
+                if req.fov_deg.is_some() {
+                    return usage(
+                        "a field of view needs a perspective camera, not an orthographic one",
+                    );
+                }
                 CameraSpec::Orthographic {
                     dir: target - eye,
                     up,
@@ -159,35 +219,48 @@ impl Camera {
             return Camera::from_spec(&spec);
         }
         if req.target.is_some() {
-            return Err(Error::Usage("a camera target needs an eye point".into()));
+            return usage("a camera target needs an eye point");
         }
-        match (&scene.camera, req.up) {
-            (None, _) => Ok(Camera::three_quarter()),
-            (Some(spec), None) => Camera::from_spec(spec),
-            (Some(CameraSpec::Orthographic { dir, .. }), Some(up)) => {
-                Camera::orthographic(*dir, up)
+        match &scene.camera {
+            None if req.fov_deg.is_some() => usage(
+                "a field of view needs a perspective camera: the scene has none (give an eye point)",
+            ),
+            None => match req.up {
+                None => Ok(Camera::three_quarter()),
+                Some(up) => Camera::orthographic(THREE_QUARTER, up),
+            },
+            Some(CameraSpec::Orthographic { dir, up: own }) => {
+                if req.fov_deg.is_some() {
+                    return usage("a field of view needs a perspective camera: the scene's camera is orthographic");
+                }
+                Camera::orthographic(*dir, req.up.unwrap_or(*own))
             }
-            (
-                Some(CameraSpec::Perspective {
-                    eye,
-                    target,
-                    fov_deg,
-                    ..
-                }),
-                Some(up),
-            ) => Camera::from_spec(&CameraSpec::Perspective {
-                eye: *eye,
-                target: *target,
-                up,
-                fov_deg: *fov_deg,
-            }),
+            Some(CameraSpec::Perspective {
+                eye,
+                target,
+                up: own,
+                fov_deg,
+            }) => {
+                let up = req.up.unwrap_or(*own);
+                if req.ortho {
+                    if req.fov_deg.is_some() {
+                        return usage("a field of view needs a perspective camera, not an orthographic one");
+                    }
+                    return Camera::orthographic(target - eye, up);
+                }
+                Camera::from_spec(&CameraSpec::Perspective {
+                    eye: *eye,
+                    target: *target,
+                    up,
+                    fov_deg: req.fov_deg.unwrap_or(*fov_deg),
+                })
+            }
         }
     }
 
     /// A pleasant three-quarter orthographic view (from the right, above and in front; +Y up).
     pub fn three_quarter() -> Camera {
-        let dir = V3::new(-0.55, -0.5, -0.75);
-        Camera::orthographic(dir, V3::y()).expect("fixed frame is valid")
+        Camera::orthographic(THREE_QUARTER, V3::y()).expect("fixed frame is valid")
     }
 
     /// Homogeneous image (x', y', z', w') of a world point.
@@ -218,6 +291,9 @@ impl Camera {
         P3::new(h.x / h.w, h.y / h.w, h.z / h.w)
     }
 }
+
+/// The direction of the three-quarter view.
+const THREE_QUARTER: V3 = V3::new(-0.55, -0.5, -0.75);
 
 /// Near plane for a perspective view: 1/1000 of the distance from the eye to the target.
 fn default_near(eye: &P3, target: &P3) -> f64 {
@@ -253,6 +329,77 @@ mod tests {
         let q = c.unproject(p);
         assert!((q - P3::new(1., 1., 0.)).norm() < 1e-12);
         assert!(!c.in_front(&P3::new(0., 0., 11.)));
+    }
+
+    #[test]
+    fn requests_change_the_scenes_camera_or_fail_never_ignored() {
+        let mut scene = crate::scene::testing::unit_cube_scene();
+        scene.camera = Some(CameraSpec::Perspective {
+            eye: P3::new(0., 0., 10.),
+            target: P3::origin(),
+            up: V3::y(),
+            fov_deg: 30.0,
+        });
+        let req = |f: &dyn Fn(&mut CameraRequest)| {
+            let mut r = CameraRequest::default();
+            f(&mut r);
+            Camera::for_scene(&scene, &r)
+        };
+        let own = req(&|_| {}).unwrap();
+        let narrow = req(&|r| r.fov_deg = Some(10.0)).unwrap();
+        assert_eq!(narrow.eye, own.eye);
+        assert!(narrow.matrix[(0, 0)] > 3.0 * own.matrix[(0, 0)]);
+        let ortho = req(&|r| r.ortho = true).unwrap();
+        assert_eq!(ortho.projection, Projection::Orthographic);
+        assert_eq!(ortho.project(&P3::new(1., 2., 3.))[..2], [1., 2.]);
+        let e = req(&|r| {
+            r.dir = Some(V3::x());
+            r.eye = Some(P3::origin());
+        });
+        assert!(e.unwrap_err().to_string().contains("not both"));
+        assert!(req(&|r| {
+            r.dir = Some(V3::z());
+            r.fov_deg = Some(20.0)
+        })
+        .is_err());
+        assert!(req(&|r| r.fov_deg = Some(-5.0)).is_err());
+        // No camera in the scene: a field of view alone has nothing to apply to.
+        scene.camera = None;
+        let e = Camera::for_scene(
+            &scene,
+            &CameraRequest {
+                fov_deg: Some(10.0),
+                ..Default::default()
+            },
+        );
+        assert!(e
+            .unwrap_err()
+            .to_string()
+            .contains("needs a perspective camera"));
+        // An eye alone: the one default field of view.
+        let c = Camera::for_scene(
+            &scene,
+            &CameraRequest {
+                eye: Some(P3::new(0., 0., 5.)),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let f = 1.0 / (DEFAULT_FOV_DEG.to_radians() / 2.0).tan();
+        assert!((c.matrix.fixed_view::<1, 3>(0, 0).norm() - f).abs() < 1e-12);
+    }
+
+    #[test]
+    fn huge_and_tiny_directions_have_a_frame() {
+        for s in [1e308, 1e-308, 5e-324] {
+            let c = Camera::orthographic(V3::new(s, s, s), V3::y()).unwrap();
+            let d = Camera::orthographic(V3::new(1., 1., 1.), V3::y()).unwrap();
+            assert!((c.matrix - d.matrix).amax() < 1e-15, "{s}");
+        }
+        assert!(Camera::orthographic(V3::new(f64::INFINITY, 0., 0.), V3::y()).is_err());
+        assert!(
+            Camera::perspective(P3::origin(), P3::new(0., 0., -1.), V3::y(), 1e-320, 0.1).is_err()
+        );
     }
 
     #[test]

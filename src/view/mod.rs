@@ -10,6 +10,7 @@
 
 pub mod camera;
 pub mod cull;
+pub mod finite;
 pub mod frame;
 pub mod lod;
 pub mod piece_id;
