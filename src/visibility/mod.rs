@@ -1,6 +1,7 @@
 //! The visibility stage: VISFAC, VISFAC2, VISOBJ, VISP and INCLUDE (paper 001, ALGORITHMS),
 //! and the whole-scene pass that gives every face its visibility texture polygon (VTP).
 
+pub mod cover;
 pub mod empty;
 pub mod include;
 pub mod occlusion;

@@ -25,6 +25,8 @@ pub struct Counters {
     pub emptied_by_inbox: u64,
     /// VTPs emptied at once by a single face covering the whole face.
     pub emptied_by_face: u64,
+    /// VTPs emptied at once by several faces whose regions together cover the face.
+    pub emptied_by_patch: u64,
     /// Candidate faces examined at the leaves.
     pub faces_examined: u64,
     /// Occluder regions passed to clipping.
@@ -47,6 +49,7 @@ impl AddAssign for Counters {
         self.skipped_by_cbox += o.skipped_by_cbox;
         self.emptied_by_inbox += o.emptied_by_inbox;
         self.emptied_by_face += o.emptied_by_face;
+        self.emptied_by_patch += o.emptied_by_patch;
         self.faces_examined += o.faces_examined;
         self.occluders += o.occluders;
         self.faces_clipped += o.faces_clipped;
@@ -74,6 +77,10 @@ impl Counters {
             ("subtrees skipped by CBOX", self.skipped_by_cbox),
             ("VTPs emptied by an INBOX", self.emptied_by_inbox),
             ("VTPs emptied by one covering face", self.emptied_by_face),
+            (
+                "VTPs emptied by covering faces together",
+                self.emptied_by_patch,
+            ),
             ("candidate faces examined", self.faces_examined),
             ("occluders clipped", self.occluders),
             ("faces clipped (boolean calls)", self.faces_clipped),

@@ -3,7 +3,9 @@
 //! VTP(F) starts as F. The object's tree is walked front to back: a subtree whose CBOX
 //! cannot hide F is skipped; a subtree whose INBOX hides all of F empties the VTP at once;
 //! at the leaves each face's occluding region is collected, a single face covering all of F
-//! empties the VTP at once, and the rest are subtracted from F in one batched boolean call.
+//! empties the VTP at once, regions that together cover F (shown exactly from their
+//! boundary, [`super::cover`]) empty it without clipping, and otherwise the regions are
+//! subtracted from F in one batched boolean call.
 
 use crate::geom::boolean::subtract;
 use crate::geom::hull2::covers_convex;
@@ -12,6 +14,7 @@ use crate::geom::Rect;
 use crate::view::tree::{NodeKind, ScreenInbox};
 use crate::view::{Facing, PieceId, View};
 
+use super::cover::regions_cover;
 use super::occlusion::{occluder_region, separated_convex, Occlusion, Target};
 use super::stats::Counters;
 
@@ -41,8 +44,10 @@ pub enum Vtp {
 #[derive(Debug, Default)]
 pub struct Scratch {
     stack: Vec<u32>,
-    /// Occluder regions with the piece each came from.
-    occluders: Vec<(PieceId, Ring)>,
+    /// Occluder regions with the piece each came from: clipped to F's rectangle, and whole.
+    occluders: Vec<(PieceId, Ring, Ring)>,
+    /// Boundary segments of the cover test.
+    segs: Vec<([f64; 2], [f64; 2], i32)>,
     /// The regions in piece order, for the boolean call.
     clips: Vec<Ring>,
     sides: Vec<f64>,
@@ -76,15 +81,20 @@ pub fn visfac(view: &View, a: u32, f: PieceId, scratch: &mut Scratch, stats: &mu
         stats.faces_whole += 1;
         return Vtp::Whole;
     }
+    let regions = scratch.occluders.iter().map(|(_, _, r)| r.as_slice());
+    if regions_cover(regions, &target.ring, &mut scratch.segs) {
+        stats.emptied_by_patch += 1;
+        return Vtp::Empty;
+    }
     stats.faces_clipped += 1;
     stats.occluders += scratch.occluders.len() as u64;
     // The walk's order depends on the tree; the boolean call gets the occluders in piece
     // order, so the result is the same bytes whatever tree found them.
-    scratch.occluders.sort_unstable_by_key(|(g, _)| *g);
+    scratch.occluders.sort_unstable_by_key(|(g, _, _)| *g);
     scratch.clips.clear();
     scratch
         .clips
-        .extend(scratch.occluders.drain(..).map(|(_, r)| r));
+        .extend(scratch.occluders.drain(..).map(|(_, r, _)| r));
     let rest = subtract(&target.ring, &target.rect, &scratch.clips);
     if rest.is_empty() {
         Vtp::Empty
@@ -171,7 +181,7 @@ fn examine(
     }
     let clipped = t.rect.clip_ring(&region);
     if clipped.len() >= 3 {
-        scratch.occluders.push((g, clipped));
+        scratch.occluders.push((g, clipped, region));
     }
     Walk::Open
 }
