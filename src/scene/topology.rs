@@ -42,7 +42,7 @@ pub fn edge_topology(faces: &[Face]) -> Topology {
         if edges.get(i + 1) == Some(&e) {
             return Topology::Inconsistent;
         }
-        if edges.binary_search(&(e << 32 | e >> 32)).is_err() {
+        if edges.binary_search(&e.rotate_right(32)).is_err() {
             open = true;
         }
     }
