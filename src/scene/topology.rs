@@ -137,18 +137,11 @@ mod tests {
     }
 
     fn octahedron() -> Vec<Face> {
-        [
-            [0, 2, 4],
-            [2, 1, 4],
-            [1, 3, 4],
-            [3, 0, 4],
-            [2, 0, 5],
-            [1, 2, 5],
-            [3, 1, 5],
-            [0, 3, 5],
-        ]
-        .into_iter()
-        .map(|f| Face::new(f.to_vec()))
-        .collect()
+        crate::primitives::by_name("octahedron")
+            .unwrap()
+            .faces
+            .into_iter()
+            .map(Face::new)
+            .collect()
     }
 }
