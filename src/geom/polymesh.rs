@@ -18,6 +18,18 @@ impl PolyMesh {
         PolyMesh { vertices, faces }
     }
 
+    /// Appends `other` beside this mesh: its vertices after ours, its faces renumbered.
+    pub fn append(&mut self, other: &PolyMesh) {
+        let base = self.vertices.len() as u32;
+        self.vertices.extend(&other.vertices);
+        self.faces.extend(
+            other
+                .faces
+                .iter()
+                .map(|f| f.iter().map(|&v| v + base).collect()),
+        );
+    }
+
     /// Positions of the corners of face `f`.
     pub fn face_points(&self, f: usize) -> impl Iterator<Item = &P3> + '_ {
         self.faces[f]

@@ -263,14 +263,7 @@ mod tests {
     #[test]
     fn lod_draws_a_mesh_of_two_far_parts_as_a_tribox_per_part() {
         let mut two = sphere(12, 1.0, V3::zeros());
-        let far = sphere(12, 1.0, V3::new(10., 0., 0.));
-        let base = two.vertices.len() as u32;
-        two.vertices.extend(far.vertices);
-        two.faces.extend(
-            far.faces
-                .into_iter()
-                .map(|f| f.into_iter().map(|v| v + base).collect()),
-        );
+        two.append(&sphere(12, 1.0, V3::new(10., 0., 0.)));
         let mut s = Scene::new(Object::group("", vec![leaf("two", &two)]), "t".into());
         prepare_with(
             &mut s,

@@ -210,14 +210,7 @@ impl Hierarchy {
     pub fn cut_mesh(&self, cut: &[usize], tol: f64) -> PolyMesh {
         let mut out = PolyMesh::default();
         for &n in cut {
-            let m = self.nodes[n].tribox.simplified(tol).boundary().mesh();
-            let base = out.vertices.len() as u32;
-            out.vertices.extend(m.vertices);
-            out.faces.extend(
-                m.faces
-                    .into_iter()
-                    .map(|f| f.into_iter().map(|v| v + base).collect()),
-            );
+            out.append(&self.nodes[n].tribox.simplified(tol).boundary().mesh());
         }
         out
     }

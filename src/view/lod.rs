@@ -311,13 +311,7 @@ fn component_triboxes(obj: &Object, whole: &Tribox) -> Option<Vec<Tribox>> {
 fn concat(meshes: &[PolyMesh]) -> PolyMesh {
     let mut out = PolyMesh::new(Vec::new(), Vec::new());
     for m in meshes {
-        let base = out.vertices.len() as u32;
-        out.vertices.extend(&m.vertices);
-        out.faces.extend(
-            m.faces
-                .iter()
-                .map(|f| f.iter().map(|&v| v + base).collect()),
-        );
+        out.append(m);
     }
     out
 }
