@@ -81,7 +81,24 @@ pub fn locate(m: &MultiPolygon, p: Pt2) -> Side {
 /// True when a counter-clockwise ring is convex (no right turn; collinear runs allowed).
 pub fn is_convex_ccw(r: &[Pt2]) -> bool {
     let n = r.len();
-    (0..n).all(|i| orient2d(r[i], r[(i + 1) % n], r[(i + 2) % n]) >= 0.0)
+    (0..n).all(|i| orient2d(r[i], r[(i + 1) % n], r[(i + 2) % n]) >= 0.0) && half_changes(r) <= 2
+}
+
+/// How often the direction of the ring's edges (zero-length edges skipped) passes between
+/// the upper half-turn of directions (y > 0, or y = 0 and x > 0) and the lower one, round
+/// the ring. Exact (signs of differences of floats). A ring that turns one way at every
+/// corner, each turn less than half a turn, winds round once exactly when this is 2: the
+/// edge directions then rotate monotonically and pass each half's boundary once per turn.
+pub fn half_changes(r: &[Pt2]) -> usize {
+    let n = r.len();
+    let upper: Vec<bool> = (0..n)
+        .filter_map(|i| {
+            let (a, b) = (r[i], r[(i + 1) % n]);
+            (a != b).then(|| b[1] > a[1] || (b[1] == a[1] && b[0] > a[0]))
+        })
+        .collect();
+    let m = upper.len();
+    (0..m).filter(|&i| upper[i] != upper[(i + 1) % m]).count()
 }
 
 /// Canonical form: every ring starts at its lexicographically smallest point (x, then y),

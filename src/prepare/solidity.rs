@@ -45,7 +45,7 @@ pub fn solidity(mesh: &Mesh) -> Solidity {
     let Some((tris, face_of)) = surface_triangles(mesh) else {
         return Solidity::Degenerate;
     };
-    let crossings = crossing_pairs(&tris);
+    let crossings = crossing_pairs(&tris, &face_of);
     if crossings > 0 {
         return Solidity::SelfIntersecting(crossings);
     }
@@ -138,8 +138,12 @@ fn degenerate(p: &[P3; 3]) -> bool {
         .all(|&(x, y)| orient2d([p[0][x], p[0][y]], [p[1][x], p[1][y]], [p[2][x], p[2][y]]) == 0.0)
 }
 
-/// Number of triangle pairs that meet other than in shared vertices and edges.
-fn crossing_pairs(tris: &[Tri]) -> u64 {
+/// Number of triangle pairs that meet other than in shared vertices and edges. Two
+/// triangles of one face are never tested: they are lifts of triangles of one exact
+/// triangulation of the face's projection (ear clipping, or a tiling proven exactly), whose
+/// projections meet only in shared corners and edges, and the projection is one-to-one on
+/// the face, so the lifts meet only there too.
+fn crossing_pairs(tris: &[Tri], face_of: &[u32]) -> u64 {
     let boxes: Vec<[[f64; 3]; 2]> = tris
         .iter()
         .map(|t| {
@@ -149,7 +153,8 @@ fn crossing_pairs(tris: &[Tri]) -> u64 {
         })
         .collect();
     filter_map_pairs(&boxes, |i, j| {
-        cross(&tris[i as usize], &tris[j as usize]).then_some(())
+        let (i, j) = (i as usize, j as usize);
+        (face_of[i] != face_of[j] && cross(&tris[i], &tris[j])).then_some(())
     })
     .len() as u64
 }

@@ -25,6 +25,9 @@ pub fn ear_clip_simple(pts: &[P3], normal: &V3) -> Option<Vec<[usize; 3]>> {
     let (ax, ay, flip) = projection_axes(normal);
     let p2: Vec<[f64; 2]> = pts.iter().map(|p| [p[ax], p[ay]]).collect();
     if pts.len() > SMALL {
+        if strictly_convex(&p2, flip) {
+            return Some(balanced(pts.len()));
+        }
         // None unless earcut's triangles provably tile the ring: treated as not simple (safe:
         // such a mesh is never culled).
         return earcut_checked(&p2, flip).filter(|t| tiles_exactly(&p2, t, flip));
@@ -150,6 +153,54 @@ fn tiles_exactly(p: &[[f64; 2]], tris: &[[usize; 3]], flip: bool) -> bool {
     edges.values().all(|&c| c == 0)
 }
 
+/// Exact: the ring turns strictly the ring's way (left, or right when `flip`) at every
+/// corner and winds once. Each turn is then less than half a turn, so the edge directions
+/// rotate monotonically; they cross the half-plane boundary (direction (1, 0), half-open)
+/// twice per winding, so two changes of half mean one winding: the ring is strictly convex,
+/// and any three of its corners make a proper triangle. Signs of coordinate differences of
+/// floats are exact, so the count is too.
+fn strictly_convex(p: &[[f64; 2]], flip: bool) -> bool {
+    let n = p.len();
+    let want = if flip { -1.0 } else { 1.0 };
+    let upper = |i: usize| {
+        let (a, b) = (p[i], p[(i + 1) % n]);
+        b[1] > a[1] || (b[1] == a[1] && b[0] > a[0])
+    };
+    let mut changes = 0;
+    for i in 0..n {
+        let (a, b, c) = (p[i], p[(i + 1) % n], p[(i + 2) % n]);
+        if orient(a, b, c) * want <= 0.0 {
+            return false;
+        }
+        changes += usize::from(upper(i) != upper((i + 1) % n));
+    }
+    // Reflected (clockwise) rings rotate the other way: the count is the same.
+    changes == 2
+}
+
+/// A triangulation of a strictly convex ring whose triangles are balanced: the triangle of
+/// corners 0, n/3, 2n/3, then each arc split at its middle corner, recursively. A straight
+/// line meets O(log n) of its triangles' boxes near any point, where a fan's all share one
+/// corner (the broad phase of the solidity test would pair every two of them).
+/// Corners in ring order make triangles turning the ring's way (counter-clockwise seen from
+/// the normal, as [`ear_clip_simple`] promises).
+fn balanced(n: usize) -> Vec<[usize; 3]> {
+    let mut tris = Vec::with_capacity(n - 2);
+    let (a, b) = (n / 3, 2 * n / 3);
+    tris.push([0, a, b]);
+    let mut arcs = vec![(0, a), (a, b), (b, n)];
+    while let Some((i, j)) = arcs.pop() {
+        if j - i < 2 {
+            continue;
+        }
+        let m = (i + j) / 2;
+        tris.push([i, m, j % n]);
+        arcs.push((i, m));
+        arcs.push((m, j));
+    }
+    tris
+}
+
 fn fan(n: usize, flip: bool) -> Vec<[usize; 3]> {
     (1..n - 1)
         .map(|i| if flip { [0, i + 1, i] } else { [0, i, i + 1] })
@@ -254,5 +305,64 @@ mod tests {
         // The same corners visited in a star order cross themselves: refused.
         let star = ring(67);
         assert!(ear_clip_simple(&star, &V3::z()).is_none());
+    }
+
+    #[test]
+    fn strictly_convex_rings_get_balanced_triangles_that_tile_them() {
+        let ring = |n: usize, k: usize| -> Vec<[f64; 2]> {
+            (0..n)
+                .map(|i| {
+                    let a = (k * i) as f64 * std::f64::consts::TAU / n as f64;
+                    [a.cos(), a.sin()]
+                })
+                .collect()
+        };
+        for n in [65, 100, 4096] {
+            let round = ring(n, 1);
+            assert!(strictly_convex(&round, false));
+            assert!(!strictly_convex(&round, true));
+            let t = balanced(n);
+            assert_eq!(t.len(), n - 2);
+            // An independent check: the edges cancel and every triangle turns left.
+            assert!(tiles_exactly(&round, &t, false));
+            let back: Vec<[f64; 2]> = round.iter().rev().copied().collect();
+            assert!(strictly_convex(&back, true));
+            assert!(tiles_exactly(&back, &balanced(n), true));
+            // Wound twice (every turn is still left): not convex.
+            if n % 2 == 1 {
+                assert!(!strictly_convex(&ring(n, 2), false));
+            }
+        }
+        // A reflex corner, and three collinear corners, are refused.
+        let mut dent = ring(100, 1);
+        dent[10] = [0.5 * dent[10][0], 0.5 * dent[10][1]];
+        assert!(!strictly_convex(&dent, false));
+        let mut flat = ring(100, 1);
+        flat[1] = [
+            (flat[0][0] + flat[2][0]) / 2.0,
+            (flat[0][1] + flat[2][1]) / 2.0,
+        ];
+        let exact_mid = orient(flat[0], flat[1], flat[2]) == 0.0;
+        assert_eq!(
+            strictly_convex(&flat, false),
+            !exact_mid && orient(flat[0], flat[1], flat[2]) > 0.0
+        );
+        // Through ear_clip_simple, seen from either side.
+        let pts: Vec<P3> = ring(500, 1)
+            .iter()
+            .map(|p| P3::new(p[0], 0.3, p[1]))
+            .collect();
+        let normal = crate::geom::newell(&pts).normalize();
+        assert_covers(
+            &pts,
+            &ear_clip_simple(&pts, &normal).expect("convex"),
+            &normal,
+        );
+        let rev: Vec<P3> = pts.iter().rev().copied().collect();
+        assert_covers(
+            &rev,
+            &ear_clip_simple(&rev, &-normal).expect("convex"),
+            &-normal,
+        );
     }
 }

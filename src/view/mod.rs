@@ -14,6 +14,7 @@ pub mod finite;
 pub mod frame;
 pub mod lod;
 pub mod piece_id;
+pub mod ring_index;
 pub mod screen;
 pub mod tree;
 pub mod turntable;

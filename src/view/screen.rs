@@ -10,6 +10,7 @@ use crate::scene::{FaceId, Leaf, Scene};
 use super::camera::{Camera, Projection};
 use super::cull::Cull;
 use super::piece_id::PieceId;
+use super::ring_index::{RingIndex, INDEXED_ABOVE};
 
 /// How a projected face presents itself to the viewer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -99,6 +100,8 @@ pub struct ScreenFaces {
     pub camera: Option<Camera>,
     /// The projected leaf objects in global order (leaves of hidden subtrees are absent).
     pub leaves: Vec<LeafInfo>,
+    /// Run boxes of every piece of more than [`INDEXED_ABOVE`] points, by ascending piece.
+    pub ring_indexes: Vec<(PieceId, RingIndex)>,
 }
 
 impl ScreenFaces {
@@ -326,7 +329,21 @@ impl ScreenFaces {
             }
         }
         piece.face = face;
+        if poly.len() > INDEXED_ABOVE {
+            let id = PieceId(self.pieces.len() as u32);
+            let index = RingIndex::new(&self.points[start as usize..]);
+            self.ring_indexes.push((id, index));
+        }
         self.pieces.push(piece);
+    }
+
+    /// The run boxes of piece `p`, when it has more than [`INDEXED_ABOVE`] points.
+    pub fn ring_index(&self, p: PieceId) -> Option<&RingIndex> {
+        if self.piece(p).len as usize <= INDEXED_ABOVE {
+            return None;
+        }
+        let k = self.ring_indexes.binary_search_by_key(&p, |e| e.0).ok()?;
+        Some(&self.ring_indexes[k].1)
     }
 }
 

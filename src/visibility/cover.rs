@@ -15,7 +15,7 @@
 
 use crate::geom::hull2::has_turn;
 use crate::geom::orient2d;
-use crate::geom::poly2::Pt2;
+use crate::geom::poly2::{half_changes, Pt2};
 
 use super::occlusion::separated_convex;
 
@@ -24,14 +24,37 @@ type Seg = (Pt2, Pt2, i32);
 
 /// True when `r` is a convex counter-clockwise ring with area (exact): it makes a proper
 /// turn and every point lies on the closed left side of every edge.
+///
+/// In O(n): with repeated points dropped, every corner turns left or goes straight on (never
+/// back: a spike is a half turn), some corner turns, and the edge directions wind round once
+/// ([`half_changes`]); the ring then bounds a convex region, which is the closed-left-side
+/// condition (the quadratic definition is the test below's reference).
 pub fn is_convex_ccw_exact(r: &[Pt2]) -> bool {
-    let n = r.len();
+    let mut d: Vec<Pt2> = Vec::with_capacity(r.len());
+    for &p in r {
+        if d.last() != Some(&p) {
+            d.push(p);
+        }
+    }
+    while d.len() > 1 && d.first() == d.last() {
+        d.pop();
+    }
+    let n = d.len();
     n >= 3
-        && has_turn(r)
+        && has_turn(&d)
         && (0..n).all(|i| {
-            let (p, q) = (r[i], r[(i + 1) % n]);
-            p == q || r.iter().all(|&x| orient2d(p, q, x) >= 0.0)
+            let (a, b, c) = (d[i], d[(i + 1) % n], d[(i + 2) % n]);
+            let o = orient2d(a, b, c);
+            o > 0.0 || (o == 0.0 && !reverses(a, b, c))
         })
+        && half_changes(&d) == 2
+}
+
+/// For collinear a, b, c (a ≠ b, b ≠ c): true when c lies back toward a from b (exact: the
+/// signs of coordinate differences along an axis where a and b differ).
+fn reverses(a: Pt2, b: Pt2, c: Pt2) -> bool {
+    let k = if a[0] != b[0] { 0 } else { 1 };
+    (b[k] > a[k]) != (c[k] > b[k])
 }
 
 /// True when the union of `regions` covers all of the convex counter-clockwise ring `f`
@@ -115,6 +138,44 @@ mod tests {
     use crate::geom::boolean::subtract;
     use crate::geom::poly2::Ring;
     use crate::geom::Rect;
+
+    /// The definition: a turn, and every point on the closed left side of every edge.
+    fn convex_by_definition(r: &[Pt2]) -> bool {
+        let n = r.len();
+        n >= 3
+            && has_turn(r)
+            && (0..n).all(|i| {
+                let (p, q) = (r[i], r[(i + 1) % n]);
+                p == q || r.iter().all(|&x| orient2d(p, q, x) >= 0.0)
+            })
+    }
+
+    #[test]
+    fn the_linear_convexity_test_agrees_with_the_definition() {
+        let mut rng = crate::geom::rng::XorShift::new(11);
+        let grid =
+            |rng: &mut crate::geom::rng::XorShift| [rng.below(4) as f64, rng.below(4) as f64];
+        let mut agree_convex = 0;
+        for k in 0..20000 {
+            let n = 3 + k % 6;
+            let r: Vec<Pt2> = (0..n).map(|_| grid(&mut rng)).collect();
+            let (fast, slow) = (is_convex_ccw_exact(&r), convex_by_definition(&r));
+            assert_eq!(fast, slow, "{r:?}");
+            agree_convex += usize::from(fast);
+        }
+        assert!(agree_convex > 100, "{agree_convex}");
+        // A pentagram turns left at every corner but winds twice; a spike goes back.
+        let star: Vec<Pt2> = (0..5)
+            .map(|k| {
+                let a = std::f64::consts::TAU * (2 * k) as f64 / 5.0;
+                [a.cos(), a.sin()]
+            })
+            .collect();
+        assert!(!is_convex_ccw_exact(&star) && !convex_by_definition(&star));
+        assert!(!crate::geom::poly2::is_convex_ccw(&star));
+        let spike = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]];
+        assert!(!is_convex_ccw_exact(&spike) && !convex_by_definition(&spike));
+    }
 
     fn covers(regions: &[Ring], f: &[Pt2]) -> bool {
         regions_cover(regions.iter().map(Vec::as_slice), f, &mut Vec::new())

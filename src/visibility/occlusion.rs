@@ -72,8 +72,20 @@ pub fn occluder_region(
     t: &Target,
     sides: &mut Vec<f64>,
 ) -> Occlusion {
-    let world = sf.world_pts(g);
-    let pts = sf.pts(g);
+    occluder_region_of(sf, g, sf.pts(g), sf.world_pts(g), t, sides)
+}
+
+/// [`occluder_region`] of piece `g` given by its screen and world points `pts` and `world`
+/// (all of them, or a cut of them that is the same inside F's rectangle:
+/// [`crate::view::ring_index`]).
+pub fn occluder_region_of(
+    sf: &ScreenFaces,
+    g: PieceId,
+    pts: &[[f64; 3]],
+    world: &[P3],
+    t: &Target,
+    sides: &mut Vec<f64>,
+) -> Occlusion {
     sides.clear();
     sides.extend(world.iter().map(|p| t.side(p)));
     let any_front = sides.iter().any(|&s| s > 0.0);
@@ -88,7 +100,7 @@ pub fn occluder_region(
     } else if !any_behind {
         pts.iter().map(|p| [p[0], p[1]]).collect()
     } else {
-        front_part(sf, g, sides)
+        front_part(sf, pts, world, sides)
     };
     // A region with no proper turn (all points equal or collinear) has no area: it hides nothing.
     if ring.len() < 3 || !has_turn(&ring) {
@@ -100,11 +112,11 @@ pub fn occluder_region(
     Occlusion::Region(ring)
 }
 
-/// The part of piece `g`'s projection on the non-negative side, cut where the side changes
+/// The part of a piece's projection (screen points `pts`, world points `world`) on the
+/// non-negative side, cut where the side changes
 /// sign. The cut is placed on the world edge with the exact side values, then projected
 /// (orthographic views interpolate the screen points directly: the same point, cheaper).
-fn front_part(sf: &ScreenFaces, g: PieceId, sides: &[f64]) -> Vec<Pt2> {
-    let (pts, world) = (sf.pts(g), sf.world_pts(g));
+fn front_part(sf: &ScreenFaces, pts: &[[f64; 3]], world: &[P3], sides: &[f64]) -> Vec<Pt2> {
     let perspective = sf
         .camera
         .filter(|c| c.projection == Projection::Perspective);

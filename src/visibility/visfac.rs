@@ -10,12 +10,13 @@
 use crate::geom::boolean::subtract;
 use crate::geom::hull2::covers_convex;
 use crate::geom::poly2::{MultiPolygon, Pt2, Ring};
-use crate::geom::Rect;
+use crate::geom::{Rect, P3};
+use crate::view::ring_index::INDEXED_ABOVE;
 use crate::view::tree::{NodeKind, ScreenInbox};
 use crate::view::{Facing, PieceId, View};
 
 use super::cover::regions_cover;
-use super::occlusion::{occluder_region, separated_convex, Occlusion, Target};
+use super::occlusion::{occluder_region_of, separated_convex, Occlusion, Target};
 use super::stats::Counters;
 
 /// The paper's VISFAC answer: what an object does to a face.
@@ -52,6 +53,10 @@ pub struct Scratch {
     clips: Vec<Ring>,
     sides: Vec<f64>,
     ring: Ring,
+    /// A long occluder cut to F's rectangle: its point indices, screen and world points.
+    cut: Vec<u32>,
+    cut_pts: Vec<[f64; 3]>,
+    cut_world: Vec<P3>,
 }
 
 /// Outcome of the walk.
@@ -155,16 +160,31 @@ fn examine(
     scratch: &mut Scratch,
     stats: &mut Counters,
 ) -> Walk {
-    let sg = view.screen.piece(g);
+    let sf = &view.screen;
+    let sg = sf.piece(g);
     stats.faces_examined += 1;
+    // A long ring is cut to what matters inside F's rectangle (the same region there).
+    let (pts, world) = match sf.ring_index(g) {
+        Some(index) => {
+            index.cut(&t.rect, &mut scratch.cut);
+            let (all, all_world) = (sf.pts(g), sf.world_pts(g));
+            scratch.cut_pts.clear();
+            scratch.cut_world.clear();
+            for &i in &scratch.cut {
+                scratch.cut_pts.push(all[i as usize]);
+                scratch.cut_world.push(all_world[i as usize]);
+            }
+            (&scratch.cut_pts[..], &scratch.cut_world[..])
+        }
+        None => (sf.pts(g), sf.world_pts(g)),
+    };
     // Convex regions (every triangle, every convex face cut by a plane) get exact quick tests;
-    // separation of G's whole projection (cheaper than classifying its vertices) comes first.
+    // separation of G's projection (cheaper than classifying its vertices) comes first,
+    // unless F's ring is long (the test costs F's length; classifying costs G's).
     let convex = sg.convex;
-    if convex && t.convex {
+    if convex && t.convex && t.ring.len() <= INDEXED_ABOVE {
         scratch.ring.clear();
-        scratch
-            .ring
-            .extend(view.screen.pts(g).iter().map(|p| [p[0], p[1]]));
+        scratch.ring.extend(pts.iter().map(|p| [p[0], p[1]]));
         if sg.facing == Facing::Back {
             scratch.ring.reverse();
         }
@@ -172,7 +192,8 @@ fn examine(
             return Walk::Open;
         }
     }
-    let Occlusion::Region(region) = occluder_region(&view.screen, g, t, &mut scratch.sides) else {
+    let Occlusion::Region(region) = occluder_region_of(sf, g, pts, world, t, &mut scratch.sides)
+    else {
         return Walk::Open;
     };
     if convex && covers_convex(&region, &t.ring) {
