@@ -4,6 +4,7 @@
 pub mod boolean;
 pub mod box3;
 pub mod box_pairs;
+pub mod box_tree;
 pub mod hull2;
 pub mod normal;
 pub mod poly2;

@@ -6,6 +6,18 @@ use super::{orient2d, orient3d, P3};
 /// Exact closed intersection test of two non-degenerate triangles: they meet exactly when an
 /// edge of one meets the other (non-coplanar), or in the plane's 2D test (coplanar).
 pub fn triangles_intersect(t: &[P3; 3], u: &[P3; 3]) -> bool {
+    // Closed projections strictly apart (along either triangle's dominant axis) mean the
+    // triangles are apart: a cheap first test (orient2d), and one that needs no exact zero
+    // of orient3d where a triangle stands on another's plane (a prism's side on its cap).
+    let apart = |(x, y): (usize, usize)| {
+        projections_apart(&t.map(|p| [p[x], p[y]]), &u.map(|p| [p[x], p[y]]))
+    };
+    let (at, au) = (plane_axes(t), plane_axes(u));
+    !(apart(at) || (au != at && apart(au))) && meet(t, u)
+}
+
+/// [`triangles_intersect`] without its first test.
+fn meet(t: &[P3; 3], u: &[P3; 3]) -> bool {
     let su = t.map(|p| orient3d(&u[0], &u[1], &u[2], &p));
     if su.iter().all(|&s| s > 0.0) || su.iter().all(|&s| s < 0.0) {
         return false;
@@ -22,6 +34,20 @@ pub fn triangles_intersect(t: &[P3; 3], u: &[P3; 3]) -> bool {
     }
     (0..3).any(|i| segment_meets_triangle(&t[i], &t[(i + 1) % 3], u))
         || (0..3).any(|i| segment_meets_triangle(&u[i], &u[(i + 1) % 3], t))
+}
+
+/// Exact: some edge of one projected triangle (with area) has the whole other strictly on
+/// its outer side, so the closed projections do not meet.
+fn projections_apart(a: &[[f64; 2]; 3], b: &[[f64; 2]; 3]) -> bool {
+    let outside = |p: &[[f64; 2]; 3], q: &[[f64; 2]; 3]| {
+        let turn = orient2d(p[0], p[1], p[2]);
+        turn != 0.0
+            && (0..3).any(|i| {
+                let (e, f) = (p[i], p[(i + 1) % 3]);
+                q.iter().all(|&r| orient2d(e, f, r) * turn < 0.0)
+            })
+    };
+    outside(a, b) || outside(b, a)
 }
 
 /// The two coordinates kept when projecting a triangle's plane along its dominant axis.
@@ -95,4 +121,37 @@ fn triangles_2d(a: &[[f64; 2]; 3], b: &[[f64; 2]; 3]) -> bool {
     (0..3).any(|i| (0..3).any(|j| segments_2d(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3])))
         || point_in_triangle_2d(a[0], b)
         || point_in_triangle_2d(b[0], a)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::rng::XorShift;
+
+    #[test]
+    fn the_projection_test_never_changes_the_answer() {
+        // Small integer coordinates: many triangles touch, share planes, lie on each other.
+        let mut rng = XorShift::new(5);
+        let mut point = || {
+            P3::new(
+                rng.below(3) as f64,
+                rng.below(3) as f64,
+                rng.below(3) as f64,
+            )
+        };
+        let (mut meets, mut apart) = (0, 0);
+        for _ in 0..20000 {
+            let t = [point(), point(), point()];
+            let u = [point(), point(), point()];
+            let flat = |t: &[P3; 3]| (t[1] - t[0]).cross(&(t[2] - t[0])).norm() == 0.0;
+            if flat(&t) || flat(&u) {
+                continue;
+            }
+            let m = meet(&t, &u);
+            assert_eq!(triangles_intersect(&t, &u), m, "{t:?} {u:?}");
+            meets += usize::from(m);
+            apart += usize::from(!m);
+        }
+        assert!(meets > 1000 && apart > 1000, "{meets} {apart}");
+    }
 }

@@ -6,6 +6,7 @@
 //! size with a separating-axis test in f64: the rounding error of those dot products is
 //! below 1e-14 of the size, far under the margin, so a face reported clear truly is.
 
+use crate::geom::box_tree::BoxTree;
 use crate::geom::triangle::closest_on_triangle;
 use crate::geom::{Box3, P3, V3};
 
@@ -28,6 +29,8 @@ const ROUNDS: usize = 3;
 struct Field<'a> {
     tris: &'a Triangles,
     boxes: Vec<Box3>,
+    /// A tree over `boxes`: each test looks at the triangles near the box only.
+    tree: BoxTree,
     margin: f64,
     /// Where boxes must stay (then `tris` need only hold the triangles meeting it).
     region: Option<Box3>,
@@ -37,16 +40,7 @@ struct Field<'a> {
 /// grown from points near `centroid` and on a grid over `cbox`. None when no seed is inside.
 pub fn grown_inbox(tris: &Triangles, cbox: &Box3, centroid: &P3) -> Option<Box3> {
     let scale = cbox.size().iter().fold(0.0f64, |a, &b| a.max(b));
-    let field = Field {
-        tris,
-        boxes: tris
-            .tris
-            .iter()
-            .map(|t| Box3::from_points(t.iter()))
-            .collect(),
-        margin: MARGIN * scale,
-        region: None,
-    };
+    let field = Field::new(tris, MARGIN * scale, None);
     let mut points = seed_points(cbox, centroid);
     points.extend(ray_seeds(tris, RAY_SEEDS));
     field.grow_seeds(points, tris, cbox)
@@ -73,16 +67,7 @@ pub fn grown_inbox_in(tris: &Triangles, region: &Box3, centroid: &P3, scale: f64
             .collect(),
         flipped: tris.flipped,
     };
-    let field = Field {
-        tris: &near,
-        boxes: near
-            .tris
-            .iter()
-            .map(|t| Box3::from_points(t.iter()))
-            .collect(),
-        margin,
-        region: Some(*region),
-    };
+    let field = Field::new(&near, margin, Some(*region));
     let points = seed_points(region, centroid)
         .into_iter()
         .filter(|p| region.contains(p))
@@ -171,7 +156,22 @@ fn solid_angle(a: &V3, b: &V3, c: &V3) -> f64 {
     2.0 * num.atan2(den)
 }
 
-impl Field<'_> {
+impl<'a> Field<'a> {
+    fn new(tris: &'a Triangles, margin: f64, region: Option<Box3>) -> Field<'a> {
+        let boxes: Vec<Box3> = tris
+            .tris
+            .iter()
+            .map(|t| Box3::from_points(t.iter()))
+            .collect();
+        Field {
+            tris,
+            tree: BoxTree::new(&boxes),
+            boxes,
+            margin,
+            region,
+        }
+    }
+
     /// The largest box grown within `cbox` from the clearest seeds inside the solid of `all`
     /// (the winding number is taken over every triangle, not only the field's).
     fn grow_seeds(&self, points: Vec<P3>, all: &Triangles, cbox: &Box3) -> Option<Box3> {
@@ -194,18 +194,18 @@ impl Field<'_> {
 
     /// A lower bound of the L∞ distance from `p` to every face, less the margin: per face
     /// the larger of the L∞ distance to its bounding box and its Euclidean distance / √3.
+    /// The least over faces is taken in the tree: a node no nearer (L∞) than the least so
+    /// far cannot lower it, so the answer is the plain minimum's, bit for bit.
     fn clearance(&self, p: &P3) -> f64 {
-        let mut r = f64::INFINITY;
-        for (b, t) in self.boxes.iter().zip(&self.tris.tris) {
-            let mut d = 0.0f64;
-            for i in 0..3 {
-                d = d.max(b.lo[i] - p[i]).max(p[i] - b.hi[i]);
+        let away = |b: &Box3| (0..3).fold(0.0f64, |d, i| d.max(b.lo[i] - p[i]).max(p[i] - b.hi[i]));
+        let r = self.tree.least(f64::INFINITY, away, |k, r| {
+            let d = away(&self.boxes[k as usize]);
+            if d >= r {
+                return d;
             }
-            if d < r {
-                let e = (closest_on_triangle(p, &t[0], &t[1], &t[2]) - p).norm() / 3f64.sqrt();
-                r = r.min(d.max(e));
-            }
-        }
+            let t = &self.tris.tris[k as usize];
+            d.max((closest_on_triangle(p, &t[0], &t[1], &t[2]) - p).norm() / 3f64.sqrt())
+        });
         r - 2.0 * self.margin
     }
 
@@ -218,9 +218,8 @@ impl Field<'_> {
         let e = Box3::new(b.lo - m, b.hi + m);
         let c = e.center();
         let h = (e.hi - e.lo) * 0.5;
-        self.boxes.iter().zip(&self.tris.tris).all(|(tb, t)| {
-            let apart = (0..3).any(|i| tb.lo[i] > e.hi[i] || tb.hi[i] < e.lo[i]);
-            apart || !tri_meets_box(t, &c, &h)
+        !self.tree.any_meeting(&self.boxes, &e, |k| {
+            tri_meets_box(&self.tris.tris[k as usize], &c, &h)
         })
     }
 
