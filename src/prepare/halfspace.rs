@@ -87,7 +87,7 @@ pub fn largest_box_within(planes: &[HalfSpace], interior: &P3, bounds: &Box3) ->
             }
         }
     }
-    for _ in 0..ROUNDS {
+    for round in 0..ROUNDS {
         let b = largest_box(&working, interior)?;
         let mut violated: Vec<(f64, usize)> = planes
             .iter()
@@ -102,7 +102,9 @@ pub fn largest_box_within(planes: &[HalfSpace], interior: &P3, bounds: &Box3) ->
             return Some(b);
         }
         violated.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
-        for &(_, k) in violated.iter().take(ADD) {
+        // Twice as many every few rounds: a curved side (a 65536-gon's rim) needs many
+        // nearly equal planes, and 40 rounds of 32 would not reach them.
+        for &(_, k) in violated.iter().take(ADD << (round / 4)) {
             chosen[k] = true;
             working.push(planes[k]);
         }

@@ -1,12 +1,16 @@
-//! Geometry of a closed mesh shared by the inbox methods: orientation, fan triangles, face
+//! Geometry of a closed mesh shared by the inbox methods: orientation, triangles, face
 //! planes, and the exact test that a box lies on the inner side of every face.
 
 use crate::geom::{orient3d_refs, Box3, P3, V3};
 use crate::scene::Mesh;
 
 use super::halfspace::HalfSpace;
+use crate::scene::triangulate::balanced;
 
-/// A mesh's faces as fan triangles, oriented so that the solid's inside is on their
+/// Faces of more corners than this are cut into balanced triangles instead of a fan.
+const BALANCED_ABOVE: usize = 64;
+
+/// A mesh's faces as triangles (a fan, or balanced for long faces), oriented so that the solid's inside is on their
 /// negative side (normal = (b − a) × (c − a) points out).
 #[derive(Debug, Clone)]
 pub struct Triangles {
@@ -17,18 +21,21 @@ pub struct Triangles {
 }
 
 impl Triangles {
-    /// The fan triangles of every face, flipped when the mesh is oriented inward. None when
+    /// The triangles of every face, flipped when the mesh is oriented inward. None when
     /// the signed volume is zero (no interior).
     pub fn of(mesh: &Mesh) -> Option<Triangles> {
         let mut tris = Vec::with_capacity(mesh.faces.len() * 2);
         for f in &mesh.faces {
             let v = &f.vertices;
+            let at = |i: usize| mesh.vertices[v[i] as usize];
+            if v.len() > BALANCED_ABOVE {
+                // The same 2-chain as the fan, but a box near the face meets few of its
+                // triangles' boxes (a fan's all reach its first corner).
+                tris.extend(balanced(v.len()).iter().map(|t| t.map(at)));
+                continue;
+            }
             for i in 1..v.len().saturating_sub(1) {
-                tris.push([
-                    mesh.vertices[v[0] as usize],
-                    mesh.vertices[v[i] as usize],
-                    mesh.vertices[v[i + 1] as usize],
-                ]);
+                tris.push([at(0), at(i), at(i + 1)]);
             }
         }
         let volume = signed_volume(&tris);

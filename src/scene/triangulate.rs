@@ -183,8 +183,10 @@ fn strictly_convex(p: &[[f64; 2]], flip: bool) -> bool {
 /// line meets O(log n) of its triangles' boxes near any point, where a fan's all share one
 /// corner (the broad phase of the solidity test would pair every two of them).
 /// Corners in ring order make triangles turning the ring's way (counter-clockwise seen from
-/// the normal, as [`ear_clip_simple`] promises).
-fn balanced(n: usize) -> Vec<[usize; 3]> {
+/// the normal, as [`ear_clip_simple`] promises). For any ring, convex or not, the triangles'
+/// boundaries add up to the ring's (each chord is run once each way), so as a 2-chain they
+/// are the fan's: the same signed areas, volumes and winding numbers, with small boxes.
+pub fn balanced(n: usize) -> Vec<[usize; 3]> {
     let mut tris = Vec::with_capacity(n - 2);
     let (a, b) = (n / 3, 2 * n / 3);
     tris.push([0, a, b]);
