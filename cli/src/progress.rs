@@ -75,6 +75,23 @@ pub fn line(label: &str, done: usize, total: usize, secs: f64, msg: &str) -> Str
     )
 }
 
+/// The time left in a counted stage that has done `done` of `total` in `stage_secs`, at the
+/// rate so far; None before there is a rate to go by (nothing done, or under a second in).
+pub fn eta(done: usize, total: usize, stage_secs: f64) -> Option<f64> {
+    (done > 0 && done <= total && stage_secs >= 1.0)
+        .then(|| stage_secs * (total - done) as f64 / done as f64)
+}
+
+/// `eta 1m05s`-style text for a number of seconds.
+pub fn eta_text(secs: f64) -> String {
+    let s = secs.round() as u64;
+    if s >= 60 {
+        format!("eta {}m{:02}s", s / 60, s % 60)
+    } else {
+        format!("eta {s}s")
+    }
+}
+
 /// Runs `work` while a bar follows a render's `progress` (its stage, and done of total where
 /// the stage counts), drawn from a watcher thread that wakes every 100 ms (and at once
 /// when the work ends); on a non-terminal no thread is started at all.
@@ -90,11 +107,18 @@ pub fn follow<T: Send>(
     let stop = AtomicBool::new(false);
     std::thread::scope(|s| {
         let watcher = s.spawn(|| {
+            // When the stage shown began: its rate so far gives the time it has left.
+            let mut stage_start = Instant::now();
             while !stop.load(Ordering::Relaxed) {
                 let (done, total) = progress.counts();
-                bar.label = progress.stage().name().to_string();
-                bar.total = total;
-                bar.update(done, "");
+                let label = progress.stage().name();
+                if bar.label != label || bar.total != total {
+                    bar.label = label.to_string();
+                    bar.total = total;
+                    stage_start = Instant::now();
+                }
+                let left = eta(done, total, stage_start.elapsed().as_secs_f64());
+                bar.update(done, &left.map(eta_text).unwrap_or_default());
                 std::thread::park_timeout(REDRAW);
             }
             bar.finish();
@@ -118,6 +142,16 @@ mod tests {
         );
         assert_eq!(line("view", 0, 0, 2.0, "x"), "view 2.0s x");
         assert!(line("v", 9, 3, 0.0, "").contains("3/3"));
+    }
+
+    #[test]
+    fn eta_follows_the_rate_so_far() {
+        assert_eq!(eta(25, 100, 10.0), Some(30.0));
+        assert_eq!(eta(100, 100, 10.0), Some(0.0));
+        assert_eq!(eta(0, 100, 10.0), None, "no rate yet");
+        assert_eq!(eta(50, 100, 0.5), None, "too early to say");
+        assert_eq!(eta_text(30.0), "eta 30s");
+        assert_eq!(eta_text(65.4), "eta 1m05s");
     }
 
     #[test]
