@@ -3,6 +3,8 @@
 
 use std::collections::HashMap;
 
+use rayon::prelude::*;
+
 use crate::geom::{newell_indexed, Box3, P3, V3};
 use crate::scene::Mesh;
 
@@ -37,7 +39,7 @@ pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
         }
     }
     let at = |f: &[u32], i: usize| mesh.vertices[f[i % f.len()] as usize].coords;
-    mesh.faces.iter().all(|f| {
+    let locally_convex = |f: &crate::scene::Face| {
         let n = newell_indexed(&mesh.vertices, &f.vertices) * sign;
         let len = n.norm();
         if len == 0.0 {
@@ -61,7 +63,13 @@ pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
                 .iter()
                 .all(|p| n.dot(p) <= d + tol)
         })
-    })
+    };
+    // A yes or no: the same answer on any number of threads.
+    if mesh.faces.len() > 4096 {
+        mesh.faces.par_iter().all(locally_convex)
+    } else {
+        mesh.faces.iter().all(locally_convex)
+    }
 }
 
 /// The largest box inside a convex mesh, verified to lie inside it; None when the

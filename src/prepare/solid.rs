@@ -1,11 +1,16 @@
 //! Geometry of a closed mesh shared by the inbox methods: orientation, triangles, face
 //! planes, and the exact test that a box lies on the inner side of every face.
 
+use rayon::prelude::*;
+
 use crate::geom::{orient3d_refs, Box3, P3, V3};
 use crate::scene::Mesh;
 
 use super::halfspace::HalfSpace;
 use crate::scene::triangulate::balanced;
+
+/// Meshes of more triangles than this are tested on all threads.
+const PARALLEL_ABOVE: usize = 8192;
 
 /// Faces of more corners than this are cut into balanced triangles instead of a fan.
 const BALANCED_ABOVE: usize = 64;
@@ -56,7 +61,7 @@ impl Triangles {
     /// only the corner farthest along its normal is tested (exact `orient3d`); on an axis
     /// where the normal's sign is within rounding of zero, both corners are.
     pub fn box_in_kernel(&self, b: &Box3) -> bool {
-        self.tris.iter().all(|t| {
+        let inner = |t: &[P3; 3]| {
             let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
             let n = e1.cross(&e2);
             // Each component of the f64 cross product is within this of the exact one.
@@ -78,7 +83,13 @@ impl Triangles {
                         .all(|&z| orient3d_refs(t, &P3::new(x, y, z)) >= 0.0)
                 })
             })
-        })
+        };
+        // A yes or no: the same answer on any number of threads.
+        if self.tris.len() > PARALLEL_ABOVE {
+            self.tris.par_iter().all(inner)
+        } else {
+            self.tris.iter().all(inner)
+        }
     }
 
     /// One half-space per triangle (Newell normal of the triangle, offset through its vertices).
