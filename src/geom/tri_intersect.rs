@@ -32,8 +32,14 @@ fn meet(t: &[P3; 3], u: &[P3; 3]) -> bool {
         let b = u.map(|p| [p[x], p[y]]);
         return triangles_2d(&a, &b);
     }
-    (0..3).any(|i| segment_meets_triangle(&t[i], &t[(i + 1) % 3], u))
-        || (0..3).any(|i| segment_meets_triangle(&u[i], &u[(i + 1) % 3], t))
+    // The sides of each triangle's corners against the other's plane are already known.
+    (0..3).any(|i| {
+        let j = (i + 1) % 3;
+        segment_meets_triangle_sided(&t[i], &t[j], su[i], su[j], u)
+    }) || (0..3).any(|i| {
+        let j = (i + 1) % 3;
+        segment_meets_triangle_sided(&u[i], &u[j], st[i], st[j], t)
+    })
 }
 
 /// Exact: some edge of one projected triangle (with area) has the whole other strictly on
@@ -68,6 +74,12 @@ pub fn segment_meets_triangle(p: &P3, q: &P3, t: &[P3; 3]) -> bool {
         orient3d(&t[0], &t[1], &t[2], p),
         orient3d(&t[0], &t[1], &t[2], q),
     );
+    segment_meets_triangle_sided(p, q, sp, sq, t)
+}
+
+/// [`segment_meets_triangle`] given the sides `sp`, `sq` of p and q (orient3d against t's
+/// plane, as that function computes them).
+fn segment_meets_triangle_sided(p: &P3, q: &P3, sp: f64, sq: f64, t: &[P3; 3]) -> bool {
     if (sp > 0.0 && sq > 0.0) || (sp < 0.0 && sq < 0.0) {
         return false;
     }
