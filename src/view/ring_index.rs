@@ -20,7 +20,7 @@ const RUN: usize = 16;
 /// Rings longer than this get an index.
 pub const INDEXED_ABOVE: usize = 64;
 
-/// A binary tree of boxes over runs of a ring's points (level 0: runs of [`RUN`] points;
+/// A binary tree of boxes over runs of a ring's points (level 0: runs of 16 points;
 /// each level above: pairs of boxes merged).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RingIndex {
