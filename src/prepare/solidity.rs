@@ -13,6 +13,9 @@
 //! - every edge-connected piece has positive signed volume (outward), decided exactly: then
 //!   each adds 0 or +1, and w ≥ 0.
 //!
+//! An open mesh is then offered to [`super::caps`]: with its holes capped it may still be
+//! proven a solid, and its back faces culled away from the caps.
+//!
 //! Anything else keeps two-sided faces: correct, only slower.
 
 use std::collections::HashMap;
@@ -26,7 +29,7 @@ use crate::geom::tri_intersect::{plane_axes, segment_meets_triangle, triangles_i
 use crate::geom::{newell, orient2d, orient3d, P3};
 use crate::scene::topology::{edge_topology, Topology};
 use crate::scene::triangulate::ear_clip_simple;
-use crate::scene::{Content, Mesh, Object, Solidity};
+use crate::scene::{CapFailure, Content, Mesh, Object, Solidity};
 
 /// A triangle of a mesh's surface: vertex indices and their points.
 #[derive(Debug, Clone, Copy)]
@@ -38,7 +41,7 @@ struct Tri {
 /// Decides the solidity of one mesh (exact).
 pub fn solidity(mesh: &Mesh) -> Solidity {
     match edge_topology(&mesh.faces) {
-        Topology::Open => return Solidity::Open,
+        Topology::Open => return Solidity::Open(CapFailure::NotTried),
         Topology::Inconsistent => return Solidity::Inconsistent,
         Topology::Closed => {}
     }
@@ -64,6 +67,22 @@ pub fn solidity(mesh: &Mesh) -> Solidity {
     }
 }
 
+/// Fills [`Mesh::solidity`] of `mesh`, and for an open mesh whose holes cap into a solid
+/// ([`super::caps`]), its [`Mesh::caps`].
+pub fn decide(mesh: &mut Mesh) {
+    let s = match solidity(mesh) {
+        Solidity::Open(_) => match super::caps::cap_holes(mesh) {
+            Ok(caps) => {
+                mesh.caps = caps.triangles;
+                Solidity::Capped(caps.loops)
+            }
+            Err(why) => Solidity::Open(why),
+        },
+        s => s,
+    };
+    mesh.solidity = Some(s);
+}
+
 /// Fills [`Mesh::solidity`] of every mesh below `root` that has none; each shared prototype
 /// is decided once and stays shared.
 pub fn mark_solids(root: &mut Object) {
@@ -78,7 +97,7 @@ fn mark(obj: &mut Object, done: &mut Marked) {
     match &mut obj.content {
         Content::Mesh(m) => {
             if m.solidity.is_none() {
-                m.solidity = Some(solidity(m));
+                decide(m);
             }
         }
         Content::Subobjects(subs) => subs.iter_mut().for_each(|s| mark(s, done)),
@@ -389,7 +408,10 @@ mod tests {
             .collect();
         let refs: Vec<&[u32]> = inward.iter().map(|f| f.as_slice()).collect();
         assert_eq!(solidity(&mesh(&TET, &refs)), Solidity::InsideOut);
-        assert_eq!(solidity(&mesh(&TET, &TET_OUT[..3])), Solidity::Open);
+        assert_eq!(
+            solidity(&mesh(&TET, &TET_OUT[..3])),
+            Solidity::Open(CapFailure::NotTried)
+        );
         let mut flipped = TET_OUT.to_vec();
         flipped[0] = &[0, 1, 2];
         assert_eq!(solidity(&mesh(&TET, &flipped)), Solidity::Inconsistent);
