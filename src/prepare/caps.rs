@@ -37,10 +37,13 @@
 
 use std::collections::HashMap;
 
-use crate::geom::P3;
+use crate::geom::{newell, P3};
 use crate::scene::topology::{edge_topology, Topology};
+use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Face, Mesh, Solidity};
 
+use super::solidity::examine;
+#[cfg(test)]
 use super::solidity::solidity;
 
 /// The caps of an open mesh that capping made a solid.
@@ -52,41 +55,118 @@ pub struct Caps {
     pub triangles: Vec<[P3; 3]>,
 }
 
+/// How one hole is capped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Way {
+    /// A fan from a new vertex at the loop's centroid.
+    Fan,
+    /// Exact ear clipping of the loop projected along its Newell normal's dominant axis (no
+    /// new vertex); only where that projection is simple.
+    Ears,
+}
+
 /// Caps the holes of `mesh` (which must be open and otherwise consistent:
-/// [`Topology::Open`]) and decides exactly whether the capped surface is a solid.
+/// [`Topology::Open`]) and decides exactly whether the capped surface is a solid. Every hole
+/// is first fanned; holes whose fan crosses the mesh or another cap, or has a flat
+/// triangle, are ear-clipped instead and the whole decided again ([`ATTEMPTS`] decisions at
+/// most: each costs the exact self-intersection test of the whole mesh).
 pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
     if edge_topology(&mesh.faces) != Topology::Open {
         return Err(CapFailure::Inconsistent);
     }
     let loops = boundary_loops(&mesh.faces);
+    let mut ways = vec![Way::Fan; loops.len()];
+    for attempt in 1..=ATTEMPTS {
+        let (capped, loop_of) = with_caps(mesh, &loops, &ways);
+        let e = examine(&capped);
+        let n = mesh.faces.len() as u32;
+        let cap = |f: u32| f.checked_sub(n).map(|k| loop_of[k as usize]);
+        let mut retry: Vec<usize> = match e.solidity {
+            Solidity::Solid => {
+                return Ok(Caps {
+                    loops: loops.len() as u32,
+                    triangles: capped.faces[n as usize..]
+                        .iter()
+                        .map(|f| f.vertices.iter().map(|&v| capped.vertices[v as usize]))
+                        .map(|mut t| [(); 3].map(|_| t.next().expect("a triangle")))
+                        .collect(),
+                })
+            }
+            Solidity::Degenerate => match e.degenerate.and_then(cap) {
+                Some(l) => vec![l],
+                None => return Err(CapFailure::MeshDegenerate),
+            },
+            Solidity::SelfIntersecting(_) => {
+                let mesh_only = e.crossing.iter().filter(|p| p.iter().all(|&f| f < n));
+                let own = mesh_only.count() as u64;
+                if own > 0 {
+                    return Err(CapFailure::MeshSelfIntersecting(own));
+                }
+                e.crossing
+                    .iter()
+                    .flatten()
+                    .filter_map(|&f| cap(f))
+                    .collect()
+            }
+            Solidity::InsideOut => return Err(CapFailure::InsideOut),
+            Solidity::Open(_) | Solidity::Capped(_) | Solidity::Inconsistent => {
+                return Err(CapFailure::Inconsistent)
+            }
+        };
+        retry.sort_unstable();
+        retry.dedup();
+        retry.retain(|&l| ways[l] == Way::Fan && ears(mesh, &loops[l]).is_some());
+        if retry.is_empty() || attempt == ATTEMPTS {
+            return Err(match e.solidity {
+                Solidity::SelfIntersecting(k) => CapFailure::SelfIntersecting(k),
+                _ => CapFailure::Degenerate,
+            });
+        }
+        for l in retry {
+            ways[l] = Way::Ears;
+        }
+    }
+    // The last attempt returns above.
+    Err(CapFailure::Inconsistent)
+}
+
+/// How many capped surfaces [`cap_holes`] decides at most.
+pub const ATTEMPTS: usize = 3;
+
+/// The mesh with its holes capped each its way, and the loop of each cap face.
+fn with_caps(mesh: &Mesh, loops: &[Vec<u32>], ways: &[Way]) -> (Mesh, Vec<usize>) {
     let mut capped = Mesh {
         vertices: mesh.vertices.clone(),
         faces: mesh.faces.clone(),
         ..Mesh::default()
     };
-    let mut triangles = Vec::new();
-    for lp in &loops {
-        let c = centroid(lp.iter().map(|&v| &mesh.vertices[v as usize]));
-        let ci = capped.vertices.len() as u32;
-        capped.vertices.push(c);
-        for i in 0..lp.len() {
-            let (a, b) = (lp[i], lp[(i + 1) % lp.len()]);
-            capped.faces.push(Face::new(vec![ci, a, b]));
-            triangles.push([c, mesh.vertices[a as usize], mesh.vertices[b as usize]]);
+    let mut loop_of = Vec::new();
+    for (l, (lp, way)) in loops.iter().zip(ways).enumerate() {
+        let tris: Vec<[u32; 3]> = match way {
+            Way::Fan => {
+                let c = centroid(lp.iter().map(|&v| &mesh.vertices[v as usize]));
+                let ci = capped.vertices.len() as u32;
+                capped.vertices.push(c);
+                (0..lp.len())
+                    .map(|i| [ci, lp[i], lp[(i + 1) % lp.len()]])
+                    .collect()
+            }
+            Way::Ears => ears(mesh, lp).expect("only simple loops are ear-clipped"),
+        };
+        for t in tris {
+            capped.faces.push(Face::new(t.to_vec()));
+            loop_of.push(l);
         }
     }
-    match solidity(&capped) {
-        Solidity::Solid => Ok(Caps {
-            loops: loops.len() as u32,
-            triangles,
-        }),
-        Solidity::Degenerate => Err(CapFailure::Degenerate),
-        Solidity::SelfIntersecting(n) => Err(CapFailure::SelfIntersecting(n)),
-        Solidity::InsideOut => Err(CapFailure::InsideOut),
-        Solidity::Open(_) | Solidity::Capped(_) | Solidity::Inconsistent => {
-            Err(CapFailure::Inconsistent)
-        }
-    }
+    (capped, loop_of)
+}
+
+/// The loop ear-clipped (exact predicates) along its Newell normal, oriented like the loop;
+/// None when its projection is not simple.
+fn ears(mesh: &Mesh, lp: &[u32]) -> Option<Vec<[u32; 3]>> {
+    let pts: Vec<P3> = lp.iter().map(|&v| mesh.vertices[v as usize]).collect();
+    let tris = ear_clip_simple(&pts, &newell(&pts))?;
+    Some(tris.iter().map(|t| t.map(|i| lp[i])).collect())
 }
 
 /// The mean of the points.

@@ -40,31 +40,68 @@ struct Tri {
 
 /// Decides the solidity of one mesh (exact).
 pub fn solidity(mesh: &Mesh) -> Solidity {
+    examine(mesh).solidity
+}
+
+/// A mesh's solidity and, where it fails on faces, which ones.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Examined {
+    /// The decision.
+    pub(crate) solidity: Solidity,
+    /// For [`Solidity::Degenerate`]: the first face that is not simple or has a flat
+    /// triangle.
+    pub(crate) degenerate: Option<u32>,
+    /// For [`Solidity::SelfIntersecting`]: the faces of every crossing pair of triangles.
+    pub(crate) crossing: Vec<[u32; 2]>,
+}
+
+/// [`solidity`], saying which faces fail.
+pub(crate) fn examine(mesh: &Mesh) -> Examined {
+    let decided = |solidity| Examined {
+        solidity,
+        degenerate: None,
+        crossing: Vec::new(),
+    };
     match edge_topology(&mesh.faces) {
-        Topology::Open => return Solidity::Open(CapFailure::NotTried),
-        Topology::Inconsistent => return Solidity::Inconsistent,
+        Topology::Open => return decided(Solidity::Open(CapFailure::NotTried)),
+        Topology::Inconsistent => return decided(Solidity::Inconsistent),
         Topology::Closed => {}
     }
-    let Some((tris, face_of)) = surface_triangles(mesh) else {
-        return Solidity::Degenerate;
+    let (tris, face_of) = match surface_triangles(mesh) {
+        Ok(t) => t,
+        Err(face) => {
+            return Examined {
+                degenerate: Some(face),
+                ..decided(Solidity::Degenerate)
+            }
+        }
     };
-    let crossings = crossing_pairs(&tris);
-    if crossings > 0 {
-        return Solidity::SelfIntersecting(crossings);
+    let crossing: Vec<[u32; 2]> = crossing_pairs(&tris)
+        .into_iter()
+        .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
+        .collect();
+    if !crossing.is_empty() {
+        return Examined {
+            solidity: Solidity::SelfIntersecting(crossing.len() as u64),
+            degenerate: None,
+            crossing,
+        };
     }
     let pieces = edge_pieces(mesh);
     let mut by_piece: Vec<Vec<usize>> = vec![Vec::new(); pieces.count];
     for (t, &f) in face_of.iter().enumerate() {
         by_piece[pieces.of_face[f as usize] as usize].push(t);
     }
-    if by_piece
-        .iter()
-        .all(|ts| volume_sign(ts.iter().map(|&t| &tris[t].p)) > 0)
-    {
-        Solidity::Solid
-    } else {
-        Solidity::InsideOut
-    }
+    decided(
+        if by_piece
+            .iter()
+            .all(|ts| volume_sign(ts.iter().map(|&t| &tris[t].p)) > 0)
+        {
+            Solidity::Solid
+        } else {
+            Solidity::InsideOut
+        },
+    )
 }
 
 /// Fills [`Mesh::solidity`] of `mesh`, and for an open mesh whose holes cap into a solid
@@ -119,9 +156,9 @@ fn mark(obj: &mut Object, done: &mut Marked) {
 }
 
 /// The surface as triangles (exact ear clipping of every face; a warped face's triangles are
-/// the view's planar pieces), with each triangle's face. None when a face is not simple or
-/// a triangle is degenerate.
-fn surface_triangles(mesh: &Mesh) -> Option<(Vec<Tri>, Vec<u32>)> {
+/// the view's planar pieces), with each triangle's face. Err(the face) when a face is not
+/// simple or a triangle is degenerate.
+fn surface_triangles(mesh: &Mesh) -> Result<(Vec<Tri>, Vec<u32>), u32> {
     let mut tris = Vec::with_capacity(mesh.faces.len() * 2);
     let mut face_of = Vec::with_capacity(mesh.faces.len() * 2);
     for (k, f) in mesh.faces.iter().enumerate() {
@@ -133,7 +170,7 @@ fn surface_triangles(mesh: &Mesh) -> Option<(Vec<Tri>, Vec<u32>)> {
         let local = if pts.len() == 3 {
             vec![[0, 1, 2]]
         } else {
-            ear_clip_simple(&pts, &newell(&pts))?
+            ear_clip_simple(&pts, &newell(&pts)).ok_or(k as u32)?
         };
         for t in local {
             let tri = Tri {
@@ -141,13 +178,13 @@ fn surface_triangles(mesh: &Mesh) -> Option<(Vec<Tri>, Vec<u32>)> {
                 p: t.map(|i| pts[i]),
             };
             if degenerate(&tri.p) {
-                return None;
+                return Err(k as u32);
             }
             tris.push(tri);
             face_of.push(k as u32);
         }
     }
-    Some((tris, face_of))
+    Ok((tris, face_of))
 }
 
 /// Exact: the three points are collinear (every coordinate-plane projection is degenerate).
@@ -157,8 +194,8 @@ fn degenerate(p: &[P3; 3]) -> bool {
         .all(|&(x, y)| orient2d([p[0][x], p[0][y]], [p[1][x], p[1][y]], [p[2][x], p[2][y]]) == 0.0)
 }
 
-/// Number of triangle pairs that meet other than in shared vertices and edges.
-fn crossing_pairs(tris: &[Tri]) -> u64 {
+/// The triangle pairs that meet other than in shared vertices and edges.
+fn crossing_pairs(tris: &[Tri]) -> Vec<(u32, u32)> {
     let boxes: Vec<[[f64; 3]; 2]> = tris
         .iter()
         .map(|t| {
@@ -168,9 +205,8 @@ fn crossing_pairs(tris: &[Tri]) -> u64 {
         })
         .collect();
     filter_map_pairs(&boxes, |i, j| {
-        cross(&tris[i as usize], &tris[j as usize]).then_some(())
+        cross(&tris[i as usize], &tris[j as usize]).then_some((i, j))
     })
-    .len() as u64
 }
 
 /// Exact: triangles `t` and `u` (non-degenerate, of one mesh) meet other than in the

@@ -32,9 +32,13 @@ pub enum CapFailure {
     /// Capping was not tried (the mesh was decided before caps existed, or is too small to
     /// enclose anything).
     NotTried,
-    /// The capped surface is degenerate: a cap triangle (or a face) has zero area.
+    /// A face of the mesh itself is not simple or has a triangle of zero area.
+    MeshDegenerate,
+    /// The mesh itself crosses itself (pairs of triangles).
+    MeshSelfIntersecting(u64),
+    /// A cap has a triangle of zero area, fanned or ear-clipped.
     Degenerate,
-    /// The capped surface crosses itself (pairs of triangles, caps counted).
+    /// Caps cross the mesh or each other, fanned or ear-clipped (pairs of triangles).
     SelfIntersecting(u64),
     /// A connected piece of the capped surface has negative or zero volume (the mesh is
     /// wound inwards, or is a sheet with nothing inside).
@@ -95,10 +99,16 @@ impl CapFailure {
     pub fn reason(self) -> String {
         match self {
             CapFailure::NotTried => "capping not tried".into(),
+            CapFailure::MeshDegenerate => {
+                "not capped: a face is not simple or has zero area".into()
+            }
+            CapFailure::MeshSelfIntersecting(n) => {
+                format!("not capped: the mesh crosses itself ({n} pairs of triangles)")
+            }
             CapFailure::Degenerate => "capping failed: a cap triangle has zero area".into(),
             CapFailure::SelfIntersecting(n) => {
                 format!(
-                    "capping failed: the capped surface crosses itself ({n} pairs of triangles)"
+                    "capping failed: caps cross the mesh or each other ({n} pairs of triangles)"
                 )
             }
             CapFailure::InsideOut => {
