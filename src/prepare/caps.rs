@@ -42,9 +42,9 @@ use crate::scene::topology::{edge_topology, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Face, Mesh, Solidity};
 
-use super::solidity::examine;
 #[cfg(test)]
 use super::solidity::solidity;
+use super::solidity::{examine, examine_where};
 
 /// The caps of an open mesh that capping made a solid.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,11 +76,18 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
     }
     let loops = boundary_loops(&mesh.faces);
     let mut ways = vec![Way::Fan; loops.len()];
+    // After a decision that reached the crossing test, only the triangles of re-capped holes
+    // can cross anything: every other pair was found apart already.
+    let mut changed: Option<Vec<bool>> = None;
     for attempt in 1..=ATTEMPTS {
         let (capped, loop_of) = with_caps(mesh, &loops, &ways);
-        let e = examine(&capped);
         let n = mesh.faces.len() as u32;
+        let e = match &changed {
+            None => examine(&capped),
+            Some(c) => examine_where(&capped, |f| f >= n && c[loop_of[(f - n) as usize]]),
+        };
         let cap = |f: u32| f.checked_sub(n).map(|k| loop_of[k as usize]);
+        let reached_crossings = !matches!(e.solidity, Solidity::Degenerate);
         let mut retry: Vec<usize> = match e.solidity {
             Solidity::Solid => {
                 return Ok(Caps {
@@ -92,10 +99,12 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
                         .collect(),
                 })
             }
-            Solidity::Degenerate => match e.degenerate.and_then(cap) {
-                Some(l) => vec![l],
-                None => return Err(CapFailure::MeshDegenerate),
-            },
+            Solidity::Degenerate => {
+                if e.degenerate.iter().any(|&f| f < n) {
+                    return Err(CapFailure::MeshDegenerate);
+                }
+                e.degenerate.iter().filter_map(|&f| cap(f)).collect()
+            }
             Solidity::SelfIntersecting(_) => {
                 let mesh_only = e.crossing.iter().filter(|p| p.iter().all(|&f| f < n));
                 let own = mesh_only.count() as u64;
@@ -115,16 +124,28 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
         };
         retry.sort_unstable();
         retry.dedup();
-        retry.retain(|&l| ways[l] == Way::Fan && ears(mesh, &loops[l]).is_some());
-        if retry.is_empty() || attempt == ATTEMPTS {
+        // Every hole in the failure must be re-capped, or the failure stands (a pair left
+        // out would not be tested again).
+        let fixable = |l: &usize| ways[*l] == Way::Fan && ears(mesh, &loops[*l]).is_some();
+        if retry.is_empty() || !retry.iter().all(fixable) || attempt == ATTEMPTS {
             return Err(match e.solidity {
                 Solidity::SelfIntersecting(k) => CapFailure::SelfIntersecting(k),
                 _ => CapFailure::Degenerate,
             });
         }
+        let mut now = vec![false; loops.len()];
         for l in retry {
             ways[l] = Way::Ears;
+            now[l] = true;
         }
+        changed = match (changed, reached_crossings) {
+            (Some(mut c), true) => {
+                c.iter_mut().zip(&now).for_each(|(c, n)| *c |= n);
+                Some(c)
+            }
+            (None, true) => Some(now),
+            (_, false) => None,
+        };
     }
     // The last attempt returns above.
     Err(CapFailure::Inconsistent)
@@ -183,22 +204,25 @@ fn centroid<'a>(pts: impl ExactSizeIterator<Item = &'a P3>) -> P3 {
 /// of a consistent surface's boundary, so every walk closes. Deterministic: loops start at
 /// their least edge in the faces' order.
 pub fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
-    let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
-    for f in faces {
-        let n = f.vertices.len();
-        for i in 0..n {
-            *directed
-                .entry((f.vertices[i], f.vertices[(i + 1) % n]))
-                .or_default() += 1;
-        }
-    }
+    // Directed edges as packed integers, sorted: a reverse is found by binary search.
+    let mut directed: Vec<u64> = faces
+        .iter()
+        .flat_map(|f| {
+            let n = f.vertices.len();
+            (0..n).map(move |i| (f.vertices[i] as u64) << 32 | f.vertices[(i + 1) % n] as u64)
+        })
+        .collect();
+    directed.sort_unstable();
     // Loop steps b→a for each boundary edge a→b, in face order.
     let mut steps: Vec<(u32, u32)> = Vec::new();
     for f in faces {
         let n = f.vertices.len();
         for i in 0..n {
             let (a, b) = (f.vertices[i], f.vertices[(i + 1) % n]);
-            if !directed.contains_key(&(b, a)) {
+            if directed
+                .binary_search(&((b as u64) << 32 | a as u64))
+                .is_err()
+            {
                 steps.push((b, a));
             }
         }
@@ -367,5 +391,31 @@ mod tests {
         // With its apex lowered into the box, the same tetrahedron is fine.
         m.vertices[a as usize + 3].z = 0.9;
         assert_eq!(cap_holes(&m).map(|c| c.loops), Ok(1));
+    }
+
+    #[test]
+    fn a_hole_whose_fan_crosses_the_walls_is_ear_clipped() {
+        // An L-shaped prism open at the top: the centroid of the mouth's corners lies in the
+        // notch, outside the L, so the fan crosses the walls; ear clipping the L works.
+        let l = [[0., 0.], [3., 0.], [3., 1.], [1., 1.], [1., 3.], [0., 3.]];
+        let mut vertices: Vec<P3> = l.iter().map(|p| P3::new(p[0], p[1], 0.0)).collect();
+        vertices.extend(l.iter().map(|p| P3::new(p[0], p[1], 1.0)));
+        let mut faces = vec![Face::new((0..6).rev().collect())]; // floor, facing -z
+        for i in 0..6u32 {
+            let j = (i + 1) % 6;
+            faces.push(Face::new(vec![i, j, j + 6, i + 6]));
+        }
+        let m = Mesh {
+            vertices,
+            faces,
+            ..Mesh::default()
+        };
+        let caps = cap_holes(&m).unwrap();
+        assert_eq!(caps.loops, 1);
+        assert_eq!(caps.triangles.len(), 4, "ear clipping, not a fan of 6");
+        for t in &caps.triangles {
+            assert!(t.iter().all(|p| p.z == 1.0 && m.vertices.contains(p)));
+            assert!((t[1] - t[0]).cross(&(t[2] - t[0])).z > 0.0, "outward: +z");
+        }
     }
 }

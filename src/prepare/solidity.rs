@@ -24,7 +24,9 @@ use std::sync::Arc;
 use num_bigint::BigInt;
 use num_traits::{Signed, Zero};
 
-use crate::geom::box_pairs::filter_map_pairs;
+use rayon::prelude::*;
+
+use crate::geom::box_pairs::{filter_map_pairs, overlap};
 use crate::geom::tri_intersect::{plane_axes, segment_meets_triangle, triangles_intersect};
 use crate::geom::{newell, orient2d, orient3d, P3};
 use crate::scene::topology::{edge_topology, Topology};
@@ -48,18 +50,23 @@ pub fn solidity(mesh: &Mesh) -> Solidity {
 pub(crate) struct Examined {
     /// The decision.
     pub(crate) solidity: Solidity,
-    /// For [`Solidity::Degenerate`]: the first face that is not simple or has a flat
-    /// triangle.
-    pub(crate) degenerate: Option<u32>,
+    /// For [`Solidity::Degenerate`]: the faces that are not simple or have a flat triangle.
+    pub(crate) degenerate: Vec<u32>,
     /// For [`Solidity::SelfIntersecting`]: the faces of every crossing pair of triangles.
     pub(crate) crossing: Vec<[u32; 2]>,
 }
 
 /// [`solidity`], saying which faces fail.
 pub(crate) fn examine(mesh: &Mesh) -> Examined {
+    examine_where(mesh, |_| true)
+}
+
+/// [`examine`], testing for crossings only the pairs of triangles where one's face passes
+/// `suspect` (the others known not to cross).
+pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -> Examined {
     let decided = |solidity| Examined {
         solidity,
-        degenerate: None,
+        degenerate: Vec::new(),
         crossing: Vec::new(),
     };
     match edge_topology(&mesh.faces) {
@@ -69,21 +76,21 @@ pub(crate) fn examine(mesh: &Mesh) -> Examined {
     }
     let (tris, face_of) = match surface_triangles(mesh) {
         Ok(t) => t,
-        Err(face) => {
+        Err(faces) => {
             return Examined {
-                degenerate: Some(face),
+                degenerate: faces,
                 ..decided(Solidity::Degenerate)
             }
         }
     };
-    let crossing: Vec<[u32; 2]> = crossing_pairs(&tris)
+    let crossing: Vec<[u32; 2]> = crossing_pairs(&tris, |t| suspect(face_of[t as usize]))
         .into_iter()
         .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
         .collect();
     if !crossing.is_empty() {
         return Examined {
             solidity: Solidity::SelfIntersecting(crossing.len() as u64),
-            degenerate: None,
+            degenerate: Vec::new(),
             crossing,
         };
     }
@@ -156,12 +163,13 @@ fn mark(obj: &mut Object, done: &mut Marked) {
 }
 
 /// The surface as triangles (exact ear clipping of every face; a warped face's triangles are
-/// the view's planar pieces), with each triangle's face. Err(the face) when a face is not
+/// the view's planar pieces), with each triangle's face. Err(the faces) where a face is not
 /// simple or a triangle is degenerate.
-fn surface_triangles(mesh: &Mesh) -> Result<(Vec<Tri>, Vec<u32>), u32> {
+fn surface_triangles(mesh: &Mesh) -> Result<(Vec<Tri>, Vec<u32>), Vec<u32>> {
     let mut tris = Vec::with_capacity(mesh.faces.len() * 2);
     let mut face_of = Vec::with_capacity(mesh.faces.len() * 2);
-    for (k, f) in mesh.faces.iter().enumerate() {
+    let mut bad = Vec::new();
+    'faces: for (k, f) in mesh.faces.iter().enumerate() {
         let pts: Vec<P3> = f
             .vertices
             .iter()
@@ -170,7 +178,13 @@ fn surface_triangles(mesh: &Mesh) -> Result<(Vec<Tri>, Vec<u32>), u32> {
         let local = if pts.len() == 3 {
             vec![[0, 1, 2]]
         } else {
-            ear_clip_simple(&pts, &newell(&pts)).ok_or(k as u32)?
+            match ear_clip_simple(&pts, &newell(&pts)) {
+                Some(t) => t,
+                None => {
+                    bad.push(k as u32);
+                    continue;
+                }
+            }
         };
         for t in local {
             let tri = Tri {
@@ -178,13 +192,18 @@ fn surface_triangles(mesh: &Mesh) -> Result<(Vec<Tri>, Vec<u32>), u32> {
                 p: t.map(|i| pts[i]),
             };
             if degenerate(&tri.p) {
-                return Err(k as u32);
+                bad.push(k as u32);
+                continue 'faces;
             }
             tris.push(tri);
             face_of.push(k as u32);
         }
     }
-    Ok((tris, face_of))
+    if bad.is_empty() {
+        Ok((tris, face_of))
+    } else {
+        Err(bad)
+    }
 }
 
 /// Exact: the three points are collinear (every coordinate-plane projection is degenerate).
@@ -194,8 +213,10 @@ fn degenerate(p: &[P3; 3]) -> bool {
         .all(|&(x, y)| orient2d([p[0][x], p[0][y]], [p[1][x], p[1][y]], [p[2][x], p[2][y]]) == 0.0)
 }
 
-/// The triangle pairs that meet other than in shared vertices and edges.
-fn crossing_pairs(tris: &[Tri]) -> Vec<(u32, u32)> {
+/// The triangle pairs with a triangle passing `suspect` that meet other than in shared
+/// vertices and edges, ascending. Few suspects (a tenth of the triangles or fewer) are each
+/// scanned against every box; many go through the grid of every overlapping pair.
+fn crossing_pairs(tris: &[Tri], suspect: impl Fn(u32) -> bool + Sync) -> Vec<(u32, u32)> {
     let boxes: Vec<[[f64; 3]; 2]> = tris
         .iter()
         .map(|t| {
@@ -204,9 +225,30 @@ fn crossing_pairs(tris: &[Tri]) -> Vec<(u32, u32)> {
             [lo, hi]
         })
         .collect();
-    filter_map_pairs(&boxes, |i, j| {
-        cross(&tris[i as usize], &tris[j as usize]).then_some((i, j))
-    })
+    let is: Vec<bool> = (0..tris.len() as u32).map(&suspect).collect();
+    let few: Vec<u32> = (0..tris.len() as u32).filter(|&i| is[i as usize]).collect();
+    let crosses = |i: u32, j: u32| cross(&tris[i as usize], &tris[j as usize]);
+    if few.len() * 10 > tris.len() {
+        return filter_map_pairs(&boxes, |i, j| {
+            ((is[i as usize] || is[j as usize]) && crosses(i, j)).then_some((i, j))
+        });
+    }
+    let mut found: Vec<(u32, u32)> = few
+        .par_iter()
+        .flat_map_iter(|&i| {
+            let (boxes, is) = (&boxes, &is);
+            (0..tris.len() as u32)
+                .filter(move |&j| {
+                    j != i
+                        && (!is[j as usize] || j > i)
+                        && overlap(&boxes[i as usize], &boxes[j as usize])
+                        && crosses(i, j)
+                })
+                .map(move |j| (i.min(j), i.max(j)))
+        })
+        .collect();
+    found.sort_unstable();
+    found
 }
 
 /// Exact: triangles `t` and `u` (non-degenerate, of one mesh) meet other than in the
