@@ -44,7 +44,7 @@ use crate::scene::{CapFailure, Face, Mesh, Solidity};
 
 #[cfg(test)]
 use super::solidity::solidity;
-use super::solidity::{examine, examine_where};
+use super::solidity::{degenerate, examine, examine_where};
 
 /// The caps of an open mesh that capping made a solid.
 #[derive(Debug, Clone, PartialEq)]
@@ -75,6 +75,9 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
         return Err(CapFailure::Inconsistent);
     }
     let loops = boundary_loops(&mesh.faces);
+    if loops.iter().any(|l| slit(mesh, l)) {
+        return Err(CapFailure::Slit);
+    }
     let mut ways = vec![Way::Fan; loops.len()];
     // After a decision that reached the crossing test, only the triangles of re-capped holes
     // can cross anything: every other pair was found apart already.
@@ -153,6 +156,12 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
 
 /// How many capped surfaces [`cap_holes`] decides at most.
 pub const ATTEMPTS: usize = 3;
+
+/// Exact: every corner of the loop lies on one line (no triangle on them has area).
+fn slit(mesh: &Mesh, lp: &[u32]) -> bool {
+    let p = |k: usize| mesh.vertices[lp[k] as usize];
+    (2..lp.len()).all(|k| degenerate(&[p(0), p(1), p(k)]))
+}
 
 /// The mesh with its holes capped each its way, and the loop of each cap face.
 fn with_caps(mesh: &Mesh, loops: &[Vec<u32>], ways: &[Way]) -> (Mesh, Vec<usize>) {
@@ -417,5 +426,35 @@ mod tests {
             assert!(t.iter().all(|p| p.z == 1.0 && m.vertices.contains(p)));
             assert!((t[1] - t[0]).cross(&(t[2] - t[0])).z > 0.0, "outward: +z");
         }
+    }
+
+    #[test]
+    fn a_t_junction_crack_is_a_slit_no_cap_can_close() {
+        // A tetrahedron whose face 1-2-3 is split at the midpoint 4 of edge 1-2 while the
+        // face across that edge is not: the hole 1, 2, 4 has its corners on one line.
+        let vertices = vec![
+            P3::new(0., 0., 0.),
+            P3::new(1., 0., 0.),
+            P3::new(0., 1., 0.),
+            P3::new(0., 0., 1.),
+            P3::new(0.5, 0.5, 0.),
+        ];
+        let faces = [[0, 2, 1], [0, 1, 3], [1, 4, 3], [4, 2, 3], [2, 0, 3]]
+            .iter()
+            .map(|f| Face::new(f.to_vec()))
+            .collect();
+        let m = Mesh {
+            vertices,
+            faces,
+            ..Mesh::default()
+        };
+        let loops = boundary_loops(&m.faces);
+        assert_eq!(loops.len(), 1);
+        assert!(slit(&m, &loops[0]));
+        assert_eq!(cap_holes(&m), Err(CapFailure::Slit));
+        assert!(!slit(
+            &cube_without(&[1]),
+            &boundary_loops(&cube_without(&[1]).faces)[0]
+        ));
     }
 }

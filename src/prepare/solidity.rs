@@ -207,7 +207,7 @@ fn surface_triangles(mesh: &Mesh) -> Result<(Vec<Tri>, Vec<u32>), Vec<u32>> {
 }
 
 /// Exact: the three points are collinear (every coordinate-plane projection is degenerate).
-fn degenerate(p: &[P3; 3]) -> bool {
+pub(crate) fn degenerate(p: &[P3; 3]) -> bool {
     [(0, 1), (1, 2), (2, 0)]
         .iter()
         .all(|&(x, y)| orient2d([p[0][x], p[0][y]], [p[1][x], p[1][y]], [p[2][x], p[2][y]]) == 0.0)

@@ -36,6 +36,9 @@ pub enum CapFailure {
     MeshDegenerate,
     /// The mesh itself crosses itself (pairs of triangles).
     MeshSelfIntersecting(u64),
+    /// A hole has zero area: its corners lie on one line (a crack along a T-junction), so
+    /// no cap triangle can close it.
+    Slit,
     /// A cap has a triangle of zero area, fanned or ear-clipped.
     Degenerate,
     /// Caps cross the mesh or each other, fanned or ear-clipped (pairs of triangles).
@@ -104,6 +107,10 @@ impl CapFailure {
             }
             CapFailure::MeshSelfIntersecting(n) => {
                 format!("not capped: the mesh crosses itself ({n} pairs of triangles)")
+            }
+            CapFailure::Slit => {
+                "not capped: a hole has zero area (its corners on one line: a T-junction crack)"
+                    .into()
             }
             CapFailure::Degenerate => "capping failed: a cap triangle has zero area".into(),
             CapFailure::SelfIntersecting(n) => {
