@@ -68,8 +68,10 @@ enum Way {
 /// Caps the holes of `mesh` (which must be open and otherwise consistent:
 /// [`Topology::Open`]) and decides exactly whether the capped surface is a solid. Every hole
 /// is first fanned; holes whose fan crosses the mesh or another cap, or has a flat
-/// triangle, are ear-clipped instead and the whole decided again ([`ATTEMPTS`] decisions at
-/// most: each costs the exact self-intersection test of the whole mesh).
+/// triangle, are ear-clipped instead. The caps are tested first (each cap triangle against
+/// every triangle: cheap, and where capping fails it fails here), at most [`ATTEMPTS`]
+/// times; only caps that pass go on to the one test of the whole surface (every pair of the
+/// mesh's own triangles).
 pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
     if edge_topology(&mesh.faces) != Topology::Open {
         return Err(CapFailure::Inconsistent);
@@ -78,48 +80,30 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
     if loops.iter().any(|l| slit(mesh, l)) {
         return Err(CapFailure::Slit);
     }
+    let n = mesh.faces.len() as u32;
     let mut ways = vec![Way::Fan; loops.len()];
-    // After a decision that reached the crossing test, only the triangles of re-capped holes
-    // can cross anything: every other pair was found apart already.
-    let mut changed: Option<Vec<bool>> = None;
+    // The holes whose caps are tested: all at first; after a test that reached the crossing
+    // stage, only the re-capped ones (every other pair with a cap was found apart already).
+    let mut suspect: Vec<bool> = vec![true; loops.len()];
     for attempt in 1..=ATTEMPTS {
         let (capped, loop_of) = with_caps(mesh, &loops, &ways);
-        let n = mesh.faces.len() as u32;
-        let e = match &changed {
-            None => examine(&capped),
-            Some(c) => examine_where(&capped, |f| f >= n && c[loop_of[(f - n) as usize]]),
-        };
+        let e = examine_where(&capped, |f| f >= n && suspect[loop_of[(f - n) as usize]]);
         let cap = |f: u32| f.checked_sub(n).map(|k| loop_of[k as usize]);
         let reached_crossings = !matches!(e.solidity, Solidity::Degenerate);
         let mut retry: Vec<usize> = match e.solidity {
-            Solidity::Solid => {
-                return Ok(Caps {
-                    loops: loops.len() as u32,
-                    triangles: capped.faces[n as usize..]
-                        .iter()
-                        .map(|f| f.vertices.iter().map(|&v| capped.vertices[v as usize]))
-                        .map(|mut t| [(); 3].map(|_| t.next().expect("a triangle")))
-                        .collect(),
-                })
-            }
+            Solidity::Solid => return whole(mesh, &capped, loops.len()),
             Solidity::Degenerate => {
                 if e.degenerate.iter().any(|&f| f < n) {
                     return Err(CapFailure::MeshDegenerate);
                 }
                 e.degenerate.iter().filter_map(|&f| cap(f)).collect()
             }
-            Solidity::SelfIntersecting(_) => {
-                let mesh_only = e.crossing.iter().filter(|p| p.iter().all(|&f| f < n));
-                let own = mesh_only.count() as u64;
-                if own > 0 {
-                    return Err(CapFailure::MeshSelfIntersecting(own));
-                }
-                e.crossing
-                    .iter()
-                    .flatten()
-                    .filter_map(|&f| cap(f))
-                    .collect()
-            }
+            Solidity::SelfIntersecting(_) => e
+                .crossing
+                .iter()
+                .flatten()
+                .filter_map(|&f| cap(f))
+                .collect(),
             Solidity::InsideOut => return Err(CapFailure::InsideOut),
             Solidity::Open(_) | Solidity::Capped(_) | Solidity::Inconsistent => {
                 return Err(CapFailure::Inconsistent)
@@ -136,22 +120,37 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
                 _ => CapFailure::Degenerate,
             });
         }
-        let mut now = vec![false; loops.len()];
+        if reached_crossings {
+            suspect.iter_mut().for_each(|s| *s = false);
+        }
         for l in retry {
             ways[l] = Way::Ears;
-            now[l] = true;
+            suspect[l] = true;
         }
-        changed = match (changed, reached_crossings) {
-            (Some(mut c), true) => {
-                c.iter_mut().zip(&now).for_each(|(c, n)| *c |= n);
-                Some(c)
-            }
-            (None, true) => Some(now),
-            (_, false) => None,
-        };
     }
     // The last attempt returns above.
     Err(CapFailure::Inconsistent)
+}
+
+/// The whole capped surface decided (its caps found apart from everything): the caps, or
+/// why not (then the mesh itself crosses itself: no pair with a cap crosses).
+fn whole(mesh: &Mesh, capped: &Mesh, loops: usize) -> Result<Caps, CapFailure> {
+    match examine(capped).solidity {
+        Solidity::Solid => Ok(Caps {
+            loops: loops as u32,
+            triangles: capped.faces[mesh.faces.len()..]
+                .iter()
+                .map(|f| f.vertices.iter().map(|&v| capped.vertices[v as usize]))
+                .map(|mut t| [(); 3].map(|_| t.next().expect("a triangle")))
+                .collect(),
+        }),
+        Solidity::SelfIntersecting(k) => Err(CapFailure::MeshSelfIntersecting(k)),
+        Solidity::Degenerate => Err(CapFailure::MeshDegenerate),
+        Solidity::InsideOut => Err(CapFailure::InsideOut),
+        Solidity::Open(_) | Solidity::Capped(_) | Solidity::Inconsistent => {
+            Err(CapFailure::Inconsistent)
+        }
+    }
 }
 
 /// How many capped surfaces [`cap_holes`] decides at most.
