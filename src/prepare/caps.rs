@@ -37,7 +37,7 @@
 
 use std::collections::HashMap;
 
-use crate::geom::{newell, P3};
+use crate::geom::{newell, orient3d, P3};
 use crate::scene::topology::{edge_topology, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Face, Mesh, Solidity};
@@ -75,6 +75,10 @@ enum Way {
 pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
     if edge_topology(&mesh.faces) != Topology::Open {
         return Err(CapFailure::Inconsistent);
+    }
+    if flat(&mesh.vertices) {
+        // A sheet in one plane: whatever caps it, nothing is enclosed.
+        return Err(CapFailure::InsideOut);
     }
     let loops = boundary_loops(&mesh.faces);
     if loops.iter().any(|l| slit(mesh, l)) {
@@ -155,6 +159,24 @@ fn whole(mesh: &Mesh, capped: &Mesh, loops: usize) -> Result<Caps, CapFailure> {
 
 /// How many capped surfaces [`cap_holes`] decides at most.
 pub const ATTEMPTS: usize = 3;
+
+/// Exact: every point lies on one plane (through the first point, the farthest from it,
+/// and the farthest from the line through those two; or all on one line).
+fn flat(pts: &[P3]) -> bool {
+    let Some(&a) = pts.first() else {
+        return true;
+    };
+    let far = |d: &dyn Fn(&P3) -> f64| {
+        pts.iter()
+            .copied()
+            .max_by(|p, q| d(p).total_cmp(&d(q)))
+            .unwrap_or(a)
+    };
+    let b = far(&|p| (p - a).norm_squared());
+    let c = far(&|p| (p - a).cross(&(b - a)).norm_squared());
+    degenerate(&[a, b, c]) && pts.iter().all(|&p| degenerate(&[a, b, p]))
+        || pts.iter().all(|p| orient3d(&a, &b, &c, p) == 0.0)
+}
 
 /// Exact: every corner of the loop lies on one line (no triangle on them has area).
 fn slit(mesh: &Mesh, lp: &[u32]) -> bool {
@@ -358,11 +380,8 @@ mod tests {
             faces,
             ..Mesh::default()
         };
-        // Flat: each cap lies on its triangle, so the capped surface folds onto itself.
-        assert!(matches!(
-            cap_holes(&m),
-            Err(CapFailure::SelfIntersecting(_) | CapFailure::Degenerate)
-        ));
+        // Flat: each cap would lie on its triangle, enclosing nothing.
+        assert_eq!(cap_holes(&m), Err(CapFailure::InsideOut));
     }
 
     #[test]
@@ -455,5 +474,20 @@ mod tests {
             &cube_without(&[1]),
             &boundary_loops(&cube_without(&[1]).faces)[0]
         ));
+    }
+
+    #[test]
+    fn a_flat_sheet_is_refused_at_once() {
+        let mut m = cube_without(&[1, 2, 3, 4, 5]);
+        assert!(flat(&m.vertices[..4]) && !flat(&m.vertices));
+        m.vertices.truncate(4);
+        m.faces = vec![Face::new(vec![0, 2, 3, 1])];
+        assert!(flat(&m.vertices));
+        assert_eq!(cap_holes(&m), Err(CapFailure::InsideOut));
+        assert!(flat(&[
+            P3::new(0., 0., 0.),
+            P3::new(1., 1., 1.),
+            P3::new(2., 2., 2.)
+        ]));
     }
 }
