@@ -77,7 +77,7 @@ impl CapWindows {
                 w.swap(1, 2);
             }
             let h = w.map(|p| camera.clip_coords(&p));
-            if persp && h.iter().any(|h| !(h[3] >= camera.near)) {
+            if persp && h.iter().any(|h| h[3] < camera.near || h[3].is_nan()) {
                 return None;
             }
             let s = h.map(|h| {
