@@ -44,7 +44,7 @@ use crate::scene::{CapFailure, Face, Mesh, Solidity};
 
 #[cfg(test)]
 use super::solidity::solidity;
-use super::solidity::{degenerate, examine, examine_where};
+use super::solidity::{crossing_faces, degenerate, examine_where};
 
 /// The caps of an open mesh that capping made a solid.
 #[derive(Debug, Clone, PartialEq)]
@@ -136,24 +136,22 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
     Err(CapFailure::Inconsistent)
 }
 
-/// The whole capped surface decided (its caps found apart from everything): the caps, or
-/// why not (then the mesh itself crosses itself: no pair with a cap crosses).
+/// The whole capped surface decided, its caps found apart from everything and the rest of
+/// [`examine`] passed (closed, non-degenerate, pieces of positive volume): only the mesh's
+/// own pairs of triangles are left to test. The caps, or why not.
 fn whole(mesh: &Mesh, capped: &Mesh, loops: usize) -> Result<Caps, CapFailure> {
-    match examine(capped).solidity {
-        Solidity::Solid => Ok(Caps {
+    let n = mesh.faces.len() as u32;
+    match crossing_faces(capped, |f| f < n) {
+        Ok(c) if c.is_empty() => Ok(Caps {
             loops: loops as u32,
-            triangles: capped.faces[mesh.faces.len()..]
+            triangles: capped.faces[n as usize..]
                 .iter()
                 .map(|f| f.vertices.iter().map(|&v| capped.vertices[v as usize]))
                 .map(|mut t| [(); 3].map(|_| t.next().expect("a triangle")))
                 .collect(),
         }),
-        Solidity::SelfIntersecting(k) => Err(CapFailure::MeshSelfIntersecting(k)),
-        Solidity::Degenerate => Err(CapFailure::MeshDegenerate),
-        Solidity::InsideOut => Err(CapFailure::InsideOut),
-        Solidity::Open(_) | Solidity::Capped(_) | Solidity::Inconsistent => {
-            Err(CapFailure::Inconsistent)
-        }
+        Ok(c) => Err(CapFailure::MeshSelfIntersecting(c.len() as u64)),
+        Err(_) => Err(CapFailure::MeshDegenerate),
     }
 }
 

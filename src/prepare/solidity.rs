@@ -45,6 +45,19 @@ pub fn solidity(mesh: &Mesh) -> Solidity {
     examine(mesh).solidity
 }
 
+/// The face pairs of `mesh` whose triangles cross, testing only pairs with a face passing
+/// `suspect`; Err(the degenerate faces) where the surface has no triangles to test.
+pub(crate) fn crossing_faces(
+    mesh: &Mesh,
+    suspect: impl Fn(u32) -> bool + Sync,
+) -> Result<Vec<[u32; 2]>, Vec<u32>> {
+    let (tris, face_of) = surface_triangles(mesh)?;
+    Ok(crossing_pairs(&tris, |t| suspect(face_of[t as usize]))
+        .into_iter()
+        .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
+        .collect())
+}
+
 /// A mesh's solidity and, where it fails on faces, which ones.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Examined {
@@ -254,11 +267,18 @@ fn crossing_pairs(tris: &[Tri], suspect: impl Fn(u32) -> bool + Sync) -> Vec<(u3
 /// Exact: triangles `t` and `u` (non-degenerate, of one mesh) meet other than in the
 /// vertices and edge they share.
 fn cross(t: &Tri, u: &Tri) -> bool {
-    let shared: Vec<(usize, usize)> = (0..3)
-        .flat_map(|i| (0..3).map(move |j| (i, j)))
-        .filter(|&(i, j)| t.v[i] == u.v[j])
-        .collect();
-    match shared.len() {
+    // The shared corners, without allocating (this runs for every pair of nearby triangles).
+    let mut shared = [(0usize, 0usize); 9];
+    let mut n = 0;
+    for i in 0..3 {
+        for j in 0..3 {
+            if t.v[i] == u.v[j] {
+                shared[n] = (i, j);
+                n += 1;
+            }
+        }
+    }
+    match n {
         0 => triangles_intersect(&t.p, &u.p),
         1 => {
             let (i, j) = shared[0];
