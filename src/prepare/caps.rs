@@ -5,12 +5,14 @@
 //! boundary edges. Each hole gets a CAP: a fan of triangles from a new vertex at the centroid
 //! of its boundary loop, the loop followed against its faces' direction, so that every
 //! boundary edge is used once more, the other way, and the caps orient like the faces they
-//! close. A fan rather than ear clipping: a scanned hole is far from planar, and ear clipping
-//! a loop in space needs a projection in which it is simple (often none exists); the fan
-//! needs nothing and whatever it gets wrong (a cap through the mesh, a flat fan triangle) is
-//! caught exactly below. The capped surface S = M ∪ caps is kept only when it passes the very
-//! tests that prove a solid ([`super::solidity::solidity`]): closed and consistently oriented,
-//! non-degenerate, no two triangles crossing, every piece of positive volume.
+//! close. A fan first, rather than ear clipping: a scanned hole is far from planar, and ear
+//! clipping a loop in space needs a projection in which it is simple (often none exists);
+//! the fan needs nothing, and what it gets wrong (a cap through the mesh, a flat fan
+//! triangle) is caught exactly — such holes are then ear-clipped along their Newell normal
+//! where that projection is simple (the bunny's two deepest holes). The capped surface
+//! S = M ∪ caps is kept only when it passes the very tests that prove a solid
+//! ([`super::solidity::solidity`]): closed and consistently oriented, non-degenerate, no two
+//! triangles crossing, every piece of positive volume.
 //!
 //! # Why back faces away from the caps are hidden
 //!
