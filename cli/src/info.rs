@@ -120,6 +120,7 @@ fn cull_text(o: &Object) -> Option<String> {
     };
     Some(match s {
         Some(Solidity::Solid) => "solid: back faces culled".into(),
+        Some(s @ Solidity::Capped(_)) => s.reason(),
         Some(s) => format!("back faces not culled: {}", s.reason()),
         None => "back faces not culled: not prepared".into(),
     })
@@ -289,9 +290,13 @@ fn object_json(o: &Object, name: &str) -> String {
     let solid = match (&o.content, leaf_solidity(o)) {
         (Content::Subobjects(_), _) => String::new(),
         (_, s) => format!(
-            ",\"solidity\":{},\"culled_back_faces\":{}",
+            ",\"solidity\":{},\"culled_back_faces\":{}{}",
             json_string(s.map_or("unprepared", Solidity::word)),
-            s.is_some_and(Solidity::is_solid)
+            s.is_some_and(|s| s.is_solid() || s.is_capped()),
+            match s {
+                Some(Solidity::Capped(n)) => format!(",\"caps\":{n}"),
+                _ => String::new(),
+            }
         ),
     };
     format!(

@@ -205,3 +205,41 @@ fn info_merges_signed_zeros_and_says_why_a_mesh_is_not_culled() {
         .contains("open"));
     assert_eq!(v["subobjects"][0]["solidity"], "open");
 }
+
+#[test]
+fn info_says_an_open_mesh_is_capped_or_why_not() {
+    let d = temp_dir("info-caps");
+    // A tetrahedron missing one face: its hole caps into a solid.
+    let open = d.join("open-tet.obj");
+    std::fs::write(
+        &open,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n",
+    )
+    .unwrap();
+    let o = kepler(&["info", "-q", s(&open)]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{o:?}");
+    assert!(
+        text.contains("open, capped: back faces culled except near 1 caps"),
+        "{text}"
+    );
+    let o = kepler(&["info", "-q", "--json", s(&open)]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let leaf = &v["subobjects"][0];
+    assert_eq!(leaf["solidity"], "capped", "{v}");
+    assert_eq!(leaf["culled_back_faces"], true);
+    assert_eq!(leaf["caps"], 1);
+    // The same faces wound inwards: refused, with the reason.
+    let inward = d.join("inward-tet.obj");
+    std::fs::write(
+        &inward,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\n",
+    )
+    .unwrap();
+    let o = kepler(&["info", "-q", s(&inward)]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("back faces not culled: open (an edge has one face); capping failed"),
+        "{text}"
+    );
+}

@@ -99,6 +99,7 @@ mod tests {
             faces: vec![f],
             closed: false,
             solidity: None,
+            caps: Vec::new(),
         };
         let scene = Scene::new(
             Object::group("", vec![Object::from_mesh("sq", mesh)]),

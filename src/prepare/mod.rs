@@ -3,6 +3,7 @@
 //! (paper 002).
 
 pub mod bvtree;
+pub mod caps;
 pub mod contain;
 pub mod convex;
 pub mod grow;

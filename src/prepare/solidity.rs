@@ -13,6 +13,9 @@
 //! - every edge-connected piece has positive signed volume (outward), decided exactly: then
 //!   each adds 0 or +1, and w ≥ 0.
 //!
+//! An open mesh is then offered to [`super::caps`]: with its holes capped it may still be
+//! proven a solid, and its back faces culled away from the caps.
+//!
 //! Anything else keeps two-sided faces: correct, only slower.
 
 use std::collections::HashMap;
@@ -21,12 +24,14 @@ use std::sync::Arc;
 use num_bigint::BigInt;
 use num_traits::{Signed, Zero};
 
-use crate::geom::box_pairs::filter_map_pairs;
+use rayon::prelude::*;
+
+use crate::geom::box_pairs::{filter_map_pairs, overlap};
 use crate::geom::tri_intersect::{plane_axes, segment_meets_triangle, triangles_intersect};
 use crate::geom::{newell, orient2d, orient3d, P3};
 use crate::scene::topology::{edge_topology, Topology};
 use crate::scene::triangulate::ear_clip_simple;
-use crate::scene::{Content, Mesh, Object, Solidity};
+use crate::scene::{CapFailure, Content, Mesh, Object, Solidity};
 
 /// A triangle of a mesh's surface: vertex indices and their points.
 #[derive(Debug, Clone, Copy)]
@@ -37,31 +42,104 @@ struct Tri {
 
 /// Decides the solidity of one mesh (exact).
 pub fn solidity(mesh: &Mesh) -> Solidity {
+    examine(mesh).solidity
+}
+
+/// The face pairs of `mesh` whose triangles cross, testing only pairs with a face passing
+/// `suspect`; Err(the degenerate faces) where the surface has no triangles to test.
+pub(crate) fn crossing_faces(
+    mesh: &Mesh,
+    suspect: impl Fn(u32) -> bool + Sync,
+) -> Result<Vec<[u32; 2]>, Vec<u32>> {
+    let (tris, face_of) = surface_triangles(mesh)?;
+    Ok(
+        crossing_pairs(&tris, &face_of, |t| suspect(face_of[t as usize]))
+            .into_iter()
+            .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
+            .collect(),
+    )
+}
+
+/// A mesh's solidity and, where it fails on faces, which ones.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Examined {
+    /// The decision.
+    pub(crate) solidity: Solidity,
+    /// For [`Solidity::Degenerate`]: the faces that are not simple or have a flat triangle.
+    pub(crate) degenerate: Vec<u32>,
+    /// For [`Solidity::SelfIntersecting`]: the faces of every crossing pair of triangles.
+    pub(crate) crossing: Vec<[u32; 2]>,
+}
+
+/// [`solidity`], saying which faces fail.
+pub(crate) fn examine(mesh: &Mesh) -> Examined {
+    examine_where(mesh, |_| true)
+}
+
+/// [`examine`], testing for crossings only the pairs of triangles where one's face passes
+/// `suspect` (the others known not to cross).
+pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -> Examined {
+    let decided = |solidity| Examined {
+        solidity,
+        degenerate: Vec::new(),
+        crossing: Vec::new(),
+    };
     match edge_topology(&mesh.faces) {
-        Topology::Open => return Solidity::Open,
-        Topology::Inconsistent => return Solidity::Inconsistent,
+        Topology::Open => return decided(Solidity::Open(CapFailure::NotTried)),
+        Topology::Inconsistent => return decided(Solidity::Inconsistent),
         Topology::Closed => {}
     }
-    let Some((tris, face_of)) = surface_triangles(mesh) else {
-        return Solidity::Degenerate;
+    let (tris, face_of) = match surface_triangles(mesh) {
+        Ok(t) => t,
+        Err(faces) => {
+            return Examined {
+                degenerate: faces,
+                ..decided(Solidity::Degenerate)
+            }
+        }
     };
-    let crossings = crossing_pairs(&tris, &face_of);
-    if crossings > 0 {
-        return Solidity::SelfIntersecting(crossings);
+    let crossing: Vec<[u32; 2]> = crossing_pairs(&tris, &face_of, |t| suspect(face_of[t as usize]))
+        .into_iter()
+        .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
+        .collect();
+    if !crossing.is_empty() {
+        return Examined {
+            solidity: Solidity::SelfIntersecting(crossing.len() as u64),
+            degenerate: Vec::new(),
+            crossing,
+        };
     }
     let pieces = edge_pieces(mesh);
     let mut by_piece: Vec<Vec<usize>> = vec![Vec::new(); pieces.count];
     for (t, &f) in face_of.iter().enumerate() {
         by_piece[pieces.of_face[f as usize] as usize].push(t);
     }
-    if by_piece
-        .iter()
-        .all(|ts| volume_sign(ts.iter().map(|&t| &tris[t].p)) > 0)
-    {
-        Solidity::Solid
-    } else {
-        Solidity::InsideOut
-    }
+    decided(
+        if by_piece
+            .iter()
+            .all(|ts| volume_sign(ts.iter().map(|&t| &tris[t].p)) > 0)
+        {
+            Solidity::Solid
+        } else {
+            Solidity::InsideOut
+        },
+    )
+}
+
+/// Fills [`Mesh::solidity`] of `mesh`, and for an open mesh whose holes cap into a solid
+/// ([`super::caps`]), its [`Mesh::caps`].
+pub fn decide(mesh: &mut Mesh) {
+    let s = match solidity(mesh) {
+        Solidity::Open(_) => match super::caps::cap_holes(mesh) {
+            Ok(caps) => {
+                mesh.caps = caps.triangles;
+                Solidity::Capped(caps.loops)
+            }
+            Err(why) => Solidity::Open(why),
+        },
+        s => s,
+    };
+    mesh.solidity = Some(s);
 }
 
 /// Fills [`Mesh::solidity`] of every mesh below `root` that has none; each shared prototype
@@ -78,7 +156,7 @@ fn mark(obj: &mut Object, done: &mut Marked) {
     match &mut obj.content {
         Content::Mesh(m) => {
             if m.solidity.is_none() {
-                m.solidity = Some(solidity(m));
+                decide(m);
             }
         }
         Content::Subobjects(subs) => subs.iter_mut().for_each(|s| mark(s, done)),
@@ -100,12 +178,13 @@ fn mark(obj: &mut Object, done: &mut Marked) {
 }
 
 /// The surface as triangles (exact ear clipping of every face; a warped face's triangles are
-/// the view's planar pieces), with each triangle's face. None when a face is not simple or
-/// a triangle is degenerate.
-fn surface_triangles(mesh: &Mesh) -> Option<(Vec<Tri>, Vec<u32>)> {
+/// the view's planar pieces), with each triangle's face. Err(the faces) where a face is not
+/// simple or a triangle is degenerate.
+fn surface_triangles(mesh: &Mesh) -> Result<(Vec<Tri>, Vec<u32>), Vec<u32>> {
     let mut tris = Vec::with_capacity(mesh.faces.len() * 2);
     let mut face_of = Vec::with_capacity(mesh.faces.len() * 2);
-    for (k, f) in mesh.faces.iter().enumerate() {
+    let mut bad = Vec::new();
+    'faces: for (k, f) in mesh.faces.iter().enumerate() {
         let pts: Vec<P3> = f
             .vertices
             .iter()
@@ -114,7 +193,13 @@ fn surface_triangles(mesh: &Mesh) -> Option<(Vec<Tri>, Vec<u32>)> {
         let local = if pts.len() == 3 {
             vec![[0, 1, 2]]
         } else {
-            ear_clip_simple(&pts, &newell(&pts))?
+            match ear_clip_simple(&pts, &newell(&pts)) {
+                Some(t) => t,
+                None => {
+                    bad.push(k as u32);
+                    continue;
+                }
+            }
         };
         for t in local {
             let tri = Tri {
@@ -122,28 +207,40 @@ fn surface_triangles(mesh: &Mesh) -> Option<(Vec<Tri>, Vec<u32>)> {
                 p: t.map(|i| pts[i]),
             };
             if degenerate(&tri.p) {
-                return None;
+                bad.push(k as u32);
+                continue 'faces;
             }
             tris.push(tri);
             face_of.push(k as u32);
         }
     }
-    Some((tris, face_of))
+    if bad.is_empty() {
+        Ok((tris, face_of))
+    } else {
+        Err(bad)
+    }
 }
 
 /// Exact: the three points are collinear (every coordinate-plane projection is degenerate).
-fn degenerate(p: &[P3; 3]) -> bool {
+pub(crate) fn degenerate(p: &[P3; 3]) -> bool {
     [(0, 1), (1, 2), (2, 0)]
         .iter()
         .all(|&(x, y)| orient2d([p[0][x], p[0][y]], [p[1][x], p[1][y]], [p[2][x], p[2][y]]) == 0.0)
 }
 
-/// Number of triangle pairs that meet other than in shared vertices and edges. Two
-/// triangles of one face are never tested: they are lifts of triangles of one exact
-/// triangulation of the face's projection (ear clipping, or a tiling proven exactly), whose
-/// projections meet only in shared corners and edges, and the projection is one-to-one on
-/// the face, so the lifts meet only there too.
-fn crossing_pairs(tris: &[Tri], face_of: &[u32]) -> u64 {
+/// The triangle pairs with a triangle passing `suspect` that meet other than in shared
+/// vertices and edges, ascending. Few suspects (a tenth of the triangles or fewer) are each
+/// scanned against every box; many go through the grid of every overlapping pair.
+///
+/// Two triangles of one face (`face_of`) are never tested: they are lifts of triangles of one
+/// exact triangulation of the face's projection (ear clipping, or a tiling proven exactly),
+/// whose projections meet only in shared corners and edges, and the projection is one-to-one
+/// on the face, so the lifts meet only there too.
+fn crossing_pairs(
+    tris: &[Tri],
+    face_of: &[u32],
+    suspect: impl Fn(u32) -> bool + Sync,
+) -> Vec<(u32, u32)> {
     let boxes: Vec<[[f64; 3]; 2]> = tris
         .iter()
         .map(|t| {
@@ -152,21 +249,49 @@ fn crossing_pairs(tris: &[Tri], face_of: &[u32]) -> u64 {
             [lo, hi]
         })
         .collect();
-    filter_map_pairs(&boxes, |i, j| {
-        let (i, j) = (i as usize, j as usize);
-        (face_of[i] != face_of[j] && cross(&tris[i], &tris[j])).then_some(())
-    })
-    .len() as u64
+    let is: Vec<bool> = (0..tris.len() as u32).map(&suspect).collect();
+    let few: Vec<u32> = (0..tris.len() as u32).filter(|&i| is[i as usize]).collect();
+    let crosses = |i: u32, j: u32| {
+        face_of[i as usize] != face_of[j as usize] && cross(&tris[i as usize], &tris[j as usize])
+    };
+    if few.len() * 10 > tris.len() {
+        return filter_map_pairs(&boxes, |i, j| {
+            ((is[i as usize] || is[j as usize]) && crosses(i, j)).then_some((i, j))
+        });
+    }
+    let mut found: Vec<(u32, u32)> = few
+        .par_iter()
+        .flat_map_iter(|&i| {
+            let (boxes, is) = (&boxes, &is);
+            (0..tris.len() as u32)
+                .filter(move |&j| {
+                    j != i
+                        && (!is[j as usize] || j > i)
+                        && overlap(&boxes[i as usize], &boxes[j as usize])
+                        && crosses(i, j)
+                })
+                .map(move |j| (i.min(j), i.max(j)))
+        })
+        .collect();
+    found.sort_unstable();
+    found
 }
 
 /// Exact: triangles `t` and `u` (non-degenerate, of one mesh) meet other than in the
 /// vertices and edge they share.
 fn cross(t: &Tri, u: &Tri) -> bool {
-    let shared: Vec<(usize, usize)> = (0..3)
-        .flat_map(|i| (0..3).map(move |j| (i, j)))
-        .filter(|&(i, j)| t.v[i] == u.v[j])
-        .collect();
-    match shared.len() {
+    // The shared corners, without allocating (this runs for every pair of nearby triangles).
+    let mut shared = [(0usize, 0usize); 9];
+    let mut n = 0;
+    for i in 0..3 {
+        for j in 0..3 {
+            if t.v[i] == u.v[j] {
+                shared[n] = (i, j);
+                n += 1;
+            }
+        }
+    }
+    match n {
         0 => triangles_intersect(&t.p, &u.p),
         1 => {
             let (i, j) = shared[0];
@@ -394,7 +519,10 @@ mod tests {
             .collect();
         let refs: Vec<&[u32]> = inward.iter().map(|f| f.as_slice()).collect();
         assert_eq!(solidity(&mesh(&TET, &refs)), Solidity::InsideOut);
-        assert_eq!(solidity(&mesh(&TET, &TET_OUT[..3])), Solidity::Open);
+        assert_eq!(
+            solidity(&mesh(&TET, &TET_OUT[..3])),
+            Solidity::Open(CapFailure::NotTried)
+        );
         let mut flipped = TET_OUT.to_vec();
         flipped[0] = &[0, 1, 2];
         assert_eq!(solidity(&mesh(&TET, &flipped)), Solidity::Inconsistent);

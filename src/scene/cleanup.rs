@@ -67,6 +67,7 @@ pub fn cleanup(raw: &PolyMesh, origin: &Origin, warnings: &mut Warnings) -> Resu
         faces,
         closed,
         solidity: None,
+        caps: Vec::new(),
     })
 }
 

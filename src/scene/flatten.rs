@@ -115,6 +115,7 @@ mod tests {
             faces: vec![Face::new(vec![0, 1, 2, 3])],
             closed: false,
             solidity: None,
+            caps: Vec::new(),
         }
     }
 

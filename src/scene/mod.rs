@@ -16,7 +16,7 @@ use crate::geom::{Box3, M4, P3, V3};
 pub use face_id::FaceId;
 pub use flatten::{flatten, FlatMesh};
 pub use object::{Content, Face, Instance, Mesh, Object};
-pub use solidity::Solidity;
+pub use solidity::{CapFailure, Solidity};
 pub use texture::{Texture, TextureFrame};
 
 /// A camera as a scene file states it (the view stage turns it into a matrix).
@@ -193,6 +193,7 @@ mod tests {
             faces: vec![Face::new(vec![0, 1, 2])],
             closed: false,
             solidity: None,
+            caps: Vec::new(),
         }
     }
 

@@ -40,12 +40,23 @@ pub struct Mesh {
     /// Whether back faces may be culled, decided exactly by the prepare stage (None until
     /// then: an unprepared mesh is never culled).
     pub solidity: Option<Solidity>,
+    /// The virtual triangles capping the holes of a [`Solidity::Capped`] mesh, counter-clockwise
+    /// seen from outside the capped solid (empty otherwise). Never drawn, never in the output,
+    /// never occluders or targets: the view only asks whether a cap facing the viewer lies over
+    /// a back face ([`mod@crate::prepare::caps`]).
+    pub caps: Vec<[P3; 3]>,
 }
 
 impl Mesh {
     /// True when the prepare stage proved the mesh a solid whose back faces may be culled.
     pub fn cullable(&self) -> bool {
         self.solidity.is_some_and(Solidity::is_solid)
+    }
+
+    /// True when the prepare stage capped the mesh's holes into a solid: back faces may be
+    /// culled where no cap facing the viewer lies over them.
+    pub fn capped(&self) -> bool {
+        self.solidity.is_some_and(Solidity::is_capped)
     }
 }
 

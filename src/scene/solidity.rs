@@ -1,5 +1,6 @@
-//! Whether a mesh is a proven solid (its back faces may be culled), or why not; decided in
-//! the prepare stage ([`mod@crate::prepare::solidity`]).
+//! Whether a mesh is a proven solid (its back faces may be culled), a capped open mesh (its
+//! back faces may be culled away from its holes), or why not; decided in the prepare stage
+//! ([`mod@crate::prepare::solidity`], [`mod@crate::prepare::caps`]).
 
 /// Whether a mesh is a proven solid, or why not.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -7,8 +8,13 @@ pub enum Solidity {
     /// Closed, consistently and outward oriented, free of self-intersection: back faces
     /// may be culled.
     Solid,
-    /// Some edge is used by one face only.
-    Open,
+    /// Some edge is used by one face only, and capping the holes does not make a solid
+    /// (why: the defect of the capped surface).
+    Open(CapFailure),
+    /// Some edge is used by one face only, and the mesh with its holes capped by virtual
+    /// faces ([`Mesh::caps`](crate::scene::Mesh::caps)) is a solid: back faces may be culled
+    /// where no cap facing the viewer lies over them (the number of caps).
+    Capped(u32),
     /// Some edge is used twice in one direction, or by more than two faces.
     Inconsistent,
     /// A face is not simple, or triangulates into a triangle of zero area.
@@ -20,17 +26,50 @@ pub enum Solidity {
     InsideOut,
 }
 
+/// Why an open mesh with its holes capped is not a solid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum CapFailure {
+    /// Capping was not tried (the mesh was decided before caps existed, or is too small to
+    /// enclose anything).
+    NotTried,
+    /// A face of the mesh itself is not simple or has a triangle of zero area.
+    MeshDegenerate,
+    /// The mesh itself crosses itself (pairs of triangles).
+    MeshSelfIntersecting(u64),
+    /// A hole has zero area: its corners lie on one line (a crack along a T-junction), so
+    /// no cap triangle can close it.
+    Slit,
+    /// A cap has a triangle of zero area, fanned or ear-clipped.
+    Degenerate,
+    /// Caps cross the mesh or each other, fanned or ear-clipped (pairs of triangles).
+    SelfIntersecting(u64),
+    /// A connected piece of the capped surface has negative or zero volume (the mesh is
+    /// wound inwards, or is a sheet with nothing inside).
+    InsideOut,
+    /// The capped surface is not closed and consistent (cannot happen for well-traced
+    /// loops; kept so that no outcome is unnamed).
+    Inconsistent,
+}
+
 impl Solidity {
-    /// True when back faces may be culled.
+    /// True when every back face may be culled.
     pub fn is_solid(self) -> bool {
         self == Solidity::Solid
     }
 
-    /// Why back faces are not culled (empty for a solid).
+    /// True when back faces may be culled away from the caps.
+    pub fn is_capped(self) -> bool {
+        matches!(self, Solidity::Capped(_))
+    }
+
+    /// Why back faces are not culled (empty for a solid; for a capped mesh, where not).
     pub fn reason(self) -> String {
         match self {
             Solidity::Solid => String::new(),
-            Solidity::Open => "open (an edge has one face)".into(),
+            Solidity::Open(why) => format!("open (an edge has one face); {}", why.reason()),
+            Solidity::Capped(n) => {
+                format!("open, capped: back faces culled except near {n} caps")
+            }
             Solidity::Inconsistent => {
                 "inconsistent (an edge used twice in one direction or by more than two faces)"
                     .into()
@@ -43,16 +82,48 @@ impl Solidity {
         }
     }
 
-    /// One word for the state: solid, open, inconsistent, degenerate, self-intersecting,
-    /// inside-out.
+    /// One word for the state: solid, open, capped, inconsistent, degenerate,
+    /// self-intersecting, inside-out.
     pub fn word(self) -> &'static str {
         match self {
             Solidity::Solid => "solid",
-            Solidity::Open => "open",
+            Solidity::Open(_) => "open",
+            Solidity::Capped(_) => "capped",
             Solidity::Inconsistent => "inconsistent",
             Solidity::Degenerate => "degenerate",
             Solidity::SelfIntersecting(_) => "self-intersecting",
             Solidity::InsideOut => "inside-out",
+        }
+    }
+}
+
+impl CapFailure {
+    /// Why capping failed, in words.
+    pub fn reason(self) -> String {
+        match self {
+            CapFailure::NotTried => "capping not tried".into(),
+            CapFailure::MeshDegenerate => {
+                "not capped: a face is not simple or has zero area".into()
+            }
+            CapFailure::MeshSelfIntersecting(n) => {
+                format!("not capped: the mesh crosses itself ({n} pairs of triangles)")
+            }
+            CapFailure::Slit => {
+                "not capped: a hole has zero area (its corners on one line: a T-junction crack)"
+                    .into()
+            }
+            CapFailure::Degenerate => "capping failed: a cap triangle has zero area".into(),
+            CapFailure::SelfIntersecting(n) => {
+                format!(
+                    "capping failed: caps cross the mesh or each other ({n} pairs of triangles)"
+                )
+            }
+            CapFailure::InsideOut => {
+                "capping failed: the capped surface has a piece of negative or zero volume".into()
+            }
+            CapFailure::Inconsistent => {
+                "capping failed: the capped surface is not closed and consistent".into()
+            }
         }
     }
 }

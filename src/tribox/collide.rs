@@ -291,6 +291,7 @@ mod tests {
             faces: f.iter().map(|t| Face::new(t.to_vec())).collect(),
             closed: true,
             solidity: None,
+            caps: Vec::new(),
         }
     }
 

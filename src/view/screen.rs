@@ -8,6 +8,7 @@ use crate::geom::{newell, orient2d, orient3d_refs, Rect, P3};
 use crate::scene::{FaceId, Leaf, Scene};
 
 use super::camera::{Camera, Projection};
+use super::caps::BackCull;
 use super::cull::Cull;
 use super::piece_id::PieceId;
 use super::ring_index::{RingIndex, INDEXED_ABOVE};
@@ -267,8 +268,8 @@ impl ScreenFaces {
             || clip.iter().all(|h| h[3] >= camera.near);
         // Back faces hide nothing a front face does not, and are hidden themselves, only on a
         // proven solid (prepare) seen from outside its convex hull (every vertex in front of
-        // the near plane).
-        let may_cull = leaf.mesh.cullable() && all_in_front;
+        // the near plane), or on a capped open mesh so seen, away from its holes.
+        let back_cull = BackCull::of_leaf(leaf, camera, all_in_front);
         let mirrors = leaf.mirrors();
         self.leaves.push(LeafInfo {
             path: leaf.path.clone(),
@@ -294,7 +295,7 @@ impl ScreenFaces {
                 if !all_in_front {
                     poly = clip_near(&poly, camera.near);
                 }
-                self.add_piece(id, li, &poly, camera, may_cull);
+                self.add_piece(id, li, &poly, camera, &back_cull);
             }
             self.face_starts.push(self.pieces.len() as u32);
         }
@@ -306,7 +307,7 @@ impl ScreenFaces {
         leaf: u32,
         poly: &[([f64; 4], P3)],
         camera: &Camera,
-        may_cull: bool,
+        back_cull: &BackCull,
     ) {
         let start = self.points.len() as u32;
         self.world.extend(poly.iter().map(|(_, w)| *w));
@@ -318,7 +319,8 @@ impl ScreenFaces {
                 [h[0], h[1], h[2]]
             }
         }));
-        let mut piece = describe(&self.points[start as usize..], start, leaf, may_cull);
+        let mut piece = describe(&self.points[start as usize..], start, leaf);
+        piece.culled = back_cull.culls(&piece);
         let w = &self.world[start as usize..];
         if let (Some(eye), true) = (camera.eye, w.len() >= 3) {
             // The eye exactly in the piece's plane: edge-on, whatever rounding the divide did.
@@ -396,8 +398,9 @@ fn clip_near(poly: &[([f64; 4], P3)], near: f64) -> Vec<([f64; 4], P3)> {
     out
 }
 
-/// Bounds, reference triple, facing and convexity of a projected face.
-fn describe(p: &[[f64; 3]], start: u32, leaf: u32, may_cull: bool) -> Piece {
+/// Bounds, reference triple, facing and convexity of a projected face (not culled: that is
+/// the leaf's [`BackCull`]'s to say).
+fn describe(p: &[[f64; 3]], start: u32, leaf: u32) -> Piece {
     let mut f = Piece {
         face: FaceId(0),
         start,
@@ -433,7 +436,6 @@ fn describe(p: &[[f64; 3]], start: u32, leaf: u32, may_cull: bool) -> Piece {
     } else {
         Facing::Back
     };
-    f.culled = may_cull && f.facing == Facing::Back;
     if f.facing != Facing::EdgeOn {
         let mut r = ring;
         if f.facing == Facing::Back {
@@ -504,12 +506,14 @@ mod tests {
     #[test]
     fn facing_of_ccw_cw_and_edge_on() {
         let ccw = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]];
-        assert_eq!(describe(&ccw, 0, 0, false).facing, Facing::Front);
+        assert_eq!(describe(&ccw, 0, 0).facing, Facing::Front);
         let cw = [[0., 0., 0.], [0., 1., 0.], [1., 0., 0.]];
-        let f = describe(&cw, 0, 0, true);
+        let mut f = describe(&cw, 0, 0);
         assert_eq!(f.facing, Facing::Back);
+        assert!(!f.culled && f.is_occluder());
+        f.culled = BackCull::All.culls(&f);
         assert!(f.culled && !f.is_occluder());
         let edge = [[0., 0., 0.], [1., 0., 0.], [2., 0., 1.]];
-        assert_eq!(describe(&edge, 0, 0, false).facing, Facing::EdgeOn);
+        assert_eq!(describe(&edge, 0, 0).facing, Facing::EdgeOn);
     }
 }

@@ -9,7 +9,8 @@ pub struct Counters {
     pub faces_walked: u64,
     /// Faces edge-on or behind the near plane (invisible, no work).
     pub faces_edge_on: u64,
-    /// Back faces of closed solids (hidden by their own solid, no work).
+    /// Back faces of solids, and of capped open meshes away from their caps (hidden by their
+    /// own surface, no work).
     pub faces_culled: u64,
     /// Faces inside a subtree found HIDDEN as a whole before any face work.
     pub faces_in_hidden_subtrees: u64,
@@ -64,7 +65,7 @@ impl Counters {
             ("faces walked", self.faces_walked),
             ("faces edge-on or clipped", self.faces_edge_on),
             (
-                "faces culled (back faces of closed solids)",
+                "faces culled (back faces of solids and capped meshes)",
                 self.faces_culled,
             ),
             (

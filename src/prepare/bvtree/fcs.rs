@@ -174,6 +174,7 @@ mod tests {
             faces,
             closed: false,
             solidity: None,
+            caps: Vec::new(),
         }
     }
 

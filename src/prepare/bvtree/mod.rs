@@ -243,6 +243,7 @@ pub(crate) fn grids(specs: &[(f64, f64, u32)], bend: f64) -> Mesh {
         faces,
         closed: false,
         solidity: None,
+        caps: Vec::new(),
     }
 }
 

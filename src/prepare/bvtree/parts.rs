@@ -202,6 +202,7 @@ mod tests {
             faces: faces.iter().map(|f| Face::new(f.to_vec())).collect(),
             closed: false,
             solidity: None,
+            caps: Vec::new(),
         };
         (m, (0..n).collect())
     }

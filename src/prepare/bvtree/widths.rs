@@ -122,6 +122,7 @@ mod tests {
             faces,
             closed: false,
             solidity: None,
+            caps: Vec::new(),
         };
         let d = drastic_lengths(&m);
         assert!(d.iter().any(|&w| (1.4..3.0).contains(&w)), "{d:?}");

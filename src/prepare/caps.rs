@@ -1,0 +1,493 @@
+//! Caps for open meshes: each hole closed by virtual triangles so that back faces away from
+//! the holes can be proven hidden, decided exactly once per prototype.
+//!
+//! An open mesh M (its only defect: some edges used by one face) has holes bounded by its
+//! boundary edges. Each hole gets a CAP: a fan of triangles from a new vertex at the centroid
+//! of its boundary loop, the loop followed against its faces' direction, so that every
+//! boundary edge is used once more, the other way, and the caps orient like the faces they
+//! close. A fan first, rather than ear clipping: a scanned hole is far from planar, and ear
+//! clipping a loop in space needs a projection in which it is simple (often none exists);
+//! the fan needs nothing, and what it gets wrong (a cap through the mesh, a flat fan
+//! triangle) is caught exactly — such holes are then ear-clipped along their Newell normal
+//! where that projection is simple (the bunny's two deepest holes). The capped surface
+//! S = M ∪ caps is kept only when it passes the very tests that prove a solid
+//! ([`super::solidity::solidity`]): closed and consistently oriented, non-degenerate, no two
+//! triangles crossing, every piece of positive volume.
+//!
+//! # Why back faces away from the caps are hidden
+//!
+//! Let w(x) be S's winding number: an integer off S, ≥ 0, 0 at the eye (orthographic: at
+//! infinity; perspective: when every vertex of M and of the caps is in front of the near
+//! plane the eye is outside S's convex hull — the rule the view already uses for solids).
+//! Take p on a strictly back-facing face f of M. The segment from p toward the eye starts
+//! where w ≥ 1 (just past f's outer side is the inside of f's piece) and ends where w = 0,
+//! so it crosses S from inside to outside at some point q nearer than p: on a face g of S
+//! that is not strictly back-facing (front-facing, or seen edge-on where the segment runs
+//! in g's plane), and q projects onto p's screen point. The view
+//! ([`crate::view::caps`]) culls f only when no cap triangle that is not strictly
+//! back-facing has a screen rectangle touching f's (closed test, padded by a relative
+//! margin for the rounding of the projection). Then g is not a cap: it is a face of M, in
+//! front of p, never culled (front faces never are; an edge-on g covers only a segment of
+//! the screen, no area). So p is hidden by M itself, and any point behind p that f would
+//! hide is hidden by g as well: f is neither visible nor a needed occluder. A back face
+//! whose rectangle touches a front-facing or edge-on cap keeps two sides.
+//!
+//! The same holds piece by piece: the view splits a warped face into the triangles S was
+//! proven with; a mirrored placement reverses faces and caps alike (w keeps its sign); and
+//! near-plane clipping never happens on a leaf that culls, since every vertex of M and the
+//! caps must be in front of the near plane.
+
+use std::collections::HashMap;
+
+use crate::geom::{newell, orient3d, P3};
+use crate::scene::topology::{edge_topology, Topology};
+use crate::scene::triangulate::ear_clip_simple;
+use crate::scene::{CapFailure, Face, Mesh, Solidity};
+
+#[cfg(test)]
+use super::solidity::solidity;
+use super::solidity::{crossing_faces, degenerate, examine_where};
+
+/// The caps of an open mesh that capping made a solid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Caps {
+    /// Number of holes (boundary loops), one cap each.
+    pub loops: u32,
+    /// The cap triangles, counter-clockwise seen from outside the capped solid.
+    pub triangles: Vec<[P3; 3]>,
+}
+
+/// How one hole is capped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Way {
+    /// A fan from a new vertex at the loop's centroid.
+    Fan,
+    /// Exact ear clipping of the loop projected along its Newell normal's dominant axis (no
+    /// new vertex); only where that projection is simple.
+    Ears,
+}
+
+/// Caps the holes of `mesh` (which must be open and otherwise consistent:
+/// [`Topology::Open`]) and decides exactly whether the capped surface is a solid. Every hole
+/// is first fanned; holes whose fan crosses the mesh or another cap, or has a flat
+/// triangle, are ear-clipped instead. The caps are tested first (each cap triangle against
+/// every triangle: cheap, and where capping fails it fails here), at most [`ATTEMPTS`]
+/// times; only caps that pass go on to the one test of the whole surface (every pair of the
+/// mesh's own triangles).
+pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
+    if edge_topology(&mesh.faces) != Topology::Open {
+        return Err(CapFailure::Inconsistent);
+    }
+    if flat(&mesh.vertices) {
+        // A sheet in one plane: whatever caps it, nothing is enclosed.
+        return Err(CapFailure::InsideOut);
+    }
+    let loops = boundary_loops(&mesh.faces);
+    if loops.iter().any(|l| slit(mesh, l)) {
+        return Err(CapFailure::Slit);
+    }
+    let n = mesh.faces.len() as u32;
+    let mut ways = vec![Way::Fan; loops.len()];
+    // The holes whose caps are tested: all at first; after a test that reached the crossing
+    // stage, only the re-capped ones (every other pair with a cap was found apart already).
+    let mut suspect: Vec<bool> = vec![true; loops.len()];
+    for attempt in 1..=ATTEMPTS {
+        let (capped, loop_of) = with_caps(mesh, &loops, &ways);
+        let e = examine_where(&capped, |f| f >= n && suspect[loop_of[(f - n) as usize]]);
+        let cap = |f: u32| f.checked_sub(n).map(|k| loop_of[k as usize]);
+        let reached_crossings = !matches!(e.solidity, Solidity::Degenerate);
+        let mut retry: Vec<usize> = match e.solidity {
+            Solidity::Solid => return whole(mesh, &capped, loops.len()),
+            Solidity::Degenerate => {
+                if e.degenerate.iter().any(|&f| f < n) {
+                    return Err(CapFailure::MeshDegenerate);
+                }
+                e.degenerate.iter().filter_map(|&f| cap(f)).collect()
+            }
+            Solidity::SelfIntersecting(_) => e
+                .crossing
+                .iter()
+                .flatten()
+                .filter_map(|&f| cap(f))
+                .collect(),
+            Solidity::InsideOut => return Err(CapFailure::InsideOut),
+            Solidity::Open(_) | Solidity::Capped(_) | Solidity::Inconsistent => {
+                return Err(CapFailure::Inconsistent)
+            }
+        };
+        retry.sort_unstable();
+        retry.dedup();
+        // Every hole in the failure must be re-capped, or the failure stands (a pair left
+        // out would not be tested again).
+        let fixable = |l: &usize| ways[*l] == Way::Fan && ears(mesh, &loops[*l]).is_some();
+        if retry.is_empty() || !retry.iter().all(fixable) || attempt == ATTEMPTS {
+            return Err(match e.solidity {
+                Solidity::SelfIntersecting(k) => CapFailure::SelfIntersecting(k),
+                _ => CapFailure::Degenerate,
+            });
+        }
+        if reached_crossings {
+            suspect.iter_mut().for_each(|s| *s = false);
+        }
+        for l in retry {
+            ways[l] = Way::Ears;
+            suspect[l] = true;
+        }
+    }
+    // The last attempt returns above.
+    Err(CapFailure::Inconsistent)
+}
+
+/// The whole capped surface decided, its caps found apart from everything and the rest of
+/// [`examine`] passed (closed, non-degenerate, pieces of positive volume): only the mesh's
+/// own pairs of triangles are left to test. The caps, or why not.
+fn whole(mesh: &Mesh, capped: &Mesh, loops: usize) -> Result<Caps, CapFailure> {
+    let n = mesh.faces.len() as u32;
+    match crossing_faces(capped, |f| f < n) {
+        Ok(c) if c.is_empty() => Ok(Caps {
+            loops: loops as u32,
+            triangles: capped.faces[n as usize..]
+                .iter()
+                .map(|f| f.vertices.iter().map(|&v| capped.vertices[v as usize]))
+                .map(|mut t| [(); 3].map(|_| t.next().expect("a triangle")))
+                .collect(),
+        }),
+        Ok(c) => Err(CapFailure::MeshSelfIntersecting(c.len() as u64)),
+        Err(_) => Err(CapFailure::MeshDegenerate),
+    }
+}
+
+/// How many capped surfaces [`cap_holes`] decides at most.
+pub const ATTEMPTS: usize = 3;
+
+/// Exact: every point lies on one plane (through the first point, the farthest from it,
+/// and the farthest from the line through those two; or all on one line).
+fn flat(pts: &[P3]) -> bool {
+    let Some(&a) = pts.first() else {
+        return true;
+    };
+    let far = |d: &dyn Fn(&P3) -> f64| {
+        pts.iter()
+            .copied()
+            .max_by(|p, q| d(p).total_cmp(&d(q)))
+            .unwrap_or(a)
+    };
+    let b = far(&|p| (p - a).norm_squared());
+    let c = far(&|p| (p - a).cross(&(b - a)).norm_squared());
+    degenerate(&[a, b, c]) && pts.iter().all(|&p| degenerate(&[a, b, p]))
+        || pts.iter().all(|p| orient3d(&a, &b, &c, p) == 0.0)
+}
+
+/// Exact: every corner of the loop lies on one line (no triangle on them has area).
+fn slit(mesh: &Mesh, lp: &[u32]) -> bool {
+    let p = |k: usize| mesh.vertices[lp[k] as usize];
+    (2..lp.len()).all(|k| degenerate(&[p(0), p(1), p(k)]))
+}
+
+/// The mesh with its holes capped each its way, and the loop of each cap face.
+fn with_caps(mesh: &Mesh, loops: &[Vec<u32>], ways: &[Way]) -> (Mesh, Vec<usize>) {
+    let mut capped = Mesh {
+        vertices: mesh.vertices.clone(),
+        faces: mesh.faces.clone(),
+        ..Mesh::default()
+    };
+    let mut loop_of = Vec::new();
+    for (l, (lp, way)) in loops.iter().zip(ways).enumerate() {
+        let tris: Vec<[u32; 3]> = match way {
+            Way::Fan => {
+                let c = centroid(lp.iter().map(|&v| &mesh.vertices[v as usize]));
+                let ci = capped.vertices.len() as u32;
+                capped.vertices.push(c);
+                (0..lp.len())
+                    .map(|i| [ci, lp[i], lp[(i + 1) % lp.len()]])
+                    .collect()
+            }
+            Way::Ears => ears(mesh, lp).expect("only simple loops are ear-clipped"),
+        };
+        for t in tris {
+            capped.faces.push(Face::new(t.to_vec()));
+            loop_of.push(l);
+        }
+    }
+    (capped, loop_of)
+}
+
+/// The loop ear-clipped (exact predicates) along its Newell normal, oriented like the loop;
+/// None when its projection is not simple.
+fn ears(mesh: &Mesh, lp: &[u32]) -> Option<Vec<[u32; 3]>> {
+    let pts: Vec<P3> = lp.iter().map(|&v| mesh.vertices[v as usize]).collect();
+    let tris = ear_clip_simple(&pts, &newell(&pts))?;
+    Some(tris.iter().map(|t| t.map(|i| lp[i])).collect())
+}
+
+/// The mean of the points.
+fn centroid<'a>(pts: impl ExactSizeIterator<Item = &'a P3>) -> P3 {
+    let n = pts.len() as f64;
+    let sum = pts.fold(crate::geom::V3::zeros(), |s, p| s + p.coords);
+    P3::from(sum / n)
+}
+
+/// The holes' boundaries as simple loops of vertices, each following its boundary edges
+/// backwards (a boundary edge a→b of a face gives the loop step b→a), so that a fan over a
+/// loop uses each boundary edge once the other way. A vertex on several holes (or met twice
+/// on one) splits the walk into simple loops; in-degree equals out-degree at every vertex
+/// of a consistent surface's boundary, so every walk closes. Deterministic: loops start at
+/// their least edge in the faces' order.
+pub fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
+    // Directed edges as packed integers, sorted: a reverse is found by binary search.
+    let mut directed: Vec<u64> = faces
+        .iter()
+        .flat_map(|f| {
+            let n = f.vertices.len();
+            (0..n).map(move |i| (f.vertices[i] as u64) << 32 | f.vertices[(i + 1) % n] as u64)
+        })
+        .collect();
+    directed.sort_unstable();
+    // Loop steps b→a for each boundary edge a→b, in face order.
+    let mut steps: Vec<(u32, u32)> = Vec::new();
+    for f in faces {
+        let n = f.vertices.len();
+        for i in 0..n {
+            let (a, b) = (f.vertices[i], f.vertices[(i + 1) % n]);
+            if directed
+                .binary_search(&((b as u64) << 32 | a as u64))
+                .is_err()
+            {
+                steps.push((b, a));
+            }
+        }
+    }
+    let mut out_of: HashMap<u32, Vec<usize>> = HashMap::new();
+    for (k, &(from, _)) in steps.iter().enumerate().rev() {
+        out_of.entry(from).or_default().push(k);
+    }
+    let mut used = vec![false; steps.len()];
+    let mut loops = Vec::new();
+    for start in 0..steps.len() {
+        if used[start] {
+            continue;
+        }
+        // Walk until back at the first vertex, cutting off a simple loop whenever a vertex
+        // repeats.
+        let mut path: Vec<u32> = vec![steps[start].0];
+        let mut at: HashMap<u32, usize> = HashMap::from([(steps[start].0, 0)]);
+        let mut k = start;
+        loop {
+            used[k] = true;
+            let next = steps[k].1;
+            if let Some(&i) = at.get(&next) {
+                for v in &path[i + 1..] {
+                    at.remove(v);
+                }
+                loops.push(path.split_off(i));
+                path.push(next);
+                if i == 0 {
+                    break;
+                }
+            } else {
+                at.insert(next, path.len());
+                path.push(next);
+            }
+            let outs = out_of.get_mut(&next).expect("a consistent boundary closes");
+            k = loop {
+                let c = outs.pop().expect("a consistent boundary closes");
+                if !used[c] {
+                    break c;
+                }
+            };
+        }
+    }
+    loops
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The unit cube's faces, outward, and its corners; `skip` faces left out.
+    pub(crate) fn cube_without(skip: &[usize]) -> Mesh {
+        let v: Vec<P3> = (0..8)
+            .map(|i| P3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
+            .collect();
+        let faces: [[u32; 4]; 6] = [
+            [0, 2, 3, 1], // z = 0
+            [4, 5, 7, 6], // z = 1
+            [0, 1, 5, 4], // y = 0
+            [2, 6, 7, 3], // y = 1
+            [0, 4, 6, 2], // x = 0
+            [1, 3, 7, 5], // x = 1
+        ];
+        Mesh {
+            vertices: v,
+            faces: faces
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| !skip.contains(k))
+                .map(|(_, f)| Face::new(f.to_vec()))
+                .collect(),
+            ..Mesh::default()
+        }
+    }
+
+    #[test]
+    fn whole_cube_is_solid_and_the_open_box_caps() {
+        assert_eq!(solidity(&cube_without(&[])), Solidity::Solid);
+        let open = cube_without(&[1]);
+        assert_eq!(
+            solidity(&open),
+            Solidity::Open(CapFailure::NotTried),
+            "capping is the prepare stage's second step"
+        );
+        let loops = boundary_loops(&open.faces);
+        // The missing top z = 1 is the loop 4→5→7→6 reversed: its cap is that face again.
+        assert_eq!(loops.len(), 1);
+        let mut l = loops[0].clone();
+        let k = l.iter().position(|&v| v == 4).unwrap();
+        l.rotate_left(k);
+        assert_eq!(l, vec![4, 5, 7, 6]);
+        let caps = cap_holes(&open).unwrap();
+        assert_eq!(caps.loops, 1);
+        assert_eq!(caps.triangles.len(), 4);
+        // Every cap triangle faces +z (outward), from the centre of the missing face.
+        for t in &caps.triangles {
+            assert_eq!(t[0], P3::new(0.5, 0.5, 1.0));
+            let n = (t[1] - t[0]).cross(&(t[2] - t[0]));
+            assert!(n.z > 0.0 && n.x == 0.0 && n.y == 0.0, "{t:?}");
+        }
+    }
+
+    #[test]
+    fn a_tube_caps_at_both_ends_and_two_holes_sharing_a_corner_split() {
+        let tube = cube_without(&[0, 1]);
+        let caps = cap_holes(&tube).unwrap();
+        assert_eq!(caps.loops, 2);
+        assert_eq!(caps.triangles.len(), 8);
+        // Two triangles of a square wall, meeting only at a corner of each, leave holes that
+        // meet at that corner: the walk splits them into simple loops.
+        let v = vec![
+            P3::new(0., 0., 0.),
+            P3::new(1., 0., 0.),
+            P3::new(0., 1., 0.),
+            P3::new(-1., 0., 0.),
+            P3::new(0., -1., 0.),
+        ];
+        let faces = vec![Face::new(vec![0, 1, 2]), Face::new(vec![0, 3, 4])];
+        let loops = boundary_loops(&faces);
+        assert_eq!(loops.len(), 2, "{loops:?}");
+        assert!(loops.iter().all(|l| l.len() == 3));
+        let m = Mesh {
+            vertices: v,
+            faces,
+            ..Mesh::default()
+        };
+        // Flat: each cap would lie on its triangle, enclosing nothing.
+        assert_eq!(cap_holes(&m), Err(CapFailure::InsideOut));
+    }
+
+    #[test]
+    fn inward_open_box_is_refused() {
+        let mut m = cube_without(&[1]);
+        for f in &mut m.faces {
+            f.vertices.reverse();
+        }
+        assert_eq!(cap_holes(&m), Err(CapFailure::InsideOut));
+    }
+
+    #[test]
+    fn a_cap_through_the_mesh_is_refused() {
+        // The open box holds a closed tetrahedron that pokes up through its mouth, touching
+        // nothing: the mesh is embedded, open only at the mouth, but the mouth's cap crosses
+        // the tetrahedron.
+        let mut m = cube_without(&[1]);
+        let a = m.vertices.len() as u32;
+        m.vertices.extend([
+            P3::new(0.3, 0.3, 0.5),
+            P3::new(0.7, 0.3, 0.5),
+            P3::new(0.5, 0.7, 0.5),
+            P3::new(0.5, 0.5, 1.5),
+        ]);
+        for f in [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]] {
+            m.faces.push(Face::new(f.iter().map(|k| a + k).collect()));
+        }
+        assert_eq!(solidity(&m), Solidity::Open(CapFailure::NotTried));
+        let r = cap_holes(&m);
+        assert!(
+            matches!(r, Err(CapFailure::SelfIntersecting(n)) if n > 0),
+            "{r:?}"
+        );
+        // With its apex lowered into the box, the same tetrahedron is fine.
+        m.vertices[a as usize + 3].z = 0.9;
+        assert_eq!(cap_holes(&m).map(|c| c.loops), Ok(1));
+    }
+
+    #[test]
+    fn a_hole_whose_fan_crosses_the_walls_is_ear_clipped() {
+        // An L-shaped prism open at the top: the centroid of the mouth's corners lies in the
+        // notch, outside the L, so the fan crosses the walls; ear clipping the L works.
+        let l = [[0., 0.], [3., 0.], [3., 1.], [1., 1.], [1., 3.], [0., 3.]];
+        let mut vertices: Vec<P3> = l.iter().map(|p| P3::new(p[0], p[1], 0.0)).collect();
+        vertices.extend(l.iter().map(|p| P3::new(p[0], p[1], 1.0)));
+        let mut faces = vec![Face::new((0..6).rev().collect())]; // floor, facing -z
+        for i in 0..6u32 {
+            let j = (i + 1) % 6;
+            faces.push(Face::new(vec![i, j, j + 6, i + 6]));
+        }
+        let m = Mesh {
+            vertices,
+            faces,
+            ..Mesh::default()
+        };
+        let caps = cap_holes(&m).unwrap();
+        assert_eq!(caps.loops, 1);
+        assert_eq!(caps.triangles.len(), 4, "ear clipping, not a fan of 6");
+        for t in &caps.triangles {
+            assert!(t.iter().all(|p| p.z == 1.0 && m.vertices.contains(p)));
+            assert!((t[1] - t[0]).cross(&(t[2] - t[0])).z > 0.0, "outward: +z");
+        }
+    }
+
+    #[test]
+    fn a_t_junction_crack_is_a_slit_no_cap_can_close() {
+        // A tetrahedron whose face 1-2-3 is split at the midpoint 4 of edge 1-2 while the
+        // face across that edge is not: the hole 1, 2, 4 has its corners on one line.
+        let vertices = vec![
+            P3::new(0., 0., 0.),
+            P3::new(1., 0., 0.),
+            P3::new(0., 1., 0.),
+            P3::new(0., 0., 1.),
+            P3::new(0.5, 0.5, 0.),
+        ];
+        let faces = [[0, 2, 1], [0, 1, 3], [1, 4, 3], [4, 2, 3], [2, 0, 3]]
+            .iter()
+            .map(|f| Face::new(f.to_vec()))
+            .collect();
+        let m = Mesh {
+            vertices,
+            faces,
+            ..Mesh::default()
+        };
+        let loops = boundary_loops(&m.faces);
+        assert_eq!(loops.len(), 1);
+        assert!(slit(&m, &loops[0]));
+        assert_eq!(cap_holes(&m), Err(CapFailure::Slit));
+        assert!(!slit(
+            &cube_without(&[1]),
+            &boundary_loops(&cube_without(&[1]).faces)[0]
+        ));
+    }
+
+    #[test]
+    fn a_flat_sheet_is_refused_at_once() {
+        let mut m = cube_without(&[1, 2, 3, 4, 5]);
+        assert!(flat(&m.vertices[..4]) && !flat(&m.vertices));
+        m.vertices.truncate(4);
+        m.faces = vec![Face::new(vec![0, 2, 3, 1])];
+        assert!(flat(&m.vertices));
+        assert_eq!(cap_holes(&m), Err(CapFailure::InsideOut));
+        assert!(flat(&[
+            P3::new(0., 0., 0.),
+            P3::new(1., 1., 1.),
+            P3::new(2., 2., 2.)
+        ]));
+    }
+}
