@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use crate::geom::{orient3d_refs, Box3, P3, V3};
+use crate::geom::{orient2d, orient3d_refs, Box3, P3, V3};
 use crate::scene::Mesh;
 
 use super::halfspace::HalfSpace;
@@ -61,29 +61,7 @@ impl Triangles {
     /// only the corner farthest along its normal is tested (exact `orient3d`); on an axis
     /// where the normal's sign is within rounding of zero, both corners are.
     pub fn box_in_kernel(&self, b: &Box3) -> bool {
-        let inner = |t: &[P3; 3]| {
-            let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
-            let n = e1.cross(&e2);
-            // Each component of the f64 cross product is within this of the exact one.
-            let err = 1e-12 * e1.norm() * e2.norm();
-            let both: [[f64; 2]; 3] = std::array::from_fn(|i| [b.lo[i], b.hi[i]]);
-            let c: [&[f64]; 3] = std::array::from_fn(|i| {
-                if n[i] > err {
-                    &both[i][1..]
-                } else if n[i] < -err {
-                    &both[i][..1]
-                } else {
-                    &both[i][..]
-                }
-            });
-            // orient3d > 0: the point lies below the counter-clockwise triangle, i.e. inside.
-            c[0].iter().all(|&x| {
-                c[1].iter().all(|&y| {
-                    c[2].iter()
-                        .all(|&z| orient3d_refs(t, &P3::new(x, y, z)) >= 0.0)
-                })
-            })
-        };
+        let inner = |t: &[P3; 3]| axis_plane_side(t, b).unwrap_or_else(|| box_behind(t, b));
         // A yes or no: the same answer on any number of threads.
         if self.tris.len() > PARALLEL_ABOVE {
             self.tris.par_iter().all(inner)
@@ -134,4 +112,90 @@ pub fn shrink(b: &Box3, eps: f64) -> Box3 {
         out.hi[i] = c[i] + h;
     }
     out
+}
+
+/// Exact: every corner of `b` is on the inner side of (or on) triangle `t`'s plane. Only the
+/// corner farthest along its normal is tested (exact `orient3d`); on an axis where the
+/// normal's sign is within rounding of zero, both corners are.
+fn box_behind(t: &[P3; 3], b: &Box3) -> bool {
+    let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+    let n = e1.cross(&e2);
+    // Each component of the f64 cross product is within this of the exact one.
+    let err = 1e-12 * e1.norm() * e2.norm();
+    let both: [[f64; 2]; 3] = std::array::from_fn(|i| [b.lo[i], b.hi[i]]);
+    let c: [&[f64]; 3] = std::array::from_fn(|i| {
+        if n[i] > err {
+            &both[i][1..]
+        } else if n[i] < -err {
+            &both[i][..1]
+        } else {
+            &both[i][..]
+        }
+    });
+    // orient3d > 0: the point lies below the counter-clockwise triangle, i.e. inside.
+    c[0].iter().all(|&x| {
+        c[1].iter().all(|&y| {
+            c[2].iter()
+                .all(|&z| orient3d_refs(t, &P3::new(x, y, z)) >= 0.0)
+        })
+    })
+}
+
+/// [`box_behind`] for a triangle in a plane x_k = c (its three corners share coordinate k
+/// exactly), without orient3d: orient3d(t, p) = n·(t0 − p) = n_k (c − p_k), and the sign of
+/// n_k is the exact orient2d of the corners' other two coordinates (in cyclic order). A box
+/// lying on such a plane (an INBOX snapped to a primitive's cap) would otherwise cost an
+/// exact-zero orient3d per corner per triangle. None for any other triangle.
+fn axis_plane_side(t: &[P3; 3], b: &Box3) -> Option<bool> {
+    let k = (0..3).find(|&k| t[0][k] == t[1][k] && t[1][k] == t[2][k])?;
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    let turn = orient2d([t[0][i], t[0][j]], [t[1][i], t[1][j]], [t[2][i], t[2][j]]);
+    let c = t[0][k];
+    Some(if turn > 0.0 {
+        b.hi[k] <= c
+    } else if turn < 0.0 {
+        b.lo[k] >= c
+    } else {
+        true
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::rng::XorShift;
+
+    #[test]
+    fn axis_planes_are_decided_as_orient3d_decides_them() {
+        // Triangles in planes x, y or z = const (both windings), boxes on, across and off them.
+        let mut rng = XorShift::new(9);
+        let mut v = |rng: &mut XorShift| rng.below(5) as f64 - 2.0;
+        let (mut inside, mut outside) = (0, 0);
+        for _ in 0..20000 {
+            let k = rng.below(3);
+            let c = v(&mut rng);
+            let mut t = [P3::origin(); 3];
+            for p in &mut t {
+                for a in 0..3 {
+                    p[a] = if a == k { c } else { v(&mut rng) };
+                }
+            }
+            let (lo, hi) = (
+                P3::new(v(&mut rng), v(&mut rng), v(&mut rng)),
+                P3::new(v(&mut rng), v(&mut rng), v(&mut rng)),
+            );
+            let b = Box3::new(lo.inf(&hi), lo.sup(&hi));
+            let fast = axis_plane_side(&t, &b).expect("an axis plane");
+            assert_eq!(fast, box_behind(&t, &b), "{t:?} {b:?}");
+            inside += usize::from(fast);
+            outside += usize::from(!fast);
+        }
+        assert!(inside > 1000 && outside > 1000, "{inside} {outside}");
+        let tilted = [
+            P3::new(0., 0., 0.),
+            P3::new(1., 0., 1.),
+            P3::new(0., 1., 0.),
+        ];
+        assert!(axis_plane_side(&tilted, &Box3::new(P3::origin(), P3::new(1., 1., 1.))).is_none());
+    }
 }
