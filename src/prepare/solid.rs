@@ -169,7 +169,7 @@ mod tests {
     fn axis_planes_are_decided_as_orient3d_decides_them() {
         // Triangles in planes x, y or z = const (both windings), boxes on, across and off them.
         let mut rng = XorShift::new(9);
-        let mut v = |rng: &mut XorShift| rng.below(5) as f64 - 2.0;
+        let v = |rng: &mut XorShift| rng.below(5) as f64 - 2.0;
         let (mut inside, mut outside) = (0, 0);
         for _ in 0..20000 {
             let k = rng.below(3);
