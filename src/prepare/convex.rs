@@ -16,6 +16,9 @@ use super::solid::{shrink, Triangles};
 /// the result is verified exactly whatever it decides.
 const CONVEX_TOL: f64 = 1e-9;
 
+/// Meshes of more faces than this are checked on all threads.
+const PARALLEL_ABOVE: usize = 4096;
+
 /// Relative shrinks tried, in order, until the box verifies.
 const SHRINKS: [f64; 4] = [1e-9, 1e-7, 1e-5, 1e-3];
 
@@ -65,7 +68,7 @@ pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
         })
     };
     // A yes or no: the same answer on any number of threads.
-    if mesh.faces.len() > 4096 {
+    if mesh.faces.len() > PARALLEL_ABOVE {
         mesh.faces.par_iter().all(locally_convex)
     } else {
         mesh.faces.iter().all(locally_convex)

@@ -1,6 +1,6 @@
 //! Ear-clipping triangulation of a simple polygon in space (used to split non-planar faces).
 
-use crate::geom::poly2::ring_area;
+use crate::geom::poly2::{half_changes, ring_area};
 use crate::geom::{P3, V3};
 
 /// Polygons of up to this many corners are clipped by the plain search with exact
@@ -162,20 +162,10 @@ fn tiles_exactly(p: &[[f64; 2]], tris: &[[usize; 3]], flip: bool) -> bool {
 fn strictly_convex(p: &[[f64; 2]], flip: bool) -> bool {
     let n = p.len();
     let want = if flip { -1.0 } else { 1.0 };
-    let upper = |i: usize| {
-        let (a, b) = (p[i], p[(i + 1) % n]);
-        b[1] > a[1] || (b[1] == a[1] && b[0] > a[0])
-    };
-    let mut changes = 0;
-    for i in 0..n {
-        let (a, b, c) = (p[i], p[(i + 1) % n], p[(i + 2) % n]);
-        if orient(a, b, c) * want <= 0.0 {
-            return false;
-        }
-        changes += usize::from(upper(i) != upper((i + 1) % n));
-    }
-    // Reflected (clockwise) rings rotate the other way: the count is the same.
-    changes == 2
+    // Strict turns leave no zero-length edge; reflected (clockwise) rings rotate the other
+    // way, which changes half-plane as often.
+    (0..n).all(|i| orient(p[i], p[(i + 1) % n], p[(i + 2) % n]) * want > 0.0)
+        && half_changes(p) == 2
 }
 
 /// A triangulation of a strictly convex ring whose triangles are balanced: the triangle of

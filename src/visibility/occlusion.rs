@@ -65,20 +65,11 @@ pub enum Occlusion {
     Region(Vec<Pt2>),
 }
 
-/// The region of the screen where piece `g` is in front of target F's plane.
+/// The region of the screen where piece `g` is in front of target F's plane, from the
+/// piece's screen and world points `pts` and `world`: all of them (`sf.pts(g)`,
+/// `sf.world_pts(g)`), or a cut of them that is the same inside F's rectangle
+/// ([`crate::view::ring_index`]).
 pub fn occluder_region(
-    sf: &ScreenFaces,
-    g: PieceId,
-    t: &Target,
-    sides: &mut Vec<f64>,
-) -> Occlusion {
-    occluder_region_of(sf, g, sf.pts(g), sf.world_pts(g), t, sides)
-}
-
-/// [`occluder_region`] of piece `g` given by its screen and world points `pts` and `world`
-/// (all of them, or a cut of them that is the same inside F's rectangle:
-/// [`crate::view::ring_index`]).
-pub fn occluder_region_of(
     sf: &ScreenFaces,
     g: PieceId,
     pts: &[[f64; 3]],

@@ -16,7 +16,7 @@ use crate::view::tree::{NodeKind, ScreenInbox};
 use crate::view::{Facing, PieceId, View};
 
 use super::cover::regions_cover;
-use super::occlusion::{occluder_region_of, separated_convex, Occlusion, Target};
+use super::occlusion::{occluder_region, separated_convex, Occlusion, Target};
 use super::stats::Counters;
 
 /// The paper's VISFAC answer: what an object does to a face.
@@ -192,7 +192,7 @@ fn examine(
             return Walk::Open;
         }
     }
-    let Occlusion::Region(region) = occluder_region_of(sf, g, pts, world, t, &mut scratch.sides)
+    let Occlusion::Region(region) = occluder_region(sf, g, pts, world, t, &mut scratch.sides)
     else {
         return Walk::Open;
     };
