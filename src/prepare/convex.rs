@@ -1,8 +1,6 @@
 //! INBOX of a convex closed mesh: the largest-volume axis-aligned box inside it, found by a
 //! convex optimisation over its face planes, shrunk a little and verified exactly.
 
-use std::collections::HashMap;
-
 use rayon::prelude::*;
 
 use crate::geom::{newell_indexed, Box3, P3, V3};
@@ -32,17 +30,9 @@ pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
     let scale = cbox.size().iter().fold(0.0f64, |a, &b| a.max(b));
     let tol = CONVEX_TOL * scale;
     let sign = if flipped { -1.0 } else { 1.0 };
-    // Each directed edge (a, b) -> (face, position of a in it).
-    let mut edges: HashMap<(u32, u32), (u32, u32)> =
-        HashMap::with_capacity(mesh.faces.iter().map(|f| f.vertices.len()).sum());
-    for (k, f) in mesh.faces.iter().enumerate() {
-        let v = &f.vertices;
-        for i in 0..v.len() {
-            edges.insert((v[i], v[(i + 1) % v.len()]), (k as u32, i as u32));
-        }
-    }
+    let twins = EdgeTwins::of(mesh);
     let at = |f: &[u32], i: usize| mesh.vertices[f[i % f.len()] as usize].coords;
-    let locally_convex = |f: &crate::scene::Face| {
+    let locally_convex = |(k, f): (usize, &crate::scene::Face)| {
         let n = newell_indexed(&mesh.vertices, &f.vertices) * sign;
         let len = n.norm();
         if len == 0.0 {
@@ -54,9 +44,9 @@ pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
             .iter()
             .map(|&k| n.dot(&mesh.vertices[k as usize].coords))
             .fold(f64::NEG_INFINITY, f64::max);
+        let first = twins.first[k];
         (0..v.len()).all(|i| {
-            let (a, b) = (v[i], v[(i + 1) % v.len()]);
-            let Some(&(g, j)) = edges.get(&(b, a)) else {
+            let Some((g, j)) = twins.across(first + i) else {
                 return false;
             };
             // The neighbour runs b -> a at position j: its corners before b and after a.
@@ -69,9 +59,68 @@ pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
     };
     // A yes or no: the same answer on any number of threads.
     if mesh.faces.len() > PARALLEL_ABOVE {
-        mesh.faces.par_iter().all(locally_convex)
+        mesh.faces.par_iter().enumerate().all(locally_convex)
     } else {
-        mesh.faces.iter().all(locally_convex)
+        mesh.faces.iter().enumerate().all(locally_convex)
+    }
+}
+
+/// The corner across each edge of a mesh: corner `first[f] + i` starts the edge from corner
+/// `i` to `i + 1` of face `f`; its twin starts the same edge, run the other way, in the
+/// neighbouring face. Built by sorting the undirected edges (linear-time lookups after one
+/// sort; no hashing, no binary search per edge).
+struct EdgeTwins {
+    /// The first corner of each face.
+    first: Vec<usize>,
+    /// Each corner's face.
+    face: Vec<u32>,
+    /// Each corner's twin, or `u32::MAX` where the edge is not used exactly once each way.
+    twin: Vec<u32>,
+}
+
+impl EdgeTwins {
+    fn of(mesh: &Mesh) -> EdgeTwins {
+        let mut first = Vec::with_capacity(mesh.faces.len());
+        let mut face = Vec::new();
+        // (undirected edge, corner, forward): forward when the edge runs low to high index.
+        let mut ends: Vec<(u64, u32, bool)> = Vec::new();
+        for (k, f) in mesh.faces.iter().enumerate() {
+            first.push(face.len());
+            let v = &f.vertices;
+            for i in 0..v.len() {
+                let (a, b) = (v[i], v[(i + 1) % v.len()]);
+                let key = (a.min(b) as u64) << 32 | a.max(b) as u64;
+                ends.push((key, face.len() as u32, a < b));
+                face.push(k as u32);
+            }
+        }
+        if ends.len() > PARALLEL_ABOVE {
+            ends.par_sort_unstable();
+        } else {
+            // Small meshes stay off the thread pool (200k one-box objects would each wait
+            // on it).
+            ends.sort_unstable();
+        }
+        let mut twin = vec![u32::MAX; face.len()];
+        let mut i = 0;
+        while i < ends.len() {
+            let run = ends[i..].iter().take_while(|e| e.0 == ends[i].0).count();
+            if run == 2 && ends[i].2 != ends[i + 1].2 {
+                twin[ends[i].1 as usize] = ends[i + 1].1;
+                twin[ends[i + 1].1 as usize] = ends[i].1;
+            }
+            i += run;
+        }
+        EdgeTwins { first, face, twin }
+    }
+
+    /// The face and position across the edge starting at `corner`, if it has one.
+    fn across(&self, corner: usize) -> Option<(u32, u32)> {
+        let t = *self.twin.get(corner)?;
+        (t != u32::MAX).then(|| {
+            let g = self.face[t as usize];
+            (g, t - self.first[g as usize] as u32)
+        })
     }
 }
 

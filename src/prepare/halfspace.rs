@@ -52,7 +52,15 @@ fn largest_box_at_origin(planes: &[HalfSpace]) -> Option<Box3> {
     let mut t = 1.0;
     let mut steps = 0;
     loop {
-        steps += centre(&rows, &mut x, t, MAX_NEWTON.saturating_sub(steps))?;
+        // Every step taken keeps `x` strictly feasible, so where a later centring breaks
+        // down (an ill-conditioned Hessian: a box thin across a wide, tilted disc), the
+        // last point is still a good box, only less close to the optimum. The caller
+        // verifies whatever box it gets exactly.
+        match centre(&rows, &mut x, t, MAX_NEWTON.saturating_sub(steps)) {
+            Some(s) => steps += s,
+            None if t > 1.0 => break,
+            None => return None,
+        }
         if rows.len() as f64 / t < GAP || steps >= MAX_NEWTON {
             break;
         }
