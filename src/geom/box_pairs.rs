@@ -10,6 +10,10 @@ use rayon::prelude::*;
 /// A box as [min, max].
 pub type Bounds3 = [[f64; 3]; 2];
 
+/// Above this many boxes the sorts and the cells run on all threads (small meshes stay off
+/// the thread pool: 200k one-box objects would each wait on it).
+const PARALLEL_ABOVE: usize = 1024;
+
 /// Most grid cells a box enters, on average: bounds the grid's memory.
 const MAX_CELLS_PER_BOX: f64 = 8.0;
 
@@ -32,8 +36,13 @@ pub fn filter_map_pairs<T: Send>(
         return Vec::new();
     };
     let mut entries: Vec<(u64, u32)> = Vec::with_capacity(ids.len() * 2);
+    // The cell of each box's least corner: the cell of the least corner of two boxes'
+    // intersection is their componentwise max (cells are monotone in the coordinates), so
+    // no pair needs a float-to-cell conversion.
+    let mut lo_cell = vec![[0u64; 3]; boxes.len()];
     for &i in &ids {
         let [lo, hi] = grid.cell_range(&boxes[i as usize]);
+        lo_cell[i as usize] = lo;
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
                 for z in lo[2]..=hi[2] {
@@ -42,30 +51,41 @@ pub fn filter_map_pairs<T: Send>(
             }
         }
     }
-    entries.par_sort_unstable();
+    let parallel = ids.len() > PARALLEL_ABOVE;
+    if parallel {
+        entries.par_sort_unstable();
+    } else {
+        entries.sort_unstable();
+    }
     let runs = runs(&entries);
-    let f = &f;
-    let mut found: Vec<((u32, u32), T)> = runs
-        .par_iter()
-        .flat_map_iter(|r| {
-            let cell = &entries[r.clone()];
-            let key = cell[0].0;
-            let grid = &grid;
-            (0..cell.len()).flat_map(move |a| {
-                (a + 1..cell.len()).filter_map(move |b| {
-                    let (i, j) = (cell[a].1, cell[b].1);
-                    let (bi, bj) = (&boxes[i as usize], &boxes[j as usize]);
-                    let corner = std::array::from_fn(|k| bi[0][k].max(bj[0][k]));
-                    if !overlap(bi, bj) || grid.key(grid.cell(&corner)) != key {
-                        return None;
-                    }
-                    let p = (i.min(j), i.max(j));
-                    f(p.0, p.1).map(|t| (p, t))
-                })
+    let (f, grid, lo_cell, entries) = (&f, &grid, &lo_cell, &entries);
+    // The pairs first met in one cell (a run of equal keys).
+    let in_cell = |r: &std::ops::Range<usize>| {
+        let cell = &entries[r.clone()];
+        let key = cell[0].0;
+        (0..cell.len()).flat_map(move |a| {
+            (a + 1..cell.len()).filter_map(move |b| {
+                let (i, j) = (cell[a].1, cell[b].1);
+                let (bi, bj) = (&boxes[i as usize], &boxes[j as usize]);
+                let (ci, cj) = (&lo_cell[i as usize], &lo_cell[j as usize]);
+                if !overlap(bi, bj) || grid.key(std::array::from_fn(|k| ci[k].max(cj[k]))) != key {
+                    return None;
+                }
+                let p = (i.min(j), i.max(j));
+                f(p.0, p.1).map(|t| (p, t))
             })
         })
-        .collect();
-    found.par_sort_unstable_by_key(|x| x.0);
+    };
+    let mut found: Vec<((u32, u32), T)> = if parallel {
+        runs.par_iter().flat_map_iter(in_cell).collect()
+    } else {
+        runs.iter().flat_map(in_cell).collect()
+    };
+    if parallel {
+        found.par_sort_unstable_by_key(|x| x.0);
+    } else {
+        found.sort_unstable_by_key(|x| x.0);
+    }
     found.into_iter().map(|x| x.1).collect()
 }
 

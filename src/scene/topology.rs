@@ -1,5 +1,7 @@
 //! Edge topology of a face set: closedness and consistent orientation.
 
+use rayon::prelude::*;
+
 use super::object::Face;
 
 /// True when every undirected edge is used by exactly two faces, once in each direction:
@@ -20,8 +22,9 @@ pub enum Topology {
 }
 
 /// Classifies the edges of `faces` (an empty set is open). The directed edges are sorted as
-/// packed integers and each one's reverse is found by binary search: no hashing, a few
-/// milliseconds for 100k faces.
+/// packed integers, and so are their reverses: with no edge twice, the faces are closed
+/// exactly when the two lists are equal (every edge's reverse is an edge, and reversing is
+/// one-to-one). No hashing and no search: two sorts and one pass.
 pub fn edge_topology(faces: &[Face]) -> Topology {
     if faces.is_empty() {
         return Topology::Open;
@@ -35,21 +38,26 @@ pub fn edge_topology(faces: &[Face]) -> Topology {
             edges.push((a as u64) << 32 | b as u64);
         }
     }
-    edges.sort_unstable();
-    let mut open = false;
-    for (i, &e) in edges.iter().enumerate() {
-        // A directed edge twice (its reverse twice shows the same way when its turn comes).
-        if edges.get(i + 1) == Some(&e) {
-            return Topology::Inconsistent;
-        }
-        if edges.binary_search(&e.rotate_right(32)).is_err() {
-            open = true;
-        }
+    let mut reversed: Vec<u64> = edges.iter().map(|e| e.rotate_right(32)).collect();
+    sort(&mut edges);
+    // A directed edge twice: used twice one way, or by more than two faces.
+    if edges.windows(2).any(|w| w[0] == w[1]) {
+        return Topology::Inconsistent;
     }
-    if open {
-        Topology::Open
-    } else {
+    sort(&mut reversed);
+    if edges == reversed {
         Topology::Closed
+    } else {
+        Topology::Open
+    }
+}
+
+/// Sorts on all threads when the list is long.
+fn sort(v: &mut [u64]) {
+    if v.len() > 1 << 14 {
+        v.par_sort_unstable();
+    } else {
+        v.sort_unstable();
     }
 }
 
