@@ -26,9 +26,12 @@ use num_traits::{Signed, Zero};
 
 use rayon::prelude::*;
 
-use crate::geom::box_pairs::{filter_map_pairs, overlap};
+mod plates;
+
+use crate::geom::box_pairs::{filter_map_pairs, overlap, Bounds3};
+use crate::geom::box_tree::BoxTree;
 use crate::geom::tri_intersect::{plane_axes, segment_meets_triangle, triangles_intersect};
-use crate::geom::{newell, orient2d, orient3d, P3};
+use crate::geom::{newell, orient2d, orient3d, Box3, P3};
 use crate::scene::topology::{edge_topology, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Content, Mesh, Object, Solidity};
@@ -53,7 +56,7 @@ pub(crate) fn crossing_faces(
 ) -> Result<Vec<[u32; 2]>, Vec<u32>> {
     let (tris, face_of) = surface_triangles(mesh)?;
     Ok(
-        crossing_pairs(&tris, &face_of, |t| suspect(face_of[t as usize]))
+        crossing_pairs(mesh, &tris, &face_of, |t| suspect(face_of[t as usize]))
             .into_iter()
             .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
             .collect(),
@@ -98,10 +101,11 @@ pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -
             }
         }
     };
-    let crossing: Vec<[u32; 2]> = crossing_pairs(&tris, &face_of, |t| suspect(face_of[t as usize]))
-        .into_iter()
-        .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
-        .collect();
+    let crossing: Vec<[u32; 2]> =
+        crossing_pairs(mesh, &tris, &face_of, |t| suspect(face_of[t as usize]))
+            .into_iter()
+            .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
+            .collect();
     if !crossing.is_empty() {
         return Examined {
             solidity: Solidity::SelfIntersecting(crossing.len() as u64),
@@ -229,19 +233,21 @@ pub(crate) fn degenerate(p: &[P3; 3]) -> bool {
 }
 
 /// The triangle pairs with a triangle passing `suspect` that meet other than in shared
-/// vertices and edges, ascending. Few suspects (a tenth of the triangles or fewer) are each
-/// scanned against every box; many go through the grid of every overlapping pair.
+/// vertices and edges, ascending. Plates ([`plates`]: long planar convex faces) are met as
+/// wholes; the other triangles pair up through the grid, or, with few suspects (a tenth of
+/// the triangles or fewer), each suspect is scanned against every box.
 ///
 /// Two triangles of one face (`face_of`) are never tested: they are lifts of triangles of one
 /// exact triangulation of the face's projection (ear clipping, or a tiling proven exactly),
 /// whose projections meet only in shared corners and edges, and the projection is one-to-one
 /// on the face, so the lifts meet only there too.
 fn crossing_pairs(
+    mesh: &Mesh,
     tris: &[Tri],
     face_of: &[u32],
     suspect: impl Fn(u32) -> bool + Sync,
 ) -> Vec<(u32, u32)> {
-    let boxes: Vec<[[f64; 3]; 2]> = tris
+    let boxes: Vec<Bounds3> = tris
         .iter()
         .map(|t| {
             let lo = std::array::from_fn(|k| t.p[0][k].min(t.p[1][k]).min(t.p[2][k]));
@@ -250,20 +256,46 @@ fn crossing_pairs(
         })
         .collect();
     let is: Vec<bool> = (0..tris.len() as u32).map(&suspect).collect();
-    let few: Vec<u32> = (0..tris.len() as u32).filter(|&i| is[i as usize]).collect();
     let crosses = |i: u32, j: u32| {
         face_of[i as usize] != face_of[j as usize] && cross(&tris[i as usize], &tris[j as usize])
     };
-    if few.len() * 10 > tris.len() {
-        return filter_map_pairs(&boxes, |i, j| {
+    let plates = plates::find(mesh, face_of);
+    let mut found = if plates.is_empty() {
+        grid_pairs(&boxes, &is, &crosses)
+    } else {
+        // Plate triangles leave the grid (an absent box is ignored there).
+        let mut rest = boxes.clone();
+        for p in &plates {
+            rest[p.tris.start as usize..p.tris.end as usize].fill([[f64::NAN; 3]; 2]);
+        }
+        let mut found = grid_pairs(&rest, &is, &crosses);
+        found.extend(plate_pairs(&plates, tris, &boxes, &is, &crosses));
+        found.sort_unstable();
+        found.dedup();
+        found
+    };
+    found.shrink_to_fit();
+    found
+}
+
+/// [`crossing_pairs`] of the triangles with a (non-NaN) box, through the grid.
+fn grid_pairs(
+    boxes: &[Bounds3],
+    is: &[bool],
+    crosses: &(impl Fn(u32, u32) -> bool + Sync),
+) -> Vec<(u32, u32)> {
+    let few: Vec<u32> = (0..boxes.len() as u32)
+        .filter(|&i| is[i as usize])
+        .collect();
+    if few.len() * 10 > boxes.len() {
+        return filter_map_pairs(boxes, |i, j| {
             ((is[i as usize] || is[j as usize]) && crosses(i, j)).then_some((i, j))
         });
     }
     let mut found: Vec<(u32, u32)> = few
         .par_iter()
         .flat_map_iter(|&i| {
-            let (boxes, is) = (&boxes, &is);
-            (0..tris.len() as u32)
+            (0..boxes.len() as u32)
                 .filter(move |&j| {
                     j != i
                         && (!is[j as usize] || j > i)
@@ -275,6 +307,54 @@ fn crossing_pairs(
         .collect();
     found.sort_unstable();
     found
+}
+
+/// Up to this many plates, each finds its neighbours by scanning every box.
+const SCANNED_PLATES: usize = 8;
+
+/// [`crossing_pairs`] with a triangle on a plate: each plate against the triangles whose
+/// boxes meet its box (found in a tree over all of them), pair by pair only for those not
+/// clear of it.
+fn plate_pairs(
+    plates: &[plates::Plate],
+    tris: &[Tri],
+    boxes: &[Bounds3],
+    is: &[bool],
+    crosses: &(impl Fn(u32, u32) -> bool + Sync),
+) -> Vec<(u32, u32)> {
+    let all: Vec<Box3> = boxes
+        .iter()
+        .map(|b| Box3::new(P3::from(b[0]), P3::from(b[1])))
+        .collect();
+    // A few plates scan the boxes; many search a tree (built only then).
+    let tree = (plates.len() > SCANNED_PLATES).then(|| BoxTree::new(&all));
+    plates
+        .iter()
+        .flat_map(|p| {
+            let plate_suspect = is[p.tris.start as usize];
+            let wanted = |u: u32| !p.tris.contains(&u) && (plate_suspect || is[u as usize]);
+            let candidates: Vec<u32> = match &tree {
+                Some(tree) => {
+                    let mut c = Vec::new();
+                    tree.any_meeting(&all, &p.bounds, |u| {
+                        if wanted(u) {
+                            c.push(u);
+                        }
+                        false
+                    });
+                    c
+                }
+                None => {
+                    let pb: Bounds3 = [p.bounds.lo.coords.into(), p.bounds.hi.coords.into()];
+                    (0..boxes.len() as u32)
+                        .into_par_iter()
+                        .filter(|&u| wanted(u) && overlap(&boxes[u as usize], &pb))
+                        .collect()
+                }
+            };
+            p.crossings(tris, &all, &candidates, crosses)
+        })
+        .collect()
 }
 
 /// Exact: triangles `t` and `u` (non-degenerate, of one mesh) meet other than in the
@@ -327,7 +407,17 @@ fn touch_beyond_vertex(t: &Tri, i: usize, u: &Tri, j: usize) -> bool {
     let v = t.p[i];
     let (a, b) = (t.p[(i + 1) % 3], t.p[(i + 2) % 3]);
     let (c, d) = (u.p[(j + 1) % 3], u.p[(j + 2) % 3]);
-    let coplanar = orient3d(&v, &a, &b, &c) == 0.0 && orient3d(&v, &a, &b, &d) == 0.0;
+    // One triangle's other corners strictly on one side of the other's plane: they meet
+    // in v alone (the cheap answer for most neighbours; no exact zero is needed for it).
+    let (sc, sd) = (orient3d(&v, &a, &b, &c), orient3d(&v, &a, &b, &d));
+    if sc * sd > 0.0 {
+        return false;
+    }
+    let (sa, sb) = (orient3d(&v, &c, &d, &a), orient3d(&v, &c, &d, &b));
+    if sa * sb > 0.0 {
+        return false;
+    }
+    let coplanar = sc == 0.0 && sd == 0.0;
     if !coplanar {
         return segment_meets_triangle(&a, &b, &u.p) || segment_meets_triangle(&c, &d, &t.p);
     }

@@ -56,6 +56,14 @@ pub fn ear_clip_simple(pts: &[P3], normal: &V3) -> Option<Vec<[usize; 3]>> {
     Some(tris)
 }
 
+/// Exact: `pts`, projected along the dominant axis of `normal` as [`ear_clip_simple`]
+/// projects it, is a strictly convex ring winding the way `normal` says.
+pub fn strictly_convex_face(pts: &[P3], normal: &V3) -> bool {
+    let (ax, ay, flip) = projection_axes(normal);
+    let p2: Vec<[f64; 2]> = pts.iter().map(|p| [p[ax], p[ay]]).collect();
+    strictly_convex(&p2, flip)
+}
+
 /// Coordinate axes to project on (dropping the normal's dominant axis), and whether the
 /// projection reverses orientation.
 fn projection_axes(n: &V3) -> (usize, usize, bool) {
