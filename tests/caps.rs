@@ -250,3 +250,53 @@ fn a_sheet_is_refused_and_keeps_two_sides() {
     assert_eq!(st[0], Solidity::Open(CapFailure::InsideOut));
     assert_eq!(compare(&s, top()), 0);
 }
+
+/// A unit cube of triangles whose top edge y = 0, z = 1 has its midpoint as a corner of the
+/// top's triangles but not of the front's: a T-junction crack (a hole of zero area).
+fn cracked_cube() -> Mesh {
+    let mut p: Vec<[f64; 3]> = (0..8)
+        .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+        .collect();
+    p.push([0.5, 0.0, 1.0]); // 8: on the edge 4-5
+    mesh(
+        &p,
+        &[
+            &[0, 2, 3],
+            &[0, 3, 1], // floor, facing -z
+            &[0, 1, 5],
+            &[0, 5, 4], // front, y = 0: the edge 5 -> 4 passes over 8
+            &[2, 6, 7],
+            &[2, 7, 3], // back, y = 1
+            &[0, 4, 6],
+            &[0, 6, 2], // x = 0
+            &[1, 3, 7],
+            &[1, 7, 5], // x = 1
+            &[4, 8, 6],
+            &[8, 5, 7],
+            &[8, 7, 6], // top, z = 1, through 8
+        ],
+    )
+}
+
+#[test]
+fn a_t_junction_crack_is_closed_and_the_cube_culls_like_the_two_sided_render() {
+    let s = scene(vec![("cube", cracked_cube())]);
+    assert!(matches!(
+        solidity_of(&prepared(&s))[..],
+        [Solidity::Capped(1)]
+    ));
+    let mut culled = 0;
+    for d in [
+        V3::new(-1.0, -2.0, -3.0),
+        V3::new(0.3, 1.0, -0.2),
+        V3::new(0.0, 0.4, -1.0),
+    ] {
+        culled += compare(&s, Camera::orthographic(d, V3::y()).unwrap());
+    }
+    let eye = P3::new(0.5, -3.0, 2.5);
+    culled += compare(
+        &s,
+        Camera::perspective(eye, P3::new(0.5, 0.5, 0.5), V3::z(), 50.0, 0.01).unwrap(),
+    );
+    assert!(culled >= 12, "culled {culled}");
+}

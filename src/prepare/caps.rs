@@ -14,6 +14,9 @@
 //! ([`super::solidity::solidity`]): closed and consistently oriented, non-degenerate, no two
 //! triangles crossing, every piece of positive volume.
 //!
+//! A hole of zero area (a T-junction crack, [`super::slits`]: what dropping a zero-area
+//! triangle leaves) is not capped but closed, by splitting the triangle edge across it.
+//!
 //! # Why back faces away from the caps are hidden
 //!
 //! Let w(x) be S's winding number: an integer off S, ≥ 0, 0 at the eye (orthographic: at
@@ -44,6 +47,7 @@ use crate::scene::topology::{edge_topology, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Face, Mesh, Solidity};
 
+use super::slits::close_slits;
 #[cfg(test)]
 use super::solidity::solidity;
 use super::solidity::{crossing_faces, degenerate, examine_where};
@@ -82,10 +86,22 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
         // A sheet in one plane: whatever caps it, nothing is enclosed.
         return Err(CapFailure::InsideOut);
     }
-    let loops = boundary_loops(&mesh.faces);
-    if loops.iter().any(|l| slit(mesh, l)) {
-        return Err(CapFailure::Slit);
-    }
+    let (slits, loops): (Vec<Vec<u32>>, Vec<Vec<u32>>) = boundary_loops(&mesh.faces)
+        .into_iter()
+        .partition(|l| slit(mesh, l));
+    let closed;
+    let mesh = if slits.is_empty() {
+        mesh
+    } else {
+        // T-junction cracks are closed by splitting the edges across them, not capped.
+        closed = Mesh {
+            vertices: mesh.vertices.clone(),
+            faces: close_slits(mesh, &slits).ok_or(CapFailure::Slit)?,
+            ..Mesh::default()
+        };
+        &closed
+    };
+    let holes = (loops.len() + slits.len()) as u32;
     let n = mesh.faces.len() as u32;
     let mut ways = vec![Way::Fan; loops.len()];
     // The holes whose caps are tested: all at first; after a test that reached the crossing
@@ -97,7 +113,7 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
         let cap = |f: u32| f.checked_sub(n).map(|k| loop_of[k as usize]);
         let reached_crossings = !matches!(e.solidity, Solidity::Degenerate);
         let mut retry: Vec<usize> = match e.solidity {
-            Solidity::Solid => return whole(mesh, &capped, loops.len()),
+            Solidity::Solid => return whole(mesh, &capped, holes),
             Solidity::Degenerate => {
                 if e.degenerate.iter().any(|&f| f < n) {
                     return Err(CapFailure::MeshDegenerate);
@@ -141,11 +157,11 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
 /// The whole capped surface decided, its caps found apart from everything and the rest of
 /// [`examine`] passed (closed, non-degenerate, pieces of positive volume): only the mesh's
 /// own pairs of triangles are left to test. The caps, or why not.
-fn whole(mesh: &Mesh, capped: &Mesh, loops: usize) -> Result<Caps, CapFailure> {
+fn whole(mesh: &Mesh, capped: &Mesh, loops: u32) -> Result<Caps, CapFailure> {
     let n = mesh.faces.len() as u32;
     match crossing_faces(capped, |f| f < n) {
         Ok(c) if c.is_empty() => Ok(Caps {
-            loops: loops as u32,
+            loops,
             triangles: capped.faces[n as usize..]
                 .iter()
                 .map(|f| f.vertices.iter().map(|&v| capped.vertices[v as usize]))
@@ -447,7 +463,7 @@ mod tests {
     }
 
     #[test]
-    fn a_t_junction_crack_is_a_slit_no_cap_can_close() {
+    fn a_t_junction_crack_is_closed_by_splitting_the_edge_across_it() {
         // A tetrahedron whose face 1-2-3 is split at the midpoint 4 of edge 1-2 while the
         // face across that edge is not: the hole 1, 2, 4 has its corners on one line.
         let vertices = vec![
@@ -469,7 +485,27 @@ mod tests {
         let loops = boundary_loops(&m.faces);
         assert_eq!(loops.len(), 1);
         assert!(slit(&m, &loops[0]));
-        assert_eq!(cap_holes(&m), Err(CapFailure::Slit));
+        // The face 0-2-1 gets the corner 4 on its edge 2-1: closed, no cap needed.
+        let closed = close_slits(&m, &loops).unwrap();
+        assert_eq!(closed[0].vertices, vec![0, 2, 4, 1]);
+        assert_eq!(
+            cap_holes(&m),
+            Ok(Caps {
+                loops: 1,
+                triangles: vec![]
+            })
+        );
+        // The same crack along a quad is refused (a polygon split anew could be another
+        // surface than the view's pieces of it).
+        let mut quad = m.clone();
+        quad.vertices.push(P3::new(0.2, 0.2, -0.5));
+        quad.faces[0] = Face::new(vec![0, 5, 2, 1]);
+        quad.faces.push(Face::new(vec![5, 0, 2]));
+        let slits = boundary_loops(&quad.faces);
+        assert_eq!(slits.len(), 1);
+        assert!(slit(&quad, &slits[0]));
+        assert!(close_slits(&quad, &slits).is_none());
+        assert_eq!(cap_holes(&quad), Err(CapFailure::Slit));
         assert!(!slit(
             &cube_without(&[1]),
             &boundary_loops(&cube_without(&[1]).faces)[0]

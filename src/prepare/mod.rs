@@ -10,6 +10,7 @@ pub mod grow;
 pub mod halfspace;
 pub mod inbox;
 pub mod place;
+mod slits;
 pub mod solid;
 pub mod solidity;
 pub mod trees;

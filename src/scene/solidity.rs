@@ -36,8 +36,9 @@ pub enum CapFailure {
     MeshDegenerate,
     /// The mesh itself crosses itself (pairs of triangles).
     MeshSelfIntersecting(u64),
-    /// A hole has zero area: its corners lie on one line (a crack along a T-junction), so
-    /// no cap triangle can close it.
+    /// A hole has zero area (its corners on one line: a crack along a T-junction) and an
+    /// edge across it is not on a triangle, so it cannot be closed by splitting that edge
+    /// (triangles are, [`crate::prepare::caps`]), and no cap triangle can close it.
     Slit,
     /// A cap has a triangle of zero area, fanned or ear-clipped.
     Degenerate,
@@ -109,7 +110,7 @@ impl CapFailure {
                 format!("not capped: the mesh crosses itself ({n} pairs of triangles)")
             }
             CapFailure::Slit => {
-                "not capped: a hole has zero area (its corners on one line: a T-junction crack)"
+                "not capped: a T-junction crack (a hole of zero area) along a face that is not a triangle"
                     .into()
             }
             CapFailure::Degenerate => "capping failed: a cap triangle has zero area".into(),
