@@ -14,7 +14,7 @@
 //! ([`super::solidity::solidity`]): closed and consistently oriented, non-degenerate, no two
 //! triangles crossing, every piece of positive volume.
 //!
-//! A hole of zero area (a T-junction crack, [`super::slits`]: what dropping a zero-area
+//! A hole of zero area (a T-junction crack, `slits.rs`: what dropping a zero-area
 //! triangle leaves) is not capped but closed, by splitting the triangle edge across it.
 //!
 //! # Why back faces away from the caps are hidden
