@@ -8,7 +8,8 @@
 //!   oriented: w is an integer off the surface);
 //! - every face triangulates into non-degenerate triangles (exact ear clipping);
 //! - no two of those triangles meet except in the vertices and edges they share (exact
-//!   triangle tests over a grid broad phase): the surface is embedded, so each connected
+//!   triangle tests over a grid broad phase; long planar convex faces met as wholes,
+//!   `solidity/plates.rs`): the surface is embedded, so each connected
 //!   piece adds 0 or ±1 to w;
 //! - every edge-connected piece has positive signed volume (outward), decided exactly: then
 //!   each adds 0 or +1, and w ≥ 0.
@@ -313,8 +314,8 @@ fn grid_pairs(
 const SCANNED_PLATES: usize = 8;
 
 /// [`crossing_pairs`] with a triangle on a plate: each plate against the triangles whose
-/// boxes meet its box (found in a tree over all of them), pair by pair only for those not
-/// clear of it.
+/// boxes meet its box (by a scan, or in a tree over all of them when plates are many), pair
+/// by pair only for those not clear of it.
 fn plate_pairs(
     plates: &[plates::Plate],
     tris: &[Tri],
