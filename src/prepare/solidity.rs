@@ -451,21 +451,25 @@ fn edge_pieces(mesh: &Mesh) -> Pieces {
         }
         x
     }
-    let mut first: HashMap<(u32, u32), u32> = HashMap::with_capacity(n * 2);
+    // Undirected edges with their faces, sorted: the faces of one edge are neighbours in the
+    // list (no hashing). The pieces depend only on which faces share edges, not on order.
+    let mut edges: Vec<(u64, u32)> = Vec::with_capacity(n * 3);
     for (k, f) in mesh.faces.iter().enumerate() {
         let m = f.vertices.len();
         for e in 0..m {
             let (a, b) = (f.vertices[e], f.vertices[(e + 1) % m]);
-            let key = (a.min(b), a.max(b));
-            match first.get(&key) {
-                Some(&g) => {
-                    let (ra, rb) = (find(&mut parent, g), find(&mut parent, k as u32));
-                    parent[ra.max(rb) as usize] = ra.min(rb);
-                }
-                None => {
-                    first.insert(key, k as u32);
-                }
-            }
+            edges.push(((a.min(b) as u64) << 32 | a.max(b) as u64, k as u32));
+        }
+    }
+    if edges.len() > 1 << 14 {
+        edges.par_sort_unstable();
+    } else {
+        edges.sort_unstable();
+    }
+    for w in edges.windows(2) {
+        if w[0].0 == w[1].0 {
+            let (ra, rb) = (find(&mut parent, w[0].1), find(&mut parent, w[1].1));
+            parent[ra.max(rb) as usize] = ra.min(rb);
         }
     }
     let mut label = vec![u32::MAX; n];
