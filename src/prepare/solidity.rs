@@ -28,6 +28,7 @@ use num_traits::{Signed, Zero};
 use rayon::prelude::*;
 
 mod plates;
+mod slab;
 
 use crate::geom::box_pairs::{filter_map_pairs, overlap, Bounds3};
 use crate::geom::box_tree::BoxTree;

@@ -66,7 +66,7 @@ pub fn strictly_convex_face(pts: &[P3], normal: &V3) -> bool {
 
 /// Coordinate axes to project on (dropping the normal's dominant axis), and whether the
 /// projection reverses orientation.
-fn projection_axes(n: &V3) -> (usize, usize, bool) {
+pub fn projection_axes(n: &V3) -> (usize, usize, bool) {
     let a = n.abs();
     let drop = if a.x >= a.y && a.x >= a.z {
         0
