@@ -4,6 +4,7 @@
 use rayon::prelude::*;
 
 use crate::geom::{newell_indexed, Box3, P3, V3};
+use crate::scene::topology::sort;
 use crate::scene::Mesh;
 
 use super::halfspace::largest_box_within;
@@ -94,13 +95,7 @@ impl EdgeTwins {
                 face.push(k as u32);
             }
         }
-        if ends.len() > PARALLEL_ABOVE {
-            ends.par_sort_unstable();
-        } else {
-            // Small meshes stay off the thread pool (200k one-box objects would each wait
-            // on it).
-            ends.sort_unstable();
-        }
+        sort(&mut ends);
         let mut twin = vec![u32::MAX; face.len()];
         let mut i = 0;
         while i < ends.len() {

@@ -34,7 +34,7 @@ use crate::geom::box_pairs::{filter_map_pairs, overlap, Bounds3};
 use crate::geom::box_tree::BoxTree;
 use crate::geom::tri_intersect::{plane_axes, segment_meets_triangle, triangles_intersect};
 use crate::geom::{newell, orient2d, orient3d, Box3, P3};
-use crate::scene::topology::{edge_topology, Topology};
+use crate::scene::topology::{edge_topology, sort, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Content, Mesh, Object, Solidity};
 
@@ -462,11 +462,7 @@ fn edge_pieces(mesh: &Mesh) -> Pieces {
             edges.push(((a.min(b) as u64) << 32 | a.max(b) as u64, k as u32));
         }
     }
-    if edges.len() > 1 << 14 {
-        edges.par_sort_unstable();
-    } else {
-        edges.sort_unstable();
-    }
+    sort(&mut edges);
     for w in edges.windows(2) {
         if w[0].0 == w[1].0 {
             let (ra, rb) = (find(&mut parent, w[0].1), find(&mut parent, w[1].1));

@@ -52,8 +52,9 @@ pub fn edge_topology(faces: &[Face]) -> Topology {
     }
 }
 
-/// Sorts on all threads when the list is long.
-fn sort(v: &mut [u64]) {
+/// Sorts on all threads when the list is long; short lists stay off the thread pool (200k
+/// one-box objects would each wait on it).
+pub(crate) fn sort<T: Ord + Send>(v: &mut [T]) {
     if v.len() > 1 << 14 {
         v.par_sort_unstable();
     } else {

@@ -161,42 +161,42 @@ impl Plate {
         if unclear.is_empty() {
             return Vec::new();
         }
-        let own = &boxes[self.tris.start as usize..self.tris.end as usize];
-        let tree = BoxTree::new(own);
-        let at = self.triangles_at(tris);
-        unclear
+        // Triangles standing on an edge or corner are tested against the plate's triangles
+        // there; the rest against those whose boxes meet theirs. Each index is built only if
+        // some triangle needs it.
+        let (standing, loose): (Vec<_>, Vec<_>) = unclear
             .par_iter()
-            .flat_map_iter(|&u| {
-                let mut hits = Vec::new();
-                let mut test = |t: u32| {
-                    if cross(t, u) {
-                        hits.push((t.min(u), t.max(u)));
-                    }
-                };
-                match self.standing_on(&tris[u as usize]) {
-                    Some(ends) => {
-                        let mut near: Vec<u32> = ends
-                            .iter()
-                            .flat_map(|&e| {
-                                let from = at.partition_point(|x| x.0 < e);
-                                at[from..].iter().take_while(move |x| x.0 == e)
-                            })
-                            .map(|x| x.1)
-                            .collect();
-                        near.sort_unstable();
-                        near.dedup();
-                        near.into_iter().for_each(&mut test);
-                    }
-                    None => {
-                        tree.any_meeting(own, &boxes[u as usize], |k| {
-                            test(self.tris.start + k);
-                            false
-                        });
-                    }
-                }
-                hits
-            })
-            .collect()
+            .map(|&u| (u, self.standing_on(&tris[u as usize])))
+            .partition(|(_, on)| on.is_some());
+        let test = |t: u32, u: u32| cross(t, u).then(|| (t.min(u), t.max(u)));
+        let mut hits: Vec<(u32, u32)> = Vec::new();
+        if !standing.is_empty() {
+            let at = self.triangles_at(tris);
+            let at_corner = |e: u32| {
+                let from = at.partition_point(|x| x.0 < e);
+                at[from..].iter().take_while(move |x| x.0 == e).map(|x| x.1)
+            };
+            hits.par_extend(standing.par_iter().flat_map_iter(|&(u, on)| {
+                let [a, b] = on.expect("standing");
+                let mut near: Vec<u32> = at_corner(a).chain(at_corner(b)).collect();
+                near.sort_unstable();
+                near.dedup();
+                near.into_iter().filter_map(move |t| test(t, u))
+            }));
+        }
+        if !loose.is_empty() {
+            let own = &boxes[self.tris.start as usize..self.tris.end as usize];
+            let tree = BoxTree::new(own);
+            hits.par_extend(loose.par_iter().flat_map_iter(|&(u, _)| {
+                let mut found = Vec::new();
+                tree.any_meeting(own, &boxes[u as usize], |k| {
+                    found.extend(test(self.tris.start + k, u));
+                    false
+                });
+                found
+            }));
+        }
+        hits
     }
 
     /// (corner position, plate triangle) for every corner of every plate triangle, sorted.
@@ -216,7 +216,7 @@ impl Plate {
     /// The positions of the plate corners `u` stands on (an edge or one corner), when the
     /// plate's triangles without them cannot meet `u` (the module's slab argument); None
     /// when that is not shown.
-    fn standing_on(&self, u: &Tri) -> Option<Vec<u32>> {
+    fn standing_on(&self, u: &Tri) -> Option<[u32; 2]> {
         let n = self.ring.len() as u32;
         let on: Vec<u32> =
             u.v.iter()
@@ -248,7 +248,7 @@ impl Plate {
                     .map(|(dx, dy)| [p[x] + dx, p[y] + dy])
             })
             .all(beside)
-            .then(|| vec![a, b])
+            .then_some([a, b])
     }
 }
 
