@@ -105,10 +105,15 @@ fn g(x: f64) -> String {
 
 /// The solidity of a leaf (an instance's prototype leaf); None for a group.
 fn leaf_solidity(o: &Object) -> Option<Solidity> {
+    leaf_mesh(o).and_then(|m| m.solidity)
+}
+
+/// The mesh of a leaf (an instance's prototype leaf); None for a group.
+fn leaf_mesh(o: &Object) -> Option<&Mesh> {
     match &o.content {
-        Content::Mesh(m) => m.solidity,
+        Content::Mesh(m) => Some(m),
         Content::Subobjects(_) => None,
-        Content::Instance(i) => leaf_solidity(&i.prototype),
+        Content::Instance(i) => leaf_mesh(&i.prototype),
     }
 }
 
@@ -118,6 +123,21 @@ fn cull_text(o: &Object) -> Option<String> {
         Content::Subobjects(_) => return None,
         _ => leaf_solidity(o),
     };
+    if let Some(p) = leaf_mesh(o).and_then(|m| m.proven.as_ref()) {
+        let caps = leaf_mesh(o).map_or(0, |m| m.caps.len());
+        return Some(format!(
+            "back faces culled on {} of {} pieces ({} of {} faces{}); not on the rest: {}",
+            p.proven,
+            p.pieces,
+            p.proven_faces(),
+            p.faces.len(),
+            match caps {
+                0 => String::new(),
+                k => format!(", except near {k} cap triangles"),
+            },
+            s.map_or(String::new(), Solidity::reason)
+        ));
+    }
     Some(match s {
         Some(Solidity::Solid) => "solid: back faces culled".into(),
         Some(s @ Solidity::Capped(_)) => s.reason(),
@@ -290,12 +310,22 @@ fn object_json(o: &Object, name: &str) -> String {
     let solid = match (&o.content, leaf_solidity(o)) {
         (Content::Subobjects(_), _) => String::new(),
         (_, s) => format!(
-            ",\"solidity\":{},\"culled_back_faces\":{}{}",
+            ",\"solidity\":{},\"culled_back_faces\":{}{}{}",
             json_string(s.map_or("unprepared", Solidity::word)),
-            s.is_some_and(|s| s.is_solid() || s.is_capped()),
+            s.is_some_and(|s| s.is_solid() || s.is_capped())
+                || leaf_mesh(o).is_some_and(|m| m.proven.is_some()),
             match s {
                 Some(Solidity::Capped(n)) => format!(",\"caps\":{n}"),
                 _ => String::new(),
+            },
+            match leaf_mesh(o).and_then(|m| m.proven.as_ref()) {
+                Some(p) => format!(
+                    ",\"proven_pieces\":{},\"pieces\":{},\"proven_faces\":{}",
+                    p.proven,
+                    p.pieces,
+                    p.proven_faces()
+                ),
+                None => String::new(),
             }
         ),
     };

@@ -100,6 +100,7 @@ mod tests {
             closed: false,
             solidity: None,
             caps: Vec::new(),
+            proven: None,
         };
         let scene = Scene::new(
             Object::group("", vec![Object::from_mesh("sq", mesh)]),

@@ -19,12 +19,14 @@
 //!
 //! # Why back faces away from the caps are hidden
 //!
-//! Let w(x) be S's winding number: an integer off S, ≥ 0, 0 at the eye (orthographic: at
+//! Let w(x) be the winding number of the piece of S that holds f (pieces are edge-connected,
+//! a cap joins the piece of its hole; other pieces may pass through it, caps included, and
+//! play no part): an integer off that piece, ≥ 0, 0 at the eye (orthographic: at
 //! infinity; perspective: when every vertex of M and of the caps is in front of the near
 //! plane the eye is outside S's convex hull — the rule the view already uses for solids).
 //! Take p on a strictly back-facing face f of M. The segment from p toward the eye starts
 //! where w ≥ 1 (just past f's outer side is the inside of f's piece) and ends where w = 0,
-//! so it crosses S from inside to outside at some point q nearer than p: on a face g of S
+//! so it crosses the piece from inside to outside at some point q nearer than p: on a face g
 //! that is not strictly back-facing (front-facing, or seen edge-on where the segment runs
 //! in g's plane), and q projects onto p's screen point. The view
 //! ([`crate::view::caps`]) culls f only when no cap triangle that is not strictly
@@ -79,12 +81,46 @@ enum Way {
 /// times; only caps that pass go on to the one test of the whole surface (every pair of the
 /// mesh's own triangles).
 pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
+    capping(mesh).0
+}
+
+/// [`cap_holes`], with the capped surface it decided last where capping failed (None where
+/// none was built): its first faces are `mesh`'s (cracks closed, same indices), then the
+/// caps, so that [`super::solidity::pieces`] can still prove its pieces one by one.
+pub(crate) fn capping(mesh: &Mesh) -> (Result<Caps, CapFailure>, Option<Box<Failed>>) {
+    match cap_surface(mesh) {
+        Ok(caps) => (Ok(caps), None),
+        Err((why, surface)) => (Err(why), surface),
+    }
+}
+
+/// A capped surface that is not a solid as a whole.
+pub(crate) struct Failed {
+    /// The surface: the mesh's faces, then the caps.
+    pub(crate) surface: Mesh,
+    /// Every crossing pair of its faces, when capping failed only on pairs of the mesh's
+    /// own triangles (every pair with a cap found apart, every piece outward): then the
+    /// pieces need no second test.
+    pub(crate) crossing: Option<Vec<[u32; 2]>>,
+}
+
+/// A failure to cap, with the capped surface that failed (if any was built).
+type Refused = (CapFailure, Option<Box<Failed>>);
+
+fn cap_surface(mesh: &Mesh) -> Result<Caps, Refused> {
+    let refuse = |why| (why, None);
+    let failed = |surface| {
+        Some(Box::new(Failed {
+            surface,
+            crossing: None,
+        }))
+    };
     if edge_topology(&mesh.faces) != Topology::Open {
-        return Err(CapFailure::Inconsistent);
+        return Err(refuse(CapFailure::Inconsistent));
     }
     if flat(&mesh.vertices) {
         // A sheet in one plane: whatever caps it, nothing is enclosed.
-        return Err(CapFailure::InsideOut);
+        return Err(refuse(CapFailure::InsideOut));
     }
     let (slits, loops): (Vec<Vec<u32>>, Vec<Vec<u32>>) = boundary_loops(&mesh.faces)
         .into_iter()
@@ -96,7 +132,7 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
         // T-junction cracks are closed by splitting the edges across them, not capped.
         closed = Mesh {
             vertices: mesh.vertices.clone(),
-            faces: close_slits(mesh, &slits).ok_or(CapFailure::Slit)?,
+            faces: close_slits(mesh, &slits).ok_or(refuse(CapFailure::Slit))?,
             ..Mesh::default()
         };
         &closed
@@ -113,10 +149,10 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
         let cap = |f: u32| f.checked_sub(n).map(|k| loop_of[k as usize]);
         let reached_crossings = !matches!(e.solidity, Solidity::Degenerate);
         let mut retry: Vec<usize> = match e.solidity {
-            Solidity::Solid => return whole(mesh, &capped, holes),
+            Solidity::Solid => return whole(mesh, capped, holes),
             Solidity::Degenerate => {
                 if e.degenerate.iter().any(|&f| f < n) {
-                    return Err(CapFailure::MeshDegenerate);
+                    return Err((CapFailure::MeshDegenerate, failed(capped)));
                 }
                 e.degenerate.iter().filter_map(|&f| cap(f)).collect()
             }
@@ -126,9 +162,9 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
                 .flatten()
                 .filter_map(|&f| cap(f))
                 .collect(),
-            Solidity::InsideOut => return Err(CapFailure::InsideOut),
+            Solidity::InsideOut => return Err((CapFailure::InsideOut, failed(capped))),
             Solidity::Open(_) | Solidity::Capped(_) | Solidity::Inconsistent => {
-                return Err(CapFailure::Inconsistent)
+                return Err(refuse(CapFailure::Inconsistent))
             }
         };
         retry.sort_unstable();
@@ -137,10 +173,11 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
         // out would not be tested again).
         let fixable = |l: &usize| ways[*l] == Way::Fan && ears(mesh, &loops[*l]).is_some();
         if retry.is_empty() || !retry.iter().all(fixable) || attempt == ATTEMPTS {
-            return Err(match e.solidity {
+            let why = match e.solidity {
                 Solidity::SelfIntersecting(k) => CapFailure::SelfIntersecting(k),
                 _ => CapFailure::Degenerate,
-            });
+            };
+            return Err((why, failed(capped)));
         }
         if reached_crossings {
             suspect.iter_mut().for_each(|s| *s = false);
@@ -151,15 +188,15 @@ pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
         }
     }
     // The last attempt returns above.
-    Err(CapFailure::Inconsistent)
+    Err(refuse(CapFailure::Inconsistent))
 }
 
 /// The whole capped surface decided, its caps found apart from everything and the rest of
 /// [`examine`] passed (closed, non-degenerate, pieces of positive volume): only the mesh's
 /// own pairs of triangles are left to test. The caps, or why not.
-fn whole(mesh: &Mesh, capped: &Mesh, loops: u32) -> Result<Caps, CapFailure> {
+fn whole(mesh: &Mesh, capped: Mesh, loops: u32) -> Result<Caps, Refused> {
     let n = mesh.faces.len() as u32;
-    match crossing_faces(capped, |f| f < n) {
+    match crossing_faces(&capped, |f| f < n) {
         Ok(c) if c.is_empty() => Ok(Caps {
             loops,
             triangles: capped.faces[n as usize..]
@@ -168,8 +205,20 @@ fn whole(mesh: &Mesh, capped: &Mesh, loops: u32) -> Result<Caps, CapFailure> {
                 .map(|mut t| [(); 3].map(|_| t.next().expect("a triangle")))
                 .collect(),
         }),
-        Ok(c) => Err(CapFailure::MeshSelfIntersecting(c.len() as u64)),
-        Err(_) => Err(CapFailure::MeshDegenerate),
+        Ok(c) => Err((
+            CapFailure::MeshSelfIntersecting(c.len() as u64),
+            Some(Box::new(Failed {
+                surface: capped,
+                crossing: Some(c),
+            })),
+        )),
+        Err(_) => Err((
+            CapFailure::MeshDegenerate,
+            Some(Box::new(Failed {
+                surface: capped,
+                crossing: None,
+            })),
+        )),
     }
 }
 
@@ -317,7 +366,7 @@ pub fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// The unit cube's faces, outward, and its corners; `skip` faces left out.
@@ -410,10 +459,10 @@ mod tests {
     }
 
     #[test]
-    fn a_cap_through_the_mesh_is_refused() {
+    fn a_cap_through_another_piece_is_kept() {
         // The open box holds a closed tetrahedron that pokes up through its mouth, touching
-        // nothing: the mesh is embedded, open only at the mouth, but the mouth's cap crosses
-        // the tetrahedron.
+        // nothing. The mouth's cap crosses the tetrahedron, but that is another piece: each
+        // piece bounds its own inside, and the culling argument is piece by piece.
         let mut m = cube_without(&[1]);
         let a = m.vertices.len() as u32;
         m.vertices.extend([
@@ -426,14 +475,51 @@ mod tests {
             m.faces.push(Face::new(f.iter().map(|k| a + k).collect()));
         }
         assert_eq!(solidity(&m), Solidity::Open(CapFailure::NotTried));
+        assert_eq!(cap_holes(&m).map(|c| c.loops), Ok(1));
+    }
+
+    /// An open box whose floor has a square hole into a closed chimney (a pocket of the
+    /// outside) that rises to height `top`: one piece, embedded, open only at the mouth.
+    pub(crate) fn box_with_chimney(top: f64) -> Mesh {
+        let ring = |h: f64, lo: f64, hi: f64| {
+            [[lo, lo], [hi, lo], [hi, hi], [lo, hi]].map(|[x, y]| P3::new(x, y, h))
+        };
+        let vertices: Vec<P3> = [
+            ring(0.0, 0.0, 1.0), // O 0..4: the floor's outer corners
+            ring(0.0, 0.4, 0.6), // I 4..8: the hole in the floor
+            ring(1.0, 0.0, 1.0), // T 8..12: the mouth
+            ring(top, 0.4, 0.6), // C 12..16: the chimney's top
+        ]
+        .concat();
+        let (o, i, t, c) = (0u32, 4u32, 8u32, 12u32);
+        let mut faces = Vec::new();
+        for k in 0..4u32 {
+            let l = (k + 1) % 4;
+            faces.push(Face::new(vec![o + k, i + k, i + l, o + l])); // floor, facing -z
+            faces.push(Face::new(vec![o + k, o + l, t + l, t + k])); // wall, outward
+            faces.push(Face::new(vec![i + l, i + k, c + k, c + l])); // chimney, inward
+        }
+        faces.push(Face::new(vec![c, c + 3, c + 2, c + 1])); // chimney top, facing -z
+        Mesh {
+            vertices,
+            faces,
+            ..Mesh::default()
+        }
+    }
+
+    #[test]
+    fn a_cap_through_its_own_piece_is_refused() {
+        // The chimney rises through the mouth: any cap of the mouth (fan or ears, both in
+        // z = 1) crosses its walls, and they are of the same piece.
+        let m = box_with_chimney(1.5);
+        assert_eq!(solidity(&m), Solidity::Open(CapFailure::NotTried));
         let r = cap_holes(&m);
         assert!(
             matches!(r, Err(CapFailure::SelfIntersecting(n)) if n > 0),
             "{r:?}"
         );
-        // With its apex lowered into the box, the same tetrahedron is fine.
-        m.vertices[a as usize + 3].z = 0.9;
-        assert_eq!(cap_holes(&m).map(|c| c.loops), Ok(1));
+        // With the chimney's top lowered into the box, the same mesh caps.
+        assert_eq!(cap_holes(&box_with_chimney(0.9)).map(|c| c.loops), Ok(1));
     }
 
     #[test]

@@ -2,17 +2,18 @@
 //!
 //! Culling a back face is safe when the faces bound their inside the way the culling
 //! argument needs (docs/numerics.md, "Back-face culling"): with w(x) the winding number of
-//! the surface around x, a back face is hidden by a front face of the same mesh whenever
-//! w ≥ 0 everywhere and the eye lies where w = 0. A mesh is proven [`Solidity::Solid`] when
+//! one edge-connected piece of the surface around x, a back face of that piece is hidden by
+//! a front face of the same piece whenever w ≥ 0 everywhere and the eye lies where w = 0.
+//! Pieces may pass through one another (they only hide more). A mesh is proven
+//! [`Solidity::Solid`] when
 //! - every edge is used by exactly two faces, once in each direction (closed, consistently
 //!   oriented: w is an integer off the surface);
 //! - every face triangulates into non-degenerate triangles (exact ear clipping);
-//! - no two of those triangles meet except in the vertices and edges they share (exact
-//!   triangle tests over a grid broad phase; long planar convex faces met as wholes,
-//!   `solidity/plates.rs`): the surface is embedded, so each connected
-//!   piece adds 0 or ±1 to w;
+//! - no two triangles of one edge-connected piece meet except in the vertices and edges they
+//!   share (exact triangle tests over a grid broad phase; long planar convex faces met as
+//!   wholes, `solidity/plates.rs`): each piece is embedded, so its w is 0 or ±1;
 //! - every edge-connected piece has positive signed volume (outward), decided exactly: then
-//!   each adds 0 or +1, and w ≥ 0.
+//!   its w is 0 or +1.
 //!
 //! An open mesh is then offered to [`super::caps`]: with its holes capped it may still be
 //! proven a solid, and its back faces culled away from the caps.
@@ -27,6 +28,7 @@ use num_traits::{Signed, Zero};
 
 use rayon::prelude::*;
 
+pub mod pieces;
 mod plates;
 mod slab;
 
@@ -57,12 +59,13 @@ pub(crate) fn crossing_faces(
     suspect: impl Fn(u32) -> bool + Sync,
 ) -> Result<Vec<[u32; 2]>, Vec<u32>> {
     let (tris, face_of) = surface_triangles(mesh)?;
-    Ok(
-        crossing_pairs(mesh, &tris, &face_of, |t| suspect(face_of[t as usize]))
-            .into_iter()
-            .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
-            .collect(),
-    )
+    let pieces = edge_pieces(mesh);
+    Ok(crossing_pairs(mesh, &tris, &face_of, &pieces.of_face, |t| {
+        suspect(face_of[t as usize])
+    })
+    .into_iter()
+    .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
+    .collect())
 }
 
 /// A mesh's solidity and, where it fails on faces, which ones.
@@ -103,11 +106,13 @@ pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -
             }
         }
     };
-    let crossing: Vec<[u32; 2]> =
-        crossing_pairs(mesh, &tris, &face_of, |t| suspect(face_of[t as usize]))
-            .into_iter()
-            .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
-            .collect();
+    let pieces = edge_pieces(mesh);
+    let crossing: Vec<[u32; 2]> = crossing_pairs(mesh, &tris, &face_of, &pieces.of_face, |t| {
+        suspect(face_of[t as usize])
+    })
+    .into_iter()
+    .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
+    .collect();
     if !crossing.is_empty() {
         return Examined {
             solidity: Solidity::SelfIntersecting(crossing.len() as u64),
@@ -115,7 +120,6 @@ pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -
             crossing,
         };
     }
-    let pieces = edge_pieces(mesh);
     let mut by_piece: Vec<Vec<usize>> = vec![Vec::new(); pieces.count];
     for (t, &f) in face_of.iter().enumerate() {
         by_piece[pieces.of_face[f as usize] as usize].push(t);
@@ -133,18 +137,35 @@ pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -
 }
 
 /// Fills [`Mesh::solidity`] of `mesh`, and for an open mesh whose holes cap into a solid
-/// ([`super::caps`]), its [`Mesh::caps`].
+/// ([`super::caps`]), its [`Mesh::caps`]; where the whole is not a solid, the pieces that
+/// are ([`Mesh::proven`], [`pieces`]) with their caps.
 pub fn decide(mesh: &mut Mesh) {
-    let s = match solidity(mesh) {
-        Solidity::Open(_) => match super::caps::cap_holes(mesh) {
-            Ok(caps) => {
+    let n = mesh.faces.len();
+    let whole = examine(mesh);
+    let (s, proven) = match whole.solidity {
+        Solidity::Open(_) => match super::caps::capping(mesh) {
+            (Ok(caps), _) => {
                 mesh.caps = caps.triangles;
-                Solidity::Capped(caps.loops)
+                (Solidity::Capped(caps.loops), None)
             }
-            Err(why) => Solidity::Open(why),
+            (Err(why), failed) => (
+                Solidity::Open(why),
+                failed.and_then(|f| pieces::proven_pieces(&f.surface, n, f.crossing.as_deref())),
+            ),
         },
-        s => s,
+        // Every crossing pair was found (nothing degenerate, every pair tested).
+        s @ Solidity::SelfIntersecting(_) => {
+            (s, pieces::proven_pieces(mesh, n, Some(&whole.crossing)))
+        }
+        s @ (Solidity::InsideOut | Solidity::Degenerate) => {
+            (s, pieces::proven_pieces(mesh, n, None))
+        }
+        s => (s, None),
     };
+    if let Some((p, caps)) = proven {
+        mesh.proven = Some(p);
+        mesh.caps = caps;
+    }
     mesh.solidity = Some(s);
 }
 
@@ -187,10 +208,21 @@ fn mark(obj: &mut Object, done: &mut Marked) {
 /// the view's planar pieces), with each triangle's face. Err(the faces) where a face is not
 /// simple or a triangle is degenerate.
 fn surface_triangles(mesh: &Mesh) -> Result<(Vec<Tri>, Vec<u32>), Vec<u32>> {
+    let (tris, face_of, bad) = triangulate(mesh);
+    if bad.is_empty() {
+        Ok((tris, face_of))
+    } else {
+        Err(bad)
+    }
+}
+
+/// The triangles of every face that triangulates into non-degenerate triangles, with each
+/// triangle's face, and the faces that do not (ascending).
+fn triangulate(mesh: &Mesh) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
     let mut tris = Vec::with_capacity(mesh.faces.len() * 2);
     let mut face_of = Vec::with_capacity(mesh.faces.len() * 2);
     let mut bad = Vec::new();
-    'faces: for (k, f) in mesh.faces.iter().enumerate() {
+    for (k, f) in mesh.faces.iter().enumerate() {
         let pts: Vec<P3> = f
             .vertices
             .iter()
@@ -207,24 +239,20 @@ fn surface_triangles(mesh: &Mesh) -> Result<(Vec<Tri>, Vec<u32>), Vec<u32>> {
                 }
             }
         };
-        for t in local {
-            let tri = Tri {
-                v: t.map(|i| f.vertices[i]),
-                p: t.map(|i| pts[i]),
-            };
-            if degenerate(&tri.p) {
-                bad.push(k as u32);
-                continue 'faces;
-            }
-            tris.push(tri);
-            face_of.push(k as u32);
+        let first = tris.len();
+        tris.extend(local.iter().map(|t| Tri {
+            v: t.map(|i| f.vertices[i]),
+            p: t.map(|i| pts[i]),
+        }));
+        if tris[first..].iter().any(|t| degenerate(&t.p)) {
+            // A face with a flat triangle gives none.
+            tris.truncate(first);
+            bad.push(k as u32);
+        } else {
+            face_of.resize(tris.len(), k as u32);
         }
     }
-    if bad.is_empty() {
-        Ok((tris, face_of))
-    } else {
-        Err(bad)
-    }
+    (tris, face_of, bad)
 }
 
 /// Exact: the three points are collinear (every coordinate-plane projection is degenerate).
@@ -234,8 +262,8 @@ pub(crate) fn degenerate(p: &[P3; 3]) -> bool {
         .all(|&(x, y)| orient2d([p[0][x], p[0][y]], [p[1][x], p[1][y]], [p[2][x], p[2][y]]) == 0.0)
 }
 
-/// The triangle pairs with a triangle passing `suspect` that meet other than in shared
-/// vertices and edges, ascending. Plates ([`plates`]: long planar convex faces) are met as
+/// The triangle pairs of one piece (`piece_of`, by face) with a triangle passing `suspect`
+/// that meet other than in shared vertices and edges, ascending. Plates ([`plates`]: long planar convex faces) are met as
 /// wholes; the other triangles pair up through the grid, or, with few suspects (a tenth of
 /// the triangles or fewer), each suspect is scanned against every box.
 ///
@@ -247,6 +275,7 @@ fn crossing_pairs(
     mesh: &Mesh,
     tris: &[Tri],
     face_of: &[u32],
+    piece_of: &[u32],
     suspect: impl Fn(u32) -> bool + Sync,
 ) -> Vec<(u32, u32)> {
     let boxes: Vec<Bounds3> = tris
@@ -259,7 +288,10 @@ fn crossing_pairs(
         .collect();
     let is: Vec<bool> = (0..tris.len() as u32).map(&suspect).collect();
     let crosses = |i: u32, j: u32| {
-        face_of[i as usize] != face_of[j as usize] && cross(&tris[i as usize], &tris[j as usize])
+        let (f, g) = (face_of[i as usize], face_of[j as usize]);
+        f != g
+            && piece_of[f as usize] == piece_of[g as usize]
+            && cross(&tris[i as usize], &tris[j as usize])
     };
     let plates = plates::find(mesh, face_of);
     let mut found = if plates.is_empty() {
@@ -635,21 +667,40 @@ mod tests {
     }
 
     #[test]
-    fn two_crossing_tetrahedra_in_one_mesh_self_intersect() {
+    fn two_crossing_tetrahedra_are_two_solid_pieces() {
+        // Each piece is embedded and outward; they pass through one another, which only
+        // hides more (the culling argument is piece by piece).
         let mut pts: Vec<[f64; 3]> = TET.to_vec();
         pts.extend(TET.iter().map(|p| [p[0] + 0.25, p[1] + 0.25, p[2] + 0.25]));
         let mut faces: Vec<Vec<u32>> = TET_OUT.iter().map(|f| f.to_vec()).collect();
         faces.extend(TET_OUT.iter().map(|f| f.iter().map(|v| v + 4).collect()));
         let refs: Vec<&[u32]> = faces.iter().map(|f| f.as_slice()).collect();
-        assert!(matches!(
-            solidity(&mesh(&pts, &refs)),
-            Solidity::SelfIntersecting(n) if n > 0
-        ));
-        // Apart, they are two outward pieces: solid.
-        for p in &mut pts[4..] {
-            p[0] += 10.;
-        }
         assert_eq!(solidity(&mesh(&pts, &refs)), Solidity::Solid);
+        // One of them inside out still fails, crossing or not.
+        faces[4..].iter_mut().for_each(|f| f.reverse());
+        let refs: Vec<&[u32]> = faces.iter().map(|f| f.as_slice()).collect();
+        assert_eq!(solidity(&mesh(&pts, &refs)), Solidity::InsideOut);
+    }
+
+    #[test]
+    fn one_piece_crossing_itself_self_intersects() {
+        // Tetrahedron A's three sides, glued along its base edges to the reversed sides of
+        // tetrahedron B on the same base with apex (1/2, 1/2, 1/2): one closed, consistent
+        // piece of positive volume (1/6 - 1/12). B's edge from the origin to its apex
+        // pierces A's face x + y + z = 1 at (1/3, 1/3, 1/3), inside that face.
+        let mut pts: Vec<[f64; 3]> = TET.to_vec();
+        pts.push([0.5, 0.5, 0.5]);
+        let faces: [&[u32]; 6] = [
+            &[0, 1, 3],
+            &[0, 3, 2],
+            &[1, 2, 3],
+            &[4, 1, 0],
+            &[2, 4, 0],
+            &[4, 2, 1],
+        ];
+        let e = examine(&mesh(&pts, &faces));
+        assert!(matches!(e.solidity, Solidity::SelfIntersecting(n) if n > 0));
+        assert!(e.crossing.contains(&[2, 4]) || e.crossing.contains(&[4, 2]));
     }
 
     #[test]

@@ -68,6 +68,7 @@ pub fn cleanup(raw: &PolyMesh, origin: &Origin, warnings: &mut Warnings) -> Resu
         closed,
         solidity: None,
         caps: Vec::new(),
+        proven: None,
     })
 }
 

@@ -116,6 +116,7 @@ mod tests {
             closed: false,
             solidity: None,
             caps: Vec::new(),
+            proven: None,
         }
     }
 

@@ -16,7 +16,7 @@ use crate::geom::{Box3, M4, P3, V3};
 pub use face_id::FaceId;
 pub use flatten::{flatten, FlatMesh};
 pub use object::{Content, Face, Instance, Mesh, Object};
-pub use solidity::{CapFailure, Solidity};
+pub use solidity::{CapFailure, ProvenPieces, Solidity};
 pub use texture::{Texture, TextureFrame};
 
 /// A camera as a scene file states it (the view stage turns it into a matrix).
@@ -194,6 +194,7 @@ mod tests {
             closed: false,
             solidity: None,
             caps: Vec::new(),
+            proven: None,
         }
     }
 

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use crate::geom::{Box3, M4, P3};
 use crate::prepare::bvtree::ObjectTree;
 
-use super::solidity::Solidity;
+use super::solidity::{ProvenPieces, Solidity};
 use super::texture::Texture;
 
 /// A planar polygon of an object, indexing the object's vertex list (the paper's FACE).
@@ -40,7 +40,12 @@ pub struct Mesh {
     /// Whether back faces may be culled, decided exactly by the prepare stage (None until
     /// then: an unprepared mesh is never culled).
     pub solidity: Option<Solidity>,
-    /// The virtual triangles capping the holes of a [`Solidity::Capped`] mesh, counter-clockwise
+    /// Where the whole mesh is not a solid ([`Mesh::solidity`] says why), the pieces of it
+    /// that are: their back faces may be culled, away from their caps (None when no piece
+    /// is proven, or the whole is).
+    pub proven: Option<ProvenPieces>,
+    /// The virtual triangles capping the holes of a [`Solidity::Capped`] mesh (or of the
+    /// proven pieces of [`Mesh::proven`]), counter-clockwise
     /// seen from outside the capped solid (empty otherwise). Never drawn, never in the output,
     /// never occluders or targets: the view only asks whether a cap facing the viewer lies over
     /// a back face ([`mod@crate::prepare::caps`]).

@@ -19,11 +19,32 @@ pub enum Solidity {
     Inconsistent,
     /// A face is not simple, or triangulates into a triangle of zero area.
     Degenerate,
-    /// Two faces meet other than in their shared vertices and edges (the count of crossing
-    /// triangle pairs).
+    /// Two faces of one edge-connected piece meet other than in their shared vertices and
+    /// edges (the count of crossing triangle pairs).
     SelfIntersecting(u64),
     /// A connected piece of the surface has negative (or zero) signed volume.
     InsideOut,
+}
+
+/// The edge-connected pieces of a mesh proven solid one by one where the whole mesh is not
+/// ([`Mesh::proven`](crate::scene::Mesh::proven)): each closed (with its holes capped),
+/// free of self-intersection and outward, so its back faces may be culled, away from its
+/// caps. The culling argument is piece by piece ([`mod@crate::prepare::solidity`]).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct ProvenPieces {
+    /// By face of the mesh: true on a proven piece.
+    pub faces: Vec<bool>,
+    /// Number of edge-connected pieces (of the capped surface, for an open mesh).
+    pub pieces: u32,
+    /// Number of them proven.
+    pub proven: u32,
+}
+
+impl ProvenPieces {
+    /// Number of the mesh's faces on proven pieces.
+    pub fn proven_faces(&self) -> usize {
+        self.faces.iter().filter(|&&f| f).count()
+    }
 }
 
 /// Why an open mesh with its holes capped is not a solid.

@@ -292,6 +292,7 @@ mod tests {
             closed: true,
             solidity: None,
             caps: Vec::new(),
+            proven: None,
         }
     }
 

@@ -1,5 +1,7 @@
-//! Which back faces of a leaf the view may cull: all of a proven solid's, or a capped open
-//! mesh's away from the caps that face the viewer (the argument: [`mod@crate::prepare::caps`]).
+//! Which back faces of a leaf the view may cull: all of a proven solid's, a capped open
+//! mesh's away from the caps that face the viewer (the argument: [`mod@crate::prepare::caps`]),
+//! or those of the proven pieces of a mesh that is not a solid as a whole, away from their
+//! caps ([`mod@crate::prepare::solidity::pieces`]).
 
 use crate::geom::{orient2d, orient3d, Rect, P3};
 use crate::scene::Leaf;
@@ -9,7 +11,7 @@ use super::screen::{Facing, Piece};
 
 /// How a leaf's back faces are treated in one view.
 #[derive(Debug, Clone)]
-pub enum BackCull {
+pub enum BackCull<'a> {
     /// Two-sided: no back face is culled.
     None,
     /// A proven solid seen from outside its convex hull: every back face is culled.
@@ -17,24 +19,43 @@ pub enum BackCull {
     /// A capped open mesh seen from outside its capped hull: a back face is culled unless
     /// its screen rectangle touches a window (a cap not strictly facing away).
     AwayFrom(CapWindows),
+    /// Some pieces of the mesh proven, seen from outside its hull (and its caps' hull): a
+    /// back face on one of them is culled unless its screen rectangle touches a window of
+    /// their caps.
+    Pieces {
+        /// By face of the leaf: on a proven piece.
+        proven: &'a [bool],
+        /// The leaf's first face in the global order.
+        first_face: u32,
+        /// The windows of the proven pieces' caps.
+        windows: CapWindows,
+    },
 }
 
-impl BackCull {
+impl<'a> BackCull<'a> {
     /// The treatment of `leaf` in `camera`'s view; `all_in_front` says every vertex of the
     /// leaf is in front of the near plane (always, orthographic).
-    pub fn of_leaf(leaf: &Leaf, camera: &Camera, all_in_front: bool) -> BackCull {
+    pub fn of_leaf(leaf: &Leaf<'a>, camera: &Camera, all_in_front: bool) -> BackCull<'a> {
         if !all_in_front {
             return BackCull::None;
         }
         if leaf.mesh.cullable() {
             return BackCull::All;
         }
-        if !leaf.mesh.capped() {
+        let proven = leaf.mesh.proven.as_ref();
+        if !leaf.mesh.capped() && proven.is_none() {
             return BackCull::None;
         }
-        match CapWindows::new(&leaf.mesh.caps, leaf, camera) {
-            Some(w) => BackCull::AwayFrom(w),
-            None => BackCull::None,
+        let Some(windows) = CapWindows::new(&leaf.mesh.caps, leaf, camera) else {
+            return BackCull::None;
+        };
+        match proven {
+            Some(p) => BackCull::Pieces {
+                proven: &p.faces,
+                first_face: leaf.first_face as u32,
+                windows,
+            },
+            None => BackCull::AwayFrom(windows),
         }
     }
 
@@ -45,6 +66,11 @@ impl BackCull {
                 BackCull::None => false,
                 BackCull::All => true,
                 BackCull::AwayFrom(w) => !w.touches(&piece.rect),
+                BackCull::Pieces {
+                    proven,
+                    first_face,
+                    windows,
+                } => proven[(piece.face.0 - first_face) as usize] && !windows.touches(&piece.rect),
             }
     }
 }

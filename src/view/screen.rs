@@ -320,6 +320,8 @@ impl ScreenFaces {
             }
         }));
         let mut piece = describe(&self.points[start as usize..], start, leaf);
+        // The face first: whether a back face may be culled can depend on which it is.
+        piece.face = face;
         piece.culled = back_cull.culls(&piece);
         let w = &self.world[start as usize..];
         if let (Some(eye), true) = (camera.eye, w.len() >= 3) {
@@ -330,7 +332,6 @@ impl ScreenFaces {
                 piece.culled = false;
             }
         }
-        piece.face = face;
         if poly.len() > INDEXED_ABOVE {
             let id = PieceId(self.pieces.len() as u32);
             let index = RingIndex::new(&self.points[start as usize..]);

@@ -244,6 +244,7 @@ pub(crate) fn grids(specs: &[(f64, f64, u32)], bend: f64) -> Mesh {
         closed: false,
         solidity: None,
         caps: Vec::new(),
+        proven: None,
     }
 }
 

@@ -203,6 +203,7 @@ mod tests {
             closed: false,
             solidity: None,
             caps: Vec::new(),
+            proven: None,
         };
         (m, (0..n).collect())
     }

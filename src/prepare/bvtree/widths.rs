@@ -123,6 +123,7 @@ mod tests {
             closed: false,
             solidity: None,
             caps: Vec::new(),
+            proven: None,
         };
         let d = drastic_lengths(&m);
         assert!(d.iter().any(|&w| (1.4..3.0).contains(&w)), "{d:?}");

@@ -1,0 +1,176 @@
+//! Solids piece by piece: where a mesh as a whole is not a proven solid, the edge-connected
+//! pieces of it that are, so that their back faces may still be culled.
+//!
+//! The culling argument ([`super`], docs/numerics.md "Back-face culling") never looks past
+//! one piece: a back face of piece P is hidden by a front face of P whenever P alone is
+//! closed, embedded and outward (its winding number w_P is 0 or +1, and 0 at the eye).
+//! Another piece that crosses itself, is inside out or has a flat face says nothing about
+//! P. So a character mesh whose body folds through itself (ogre: 686 crossing pairs, all
+//! on the body) still culls its armour, eyes and teeth, and a scan with one bad shell culls
+//! the rest.
+//!
+//! The test of each piece is the whole mesh's, complete: every face triangulated (a face
+//! that is not simple, or has a flat triangle, fails its piece), every pair of triangles of
+//! one piece tested for crossing, every piece's signed volume decided exactly. For an open
+//! mesh it runs on the capped surface capping last built ([`crate::prepare::caps`]): a piece
+//! is then proven with its caps, and only the caps of proven pieces are kept (a cap of
+//! another piece plays no part in P's argument).
+
+use crate::geom::P3;
+use crate::scene::topology::{edge_topology, Topology};
+use crate::scene::{Mesh, ProvenPieces};
+
+use super::{crossing_pairs, edge_pieces, triangulate, volume_sign};
+
+/// The proven pieces of `surface`, a closed, consistently oriented surface whose first `n`
+/// faces are the mesh's (the rest: caps, triangles); with the caps of the proven pieces.
+/// `crossing`: every crossing pair of faces, where a test of the whole already found them
+/// all (then it is not repeated). None when the surface is not closed and consistent, or
+/// no piece is proven.
+pub(crate) fn proven_pieces(
+    surface: &Mesh,
+    n: usize,
+    crossing: Option<&[[u32; 2]]>,
+) -> Option<(ProvenPieces, Vec<[P3; 3]>)> {
+    if edge_topology(&surface.faces) != Topology::Closed {
+        return None;
+    }
+    let (tris, face_of, flat) = triangulate(surface);
+    let pieces = edge_pieces(surface);
+    let mut good = vec![true; pieces.count];
+    let piece = |f: u32| pieces.of_face[f as usize] as usize;
+    for &f in &flat {
+        good[piece(f)] = false;
+    }
+    match crossing {
+        // Both faces of a pair are on one piece.
+        Some(known) => known.iter().for_each(|&[f, _]| good[piece(f)] = false),
+        None => {
+            for (i, _) in crossing_pairs(surface, &tris, &face_of, &pieces.of_face, |_| true) {
+                good[piece(face_of[i as usize])] = false;
+            }
+        }
+    }
+    let mut by_piece: Vec<Vec<usize>> = vec![Vec::new(); pieces.count];
+    for (t, &f) in face_of.iter().enumerate() {
+        by_piece[piece(f)].push(t);
+    }
+    for (g, ts) in good.iter_mut().zip(&by_piece) {
+        *g = *g && volume_sign(ts.iter().map(|&t| &tris[t].p)) > 0;
+    }
+    let proven = good.iter().filter(|&&g| g).count();
+    if proven == 0 {
+        return None;
+    }
+    let caps = surface.faces[n..]
+        .iter()
+        .enumerate()
+        .filter(|&(k, _)| good[piece((n + k) as u32)])
+        .map(|(_, f)| {
+            let v = &f.vertices;
+            [0, 1, 2].map(|i| surface.vertices[v[i] as usize])
+        })
+        .collect();
+    let faces = (0..n as u32).map(|f| good[piece(f)]).collect();
+    Some((
+        ProvenPieces {
+            faces,
+            pieces: pieces.count as u32,
+            proven: proven as u32,
+        },
+        caps,
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::prepare::caps::tests::{box_with_chimney, cube_without};
+    use crate::prepare::solidity::decide;
+    use crate::scene::{CapFailure, Face, Solidity};
+
+    /// `b`'s faces after `a`'s, its vertices moved by `dx` along x.
+    fn beside(a: &Mesh, b: &Mesh, dx: f64) -> Mesh {
+        let off = a.vertices.len() as u32;
+        let mut m = a.clone();
+        m.vertices
+            .extend(b.vertices.iter().map(|p| P3::new(p.x + dx, p.y, p.z)));
+        m.faces.extend(
+            b.faces
+                .iter()
+                .map(|f| Face::new(f.vertices.iter().map(|v| v + off).collect())),
+        );
+        m
+    }
+
+    /// One closed piece crossing itself: tetrahedron A's sides glued along its base to the
+    /// reversed sides of tetrahedron B on the same base, B's apex beyond A's slanted face.
+    fn crossing_piece() -> Mesh {
+        let p = [
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [0., 1., 0.],
+            [0., 0., 1.],
+            [0.5, 0.5, 0.5],
+        ];
+        let f: [[u32; 3]; 6] = [
+            [0, 1, 3],
+            [0, 3, 2],
+            [1, 2, 3],
+            [4, 1, 0],
+            [2, 4, 0],
+            [4, 2, 1],
+        ];
+        Mesh {
+            vertices: p.iter().map(|q| P3::new(q[0], q[1], q[2])).collect(),
+            faces: f.iter().map(|t| Face::new(t.to_vec())).collect(),
+            ..Mesh::default()
+        }
+    }
+
+    #[test]
+    fn a_closed_mesh_culls_its_proven_piece_only() {
+        let mut m = beside(&cube_without(&[]), &crossing_piece(), 3.0);
+        decide(&mut m);
+        assert!(matches!(m.solidity, Some(Solidity::SelfIntersecting(_))));
+        let p = m.proven.as_ref().expect("the cube is proven");
+        assert_eq!((p.proven, p.pieces), (1, 2));
+        assert_eq!(p.faces, [[true; 6].as_slice(), &[false; 6]].concat());
+        assert!(m.caps.is_empty());
+        // The crossing piece alone: nothing proven.
+        let mut alone = crossing_piece();
+        decide(&mut alone);
+        assert_eq!(alone.proven, None);
+    }
+
+    #[test]
+    fn an_open_mesh_culls_its_capped_proven_piece_only() {
+        // An open box (caps into a solid) beside a box whose chimney rises through its mouth
+        // (its cap crosses its own piece).
+        let mut m = beside(&cube_without(&[1]), &box_with_chimney(1.5), 3.0);
+        decide(&mut m);
+        assert!(matches!(
+            m.solidity,
+            Some(Solidity::Open(CapFailure::SelfIntersecting(_)))
+        ));
+        let p = m
+            .proven
+            .as_ref()
+            .expect("the open box is proven with its cap");
+        assert_eq!((p.proven, p.pieces), (1, 2));
+        assert_eq!(p.faces, [[true; 5].as_slice(), &[false; 13]].concat());
+        // Only the open box's cap is kept: a fan of four in its mouth, z = 1, x in [0, 1].
+        assert_eq!(m.caps.len(), 4);
+        assert!(m.caps.iter().flatten().all(|q| q.z == 1.0 && q.x <= 1.0));
+    }
+
+    #[test]
+    fn pieces_from_a_known_crossing_list_match_a_fresh_test() {
+        let m = beside(&cube_without(&[]), &crossing_piece(), 3.0);
+        let fresh = proven_pieces(&m, m.faces.len(), None);
+        let e = super::super::examine(&m);
+        let known = proven_pieces(&m, m.faces.len(), Some(&e.crossing));
+        assert!(!e.crossing.is_empty());
+        assert_eq!(fresh, known);
+    }
+}
