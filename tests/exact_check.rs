@@ -327,12 +327,9 @@ fn only_proven_pieces_cull() {
 /// unless near a cap) and a sample of the rest.
 #[test]
 fn ogre_proven_pieces_match_the_exact_answer() {
-    let Some(dir) = models() else { return };
-    let path = dir.join("ogre.obj");
-    if !path.exists() {
-        eprintln!("skipping ogre.obj: absent");
+    let Some(path) = model("ogre.obj") else {
         return;
-    }
+    };
     let mut s = kepler_hsr::load_scene(&path, &mut Vec::new()).unwrap();
     kepler_hsr::prepare(&mut s);
     let d = V3::new(-1., -2., -3.);
@@ -369,12 +366,7 @@ fn ogre_proven_pieces_match_the_exact_answer() {
 /// perspective; `kepler check cow.obj --exact` checks them all.
 #[test]
 fn cow_matches_the_exact_answer() {
-    let Some(dir) = models() else { return };
-    let path = dir.join("cow.obj");
-    if !path.exists() {
-        eprintln!("skipping cow.obj: absent");
-        return;
-    }
+    let Some(path) = model("cow.obj") else { return };
     let s = kepler_hsr::load_scene(&path, &mut Vec::new()).unwrap();
     assert_eq!(solidity_of(&s), Solidity::SelfIntersecting(81));
     let mut faces: Vec<FaceId> = [5380, 5381, 5382, 5446, 5465, 5472, 5473, 5474]

@@ -5,8 +5,8 @@ mod common;
 
 use std::collections::HashMap;
 
-use common::models;
 use common::strokes::double_strokes;
+use common::{model, models};
 use kepler_hsr::emit::edges::{EdgeOptions, EdgeSet};
 use kepler_hsr::geom::ring_check::multipolygon_defects;
 use kepler_hsr::geom::V3;
@@ -99,12 +99,9 @@ fn shared_meshes_emit_valid_rings_and_stroke_each_line_once() {
 /// drawing draws no border line along a seam.
 #[test]
 fn teapot_seams_merge_and_leave_only_real_borders() {
-    let Some(dir) = models() else { return };
-    let path = dir.join("teapot.obj");
-    if !path.exists() {
-        eprintln!("skipping teapot.obj: absent");
+    let Some(path) = model("teapot.obj") else {
         return;
-    }
+    };
     let scene = kepler_hsr::load_scene(&path, &mut Vec::new()).unwrap();
     let mesh = scene.leaves()[0].mesh;
     let mut uses: HashMap<(u32, u32), usize> = HashMap::new();

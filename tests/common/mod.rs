@@ -158,6 +158,18 @@ pub(crate) fn union_area_exact(parts: &[&MultiPolygon]) -> f64 {
 }
 
 /// The shared models directory, or None (tests then skip with a message).
+/// The shared model `name` (e.g. "ogre.obj"), or None with a message saying why it is
+/// skipped (no models directory, or the model absent).
+pub(crate) fn model(name: &str) -> Option<std::path::PathBuf> {
+    let path = models()?.join(name);
+    if path.exists() {
+        Some(path)
+    } else {
+        eprintln!("skipping {name}: absent");
+        None
+    }
+}
+
 pub(crate) fn models() -> Option<std::path::PathBuf> {
     let dir = std::env::var_os("KEPLER_MODELS")
         .map(std::path::PathBuf::from)
