@@ -103,11 +103,6 @@ fn g(x: f64) -> String {
     }
 }
 
-/// The solidity of a leaf (an instance's prototype leaf); None for a group.
-fn leaf_solidity(o: &Object) -> Option<Solidity> {
-    leaf_mesh(o).and_then(|m| m.solidity)
-}
-
 /// The mesh of a leaf (an instance's prototype leaf); None for a group.
 fn leaf_mesh(o: &Object) -> Option<&Mesh> {
     match &o.content {
@@ -119,19 +114,20 @@ fn leaf_mesh(o: &Object) -> Option<&Mesh> {
 
 /// How a leaf's back faces are treated: culled on a proven solid, or why not.
 fn cull_text(o: &Object) -> Option<String> {
-    let s = match &o.content {
-        Content::Subobjects(_) => return None,
-        _ => leaf_solidity(o),
-    };
-    if let Some(p) = leaf_mesh(o).and_then(|m| m.proven.as_ref()) {
-        let caps = leaf_mesh(o).map_or(0, |m| m.caps.len());
+    if let Content::Subobjects(_) = o.content {
+        return None;
+    }
+    // None for an instance of a group.
+    let mesh = leaf_mesh(o);
+    let s = mesh.and_then(|m| m.solidity);
+    if let Some((m, p)) = mesh.and_then(|m| Some((m, m.proven.as_ref()?))) {
         return Some(format!(
             "back faces culled on {} of {} pieces ({} of {} faces{}); not on the rest: {}",
             p.proven,
             p.pieces,
             p.proven_faces(),
             p.faces.len(),
-            match caps {
+            match m.caps.len() {
                 0 => String::new(),
                 k => format!(", except near {k} cap triangles"),
             },
@@ -307,27 +303,32 @@ fn object_json(o: &Object, name: &str) -> String {
         Some(b) => box_json(b),
         None => format!("null,\"inbox_reason\":{}", json_string(&no_inbox_reason(o))),
     };
-    let solid = match (&o.content, leaf_solidity(o)) {
-        (Content::Subobjects(_), _) => String::new(),
-        (_, s) => format!(
-            ",\"solidity\":{},\"culled_back_faces\":{}{}{}",
-            json_string(s.map_or("unprepared", Solidity::word)),
-            s.is_some_and(|s| s.is_solid() || s.is_capped())
-                || leaf_mesh(o).is_some_and(|m| m.proven.is_some()),
-            match s {
-                Some(Solidity::Capped(n)) => format!(",\"caps\":{n}"),
-                _ => String::new(),
-            },
-            match leaf_mesh(o).and_then(|m| m.proven.as_ref()) {
-                Some(p) => format!(
-                    ",\"proven_pieces\":{},\"pieces\":{},\"proven_faces\":{}",
-                    p.proven,
-                    p.pieces,
-                    p.proven_faces()
-                ),
-                None => String::new(),
-            }
-        ),
+    let solid = match o.content {
+        Content::Subobjects(_) => String::new(),
+        _ => {
+            // None for an instance of a group.
+            let mesh = leaf_mesh(o);
+            let s = mesh.and_then(|m| m.solidity);
+            let proven = mesh.and_then(|m| m.proven.as_ref());
+            format!(
+                ",\"solidity\":{},\"culled_back_faces\":{}{}{}",
+                json_string(s.map_or("unprepared", Solidity::word)),
+                s.is_some_and(|s| s.is_solid() || s.is_capped()) || proven.is_some(),
+                match s {
+                    Some(Solidity::Capped(n)) => format!(",\"caps\":{n}"),
+                    _ => String::new(),
+                },
+                match proven {
+                    Some(p) => format!(
+                        ",\"proven_pieces\":{},\"pieces\":{},\"proven_faces\":{}",
+                        p.proven,
+                        p.pieces,
+                        p.proven_faces()
+                    ),
+                    None => String::new(),
+                }
+            )
+        }
     };
     format!(
         "{{\"name\":{},\"kind\":{},\"faces\":{},\"vertices\":{},\"closed\":{}{solid},\"cbox\":{},\"inbox\":{inbox}{},\"subobjects\":[{}]}}",

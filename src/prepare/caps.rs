@@ -52,7 +52,7 @@ use crate::scene::{CapFailure, Face, Mesh, Solidity};
 use super::slits::close_slits;
 #[cfg(test)]
 use super::solidity::solidity;
-use super::solidity::{crossing_faces, degenerate, examine_where};
+use super::solidity::{degenerate, examine_where, Surface};
 
 /// The caps of an open mesh that capping made a solid.
 #[derive(Debug, Clone, PartialEq)]
@@ -81,39 +81,37 @@ enum Way {
 /// times; only caps that pass go on to the one test of the whole surface (every pair of the
 /// mesh's own triangles).
 pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
-    capping(mesh).0
-}
-
-/// [`cap_holes`], with the capped surface it decided last where capping failed (None where
-/// none was built): its first faces are `mesh`'s (cracks closed, same indices), then the
-/// caps, so that [`super::solidity::pieces`] can still prove its pieces one by one.
-pub(crate) fn capping(mesh: &Mesh) -> (Result<Caps, CapFailure>, Option<Box<Failed>>) {
-    match cap_surface(mesh) {
-        Ok(caps) => (Ok(caps), None),
-        Err((why, surface)) => (Err(why), surface),
-    }
+    capping(mesh).map_err(|(why, _)| why)
 }
 
 /// A capped surface that is not a solid as a whole.
+#[derive(Debug)]
 pub(crate) struct Failed {
-    /// The surface: the mesh's faces, then the caps.
-    pub(crate) surface: Mesh,
+    /// The capped mesh: the mesh's faces (cracks closed, same indices), then the caps.
+    pub(crate) mesh: Mesh,
+    /// Its surface, as tested.
+    pub(crate) surface: Surface,
     /// Every crossing pair of its faces, when capping failed only on pairs of the mesh's
     /// own triangles (every pair with a cap found apart, every piece outward): then the
     /// pieces need no second test.
     pub(crate) crossing: Option<Vec<[u32; 2]>>,
 }
 
-/// A failure to cap, with the capped surface that failed (if any was built).
-type Refused = (CapFailure, Option<Box<Failed>>);
+/// A failure to cap, with the capped surface that failed where one was built and tested
+/// (so that [`super::solidity::pieces`] can still prove its pieces one by one).
+pub(crate) type Refused = (CapFailure, Option<Box<Failed>>);
 
-fn cap_surface(mesh: &Mesh) -> Result<Caps, Refused> {
+/// [`cap_holes`], saying on failure which capped surface failed.
+pub(crate) fn capping(mesh: &Mesh) -> Result<Caps, Refused> {
     let refuse = |why| (why, None);
-    let failed = |surface| {
-        Some(Box::new(Failed {
-            surface,
-            crossing: None,
-        }))
+    let failed = |mesh, surface: Option<Surface>| {
+        surface.map(|surface| {
+            Box::new(Failed {
+                mesh,
+                surface,
+                crossing: None,
+            })
+        })
     };
     if edge_topology(&mesh.faces) != Topology::Open {
         return Err(refuse(CapFailure::Inconsistent));
@@ -149,10 +147,13 @@ fn cap_surface(mesh: &Mesh) -> Result<Caps, Refused> {
         let cap = |f: u32| f.checked_sub(n).map(|k| loop_of[k as usize]);
         let reached_crossings = !matches!(e.solidity, Solidity::Degenerate);
         let mut retry: Vec<usize> = match e.solidity {
-            Solidity::Solid => return whole(mesh, capped, holes),
+            Solidity::Solid => {
+                let surface = e.surface.expect("a solid was tested");
+                return whole(mesh, capped, surface, holes);
+            }
             Solidity::Degenerate => {
                 if e.degenerate.iter().any(|&f| f < n) {
-                    return Err((CapFailure::MeshDegenerate, failed(capped)));
+                    return Err((CapFailure::MeshDegenerate, failed(capped, e.surface)));
                 }
                 e.degenerate.iter().filter_map(|&f| cap(f)).collect()
             }
@@ -162,7 +163,7 @@ fn cap_surface(mesh: &Mesh) -> Result<Caps, Refused> {
                 .flatten()
                 .filter_map(|&f| cap(f))
                 .collect(),
-            Solidity::InsideOut => return Err((CapFailure::InsideOut, failed(capped))),
+            Solidity::InsideOut => return Err((CapFailure::InsideOut, failed(capped, e.surface))),
             Solidity::Open(_) | Solidity::Capped(_) | Solidity::Inconsistent => {
                 return Err(refuse(CapFailure::Inconsistent))
             }
@@ -177,7 +178,7 @@ fn cap_surface(mesh: &Mesh) -> Result<Caps, Refused> {
                 Solidity::SelfIntersecting(k) => CapFailure::SelfIntersecting(k),
                 _ => CapFailure::Degenerate,
             };
-            return Err((why, failed(capped)));
+            return Err((why, failed(capped, e.surface)));
         }
         if reached_crossings {
             suspect.iter_mut().for_each(|s| *s = false);
@@ -193,33 +194,28 @@ fn cap_surface(mesh: &Mesh) -> Result<Caps, Refused> {
 
 /// The whole capped surface decided, its caps found apart from everything and the rest of
 /// [`examine`] passed (closed, non-degenerate, pieces of positive volume): only the mesh's
-/// own pairs of triangles are left to test. The caps, or why not.
-fn whole(mesh: &Mesh, capped: Mesh, loops: u32) -> Result<Caps, Refused> {
+/// own pairs of triangles are left to test, on the `surface` already built. The caps, or
+/// why not.
+fn whole(mesh: &Mesh, capped: Mesh, surface: Surface, loops: u32) -> Result<Caps, Refused> {
     let n = mesh.faces.len() as u32;
-    match crossing_faces(&capped, |f| f < n) {
-        Ok(c) if c.is_empty() => Ok(Caps {
-            loops,
-            triangles: capped.faces[n as usize..]
-                .iter()
-                .map(|f| f.vertices.iter().map(|&v| capped.vertices[v as usize]))
-                .map(|mut t| [(); 3].map(|_| t.next().expect("a triangle")))
-                .collect(),
-        }),
-        Ok(c) => Err((
-            CapFailure::MeshSelfIntersecting(c.len() as u64),
-            Some(Box::new(Failed {
-                surface: capped,
-                crossing: Some(c),
-            })),
-        )),
-        Err(_) => Err((
-            CapFailure::MeshDegenerate,
-            Some(Box::new(Failed {
-                surface: capped,
-                crossing: None,
-            })),
-        )),
+    let c = surface.crossing(&capped, |f| f < n);
+    if !c.is_empty() {
+        let why = CapFailure::MeshSelfIntersecting(c.len() as u64);
+        let failed = Failed {
+            mesh: capped,
+            surface,
+            crossing: Some(c),
+        };
+        return Err((why, Some(Box::new(failed))));
     }
+    Ok(Caps {
+        loops,
+        triangles: capped.faces[n as usize..]
+            .iter()
+            .map(|f| f.vertices.iter().map(|&v| capped.vertices[v as usize]))
+            .map(|mut t| [(); 3].map(|_| t.next().expect("a triangle")))
+            .collect(),
+    })
 }
 
 /// How many capped surfaces [`cap_holes`] decides at most.

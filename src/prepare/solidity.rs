@@ -52,31 +52,77 @@ pub fn solidity(mesh: &Mesh) -> Solidity {
     examine(mesh).solidity
 }
 
-/// The face pairs of `mesh` whose triangles cross, testing only pairs with a face passing
-/// `suspect`; Err(the degenerate faces) where the surface has no triangles to test.
-pub(crate) fn crossing_faces(
-    mesh: &Mesh,
-    suspect: impl Fn(u32) -> bool + Sync,
-) -> Result<Vec<[u32; 2]>, Vec<u32>> {
-    let (tris, face_of) = surface_triangles(mesh)?;
-    let pieces = edge_pieces(mesh);
-    Ok(crossing_pairs(mesh, &tris, &face_of, &pieces.of_face, |t| {
-        suspect(face_of[t as usize])
-    })
-    .into_iter()
-    .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
-    .collect())
+/// A closed mesh's surface as the solidity tests see it, built once and handed from test to
+/// test: its triangles with each one's face, the faces that give none, and its pieces.
+#[derive(Debug)]
+pub(crate) struct Surface {
+    tris: Vec<Tri>,
+    face_of: Vec<u32>,
+    /// Faces that are not simple or have a flat triangle (ascending): they give no triangles.
+    flat: Vec<u32>,
+    pieces: Pieces,
+}
+
+impl Surface {
+    /// The surface of `mesh` (closed and consistent).
+    fn of(mesh: &Mesh) -> Surface {
+        let (tris, face_of, flat) = triangulate(mesh);
+        Surface {
+            tris,
+            face_of,
+            flat,
+            pieces: edge_pieces(mesh),
+        }
+    }
+
+    /// The edge-connected piece of face `f`.
+    fn piece(&self, f: u32) -> usize {
+        self.pieces.of_face[f as usize] as usize
+    }
+
+    /// The face pairs of one piece whose triangles cross, testing only pairs with a face
+    /// passing `suspect`. `mesh` is the mesh this surface is of.
+    pub(crate) fn crossing(
+        &self,
+        mesh: &Mesh,
+        suspect: impl Fn(u32) -> bool + Sync,
+    ) -> Vec<[u32; 2]> {
+        let face_of = &self.face_of;
+        crossing_pairs(mesh, &self.tris, face_of, &self.pieces.of_face, |t| {
+            suspect(face_of[t as usize])
+        })
+        .into_iter()
+        .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
+        .collect()
+    }
+
+    /// By piece: whether its signed volume is positive (exact), decided for the pieces
+    /// passing `wanted` (false for the others).
+    fn outward(&self, wanted: impl Fn(usize) -> bool) -> Vec<bool> {
+        let mut by_piece: Vec<Vec<usize>> = vec![Vec::new(); self.pieces.count];
+        for (t, &f) in self.face_of.iter().enumerate() {
+            by_piece[self.piece(f)].push(t);
+        }
+        by_piece
+            .iter()
+            .enumerate()
+            .map(|(k, ts)| wanted(k) && volume_sign(ts.iter().map(|&t| &self.tris[t].p)) > 0)
+            .collect()
+    }
 }
 
 /// A mesh's solidity and, where it fails on faces, which ones.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug)]
 pub(crate) struct Examined {
     /// The decision.
     pub(crate) solidity: Solidity,
     /// For [`Solidity::Degenerate`]: the faces that are not simple or have a flat triangle.
     pub(crate) degenerate: Vec<u32>,
-    /// For [`Solidity::SelfIntersecting`]: the faces of every crossing pair of triangles.
+    /// For [`Solidity::SelfIntersecting`]: the faces of every crossing pair of triangles
+    /// tested (empty after an [`Solidity::InsideOut`] or [`Solidity::Solid`]: none crossed).
     pub(crate) crossing: Vec<[u32; 2]>,
+    /// The surface tested, where the mesh is closed and consistent.
+    pub(crate) surface: Option<Surface>,
 }
 
 /// [`solidity`], saying which faces fail.
@@ -87,53 +133,32 @@ pub(crate) fn examine(mesh: &Mesh) -> Examined {
 /// [`examine`], testing for crossings only the pairs of triangles where one's face passes
 /// `suspect` (the others known not to cross).
 pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -> Examined {
-    let decided = |solidity| Examined {
-        solidity,
+    let mut e = Examined {
+        solidity: Solidity::Solid,
         degenerate: Vec::new(),
         crossing: Vec::new(),
+        surface: None,
     };
     match edge_topology(&mesh.faces) {
-        Topology::Open => return decided(Solidity::Open(CapFailure::NotTried)),
-        Topology::Inconsistent => return decided(Solidity::Inconsistent),
-        Topology::Closed => {}
-    }
-    let (tris, face_of) = match surface_triangles(mesh) {
-        Ok(t) => t,
-        Err(faces) => {
-            return Examined {
-                degenerate: faces,
-                ..decided(Solidity::Degenerate)
+        Topology::Open => e.solidity = Solidity::Open(CapFailure::NotTried),
+        Topology::Inconsistent => e.solidity = Solidity::Inconsistent,
+        Topology::Closed => {
+            let surface = Surface::of(mesh);
+            if !surface.flat.is_empty() {
+                e.solidity = Solidity::Degenerate;
+                e.degenerate = surface.flat.clone();
+            } else {
+                e.crossing = surface.crossing(mesh, suspect);
+                if !e.crossing.is_empty() {
+                    e.solidity = Solidity::SelfIntersecting(e.crossing.len() as u64);
+                } else if !surface.outward(|_| true).iter().all(|&o| o) {
+                    e.solidity = Solidity::InsideOut;
+                }
             }
+            e.surface = Some(surface);
         }
-    };
-    let pieces = edge_pieces(mesh);
-    let crossing: Vec<[u32; 2]> = crossing_pairs(mesh, &tris, &face_of, &pieces.of_face, |t| {
-        suspect(face_of[t as usize])
-    })
-    .into_iter()
-    .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
-    .collect();
-    if !crossing.is_empty() {
-        return Examined {
-            solidity: Solidity::SelfIntersecting(crossing.len() as u64),
-            degenerate: Vec::new(),
-            crossing,
-        };
     }
-    let mut by_piece: Vec<Vec<usize>> = vec![Vec::new(); pieces.count];
-    for (t, &f) in face_of.iter().enumerate() {
-        by_piece[pieces.of_face[f as usize] as usize].push(t);
-    }
-    decided(
-        if by_piece
-            .iter()
-            .all(|ts| volume_sign(ts.iter().map(|&t| &tris[t].p)) > 0)
-        {
-            Solidity::Solid
-        } else {
-            Solidity::InsideOut
-        },
-    )
+    e
 }
 
 /// Fills [`Mesh::solidity`] of `mesh`, and for an open mesh whose holes cap into a solid
@@ -144,21 +169,25 @@ pub fn decide(mesh: &mut Mesh) {
     let whole = examine(mesh);
     let (s, proven) = match whole.solidity {
         Solidity::Open(_) => match super::caps::capping(mesh) {
-            (Ok(caps), _) => {
+            Ok(caps) => {
                 mesh.caps = caps.triangles;
                 (Solidity::Capped(caps.loops), None)
             }
-            (Err(why), failed) => (
+            Err((why, failed)) => (
                 Solidity::Open(why),
-                failed.and_then(|f| pieces::proven_pieces(&f.surface, n, f.crossing.as_deref())),
+                failed.and_then(|f| {
+                    pieces::proven_pieces(&f.mesh, &f.surface, n, f.crossing.as_deref())
+                }),
             ),
         },
-        // Every crossing pair was found (nothing degenerate, every pair tested).
-        s @ Solidity::SelfIntersecting(_) => {
-            (s, pieces::proven_pieces(mesh, n, Some(&whole.crossing)))
-        }
-        s @ (Solidity::InsideOut | Solidity::Degenerate) => {
-            (s, pieces::proven_pieces(mesh, n, None))
+        s @ (Solidity::SelfIntersecting(_) | Solidity::InsideOut | Solidity::Degenerate) => {
+            // Past the flat faces every pair was tested: the crossing list is complete.
+            let known = (s != Solidity::Degenerate).then_some(whole.crossing.as_slice());
+            let proof = whole
+                .surface
+                .as_ref()
+                .and_then(|surface| pieces::proven_pieces(mesh, surface, n, known));
+            (s, proof)
         }
         s => (s, None),
     };
@@ -205,19 +234,8 @@ fn mark(obj: &mut Object, done: &mut Marked) {
 }
 
 /// The surface as triangles (exact ear clipping of every face; a warped face's triangles are
-/// the view's planar pieces), with each triangle's face. Err(the faces) where a face is not
-/// simple or a triangle is degenerate.
-fn surface_triangles(mesh: &Mesh) -> Result<(Vec<Tri>, Vec<u32>), Vec<u32>> {
-    let (tris, face_of, bad) = triangulate(mesh);
-    if bad.is_empty() {
-        Ok((tris, face_of))
-    } else {
-        Err(bad)
-    }
-}
-
-/// The triangles of every face that triangulates into non-degenerate triangles, with each
-/// triangle's face, and the faces that do not (ascending).
+/// the view's planar pieces), with each triangle's face, and the faces that give none (not
+/// simple, or a flat triangle; ascending).
 fn triangulate(mesh: &Mesh) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
     let mut tris = Vec::with_capacity(mesh.faces.len() * 2);
     let mut face_of = Vec::with_capacity(mesh.faces.len() * 2);
@@ -469,6 +487,7 @@ fn in_cone(v: [f64; 2], a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
 }
 
 /// Connected pieces of a mesh's faces through shared edges.
+#[derive(Debug)]
 struct Pieces {
     of_face: Vec<u32>,
     count: usize,

@@ -319,9 +319,7 @@ impl ScreenFaces {
                 [h[0], h[1], h[2]]
             }
         }));
-        let mut piece = describe(&self.points[start as usize..], start, leaf);
-        // The face first: whether a back face may be culled can depend on which it is.
-        piece.face = face;
+        let mut piece = describe(face, &self.points[start as usize..], start, leaf);
         piece.culled = back_cull.culls(&piece);
         let w = &self.world[start as usize..];
         if let (Some(eye), true) = (camera.eye, w.len() >= 3) {
@@ -399,11 +397,11 @@ fn clip_near(poly: &[([f64; 4], P3)], near: f64) -> Vec<([f64; 4], P3)> {
     out
 }
 
-/// Bounds, reference triple, facing and convexity of a projected face (not culled: that is
-/// the leaf's [`BackCull`]'s to say).
-fn describe(p: &[[f64; 3]], start: u32, leaf: u32) -> Piece {
+/// Bounds, reference triple, facing and convexity of a projected piece of `face` (not culled:
+/// that is the leaf's [`BackCull`]'s to say).
+fn describe(face: FaceId, p: &[[f64; 3]], start: u32, leaf: u32) -> Piece {
     let mut f = Piece {
-        face: FaceId(0),
+        face,
         start,
         len: p.len() as u32,
         leaf,
@@ -507,14 +505,14 @@ mod tests {
     #[test]
     fn facing_of_ccw_cw_and_edge_on() {
         let ccw = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]];
-        assert_eq!(describe(&ccw, 0, 0).facing, Facing::Front);
+        assert_eq!(describe(FaceId(0), &ccw, 0, 0).facing, Facing::Front);
         let cw = [[0., 0., 0.], [0., 1., 0.], [1., 0., 0.]];
-        let mut f = describe(&cw, 0, 0);
+        let mut f = describe(FaceId(0), &cw, 0, 0);
         assert_eq!(f.facing, Facing::Back);
         assert!(!f.culled && f.is_occluder());
         f.culled = BackCull::All.culls(&f);
         assert!(f.culled && !f.is_occluder());
         let edge = [[0., 0., 0.], [1., 0., 0.], [2., 0., 1.]];
-        assert_eq!(describe(&edge, 0, 0).facing, Facing::EdgeOn);
+        assert_eq!(describe(FaceId(0), &edge, 0, 0).facing, Facing::EdgeOn);
     }
 }

@@ -17,65 +17,54 @@
 //! another piece plays no part in P's argument).
 
 use crate::geom::P3;
-use crate::scene::topology::{edge_topology, Topology};
 use crate::scene::{Mesh, ProvenPieces};
 
-use super::{crossing_pairs, edge_pieces, triangulate, volume_sign};
+use super::Surface;
 
-/// The proven pieces of `surface`, a closed, consistently oriented surface whose first `n`
-/// faces are the mesh's (the rest: caps, triangles); with the caps of the proven pieces.
-/// `crossing`: every crossing pair of faces, where a test of the whole already found them
-/// all (then it is not repeated). None when the surface is not closed and consistent, or
-/// no piece is proven.
+/// The proven pieces of `mesh`, a closed, consistently oriented mesh whose first `n` faces
+/// are the original mesh's (the rest: caps, triangles), tested on its `surface`; with the
+/// caps of the proven pieces. `crossing`: every crossing pair of faces, where a test of the
+/// whole already found them all (then it is not repeated). None when no piece is proven.
 pub(crate) fn proven_pieces(
-    surface: &Mesh,
+    mesh: &Mesh,
+    surface: &Surface,
     n: usize,
     crossing: Option<&[[u32; 2]]>,
 ) -> Option<(ProvenPieces, Vec<[P3; 3]>)> {
-    if edge_topology(&surface.faces) != Topology::Closed {
-        return None;
-    }
-    let (tris, face_of, flat) = triangulate(surface);
-    let pieces = edge_pieces(surface);
-    let mut good = vec![true; pieces.count];
-    let piece = |f: u32| pieces.of_face[f as usize] as usize;
-    for &f in &flat {
+    let piece = |f: u32| surface.piece(f);
+    let mut good = vec![true; surface.pieces.count];
+    for &f in &surface.flat {
         good[piece(f)] = false;
     }
-    match crossing {
-        // Both faces of a pair are on one piece.
-        Some(known) => known.iter().for_each(|&[f, _]| good[piece(f)] = false),
+    let found;
+    let crossing = match crossing {
+        Some(known) => known,
         None => {
-            for (i, _) in crossing_pairs(surface, &tris, &face_of, &pieces.of_face, |_| true) {
-                good[piece(face_of[i as usize])] = false;
-            }
+            found = surface.crossing(mesh, |_| true);
+            &found
         }
-    }
-    let mut by_piece: Vec<Vec<usize>> = vec![Vec::new(); pieces.count];
-    for (t, &f) in face_of.iter().enumerate() {
-        by_piece[piece(f)].push(t);
-    }
-    for (g, ts) in good.iter_mut().zip(&by_piece) {
-        *g = *g && volume_sign(ts.iter().map(|&t| &tris[t].p)) > 0;
-    }
+    };
+    // Both faces of a pair are on one piece.
+    crossing.iter().for_each(|&[f, _]| good[piece(f)] = false);
+    let good = surface.outward(|k| good[k]);
     let proven = good.iter().filter(|&&g| g).count();
     if proven == 0 {
         return None;
     }
-    let caps = surface.faces[n..]
+    let caps = mesh.faces[n..]
         .iter()
         .enumerate()
         .filter(|&(k, _)| good[piece((n + k) as u32)])
         .map(|(_, f)| {
             let v = &f.vertices;
-            [0, 1, 2].map(|i| surface.vertices[v[i] as usize])
+            [0, 1, 2].map(|i| mesh.vertices[v[i] as usize])
         })
         .collect();
     let faces = (0..n as u32).map(|f| good[piece(f)]).collect();
     Some((
         ProvenPieces {
             faces,
-            pieces: pieces.count as u32,
+            pieces: surface.pieces.count as u32,
             proven: proven as u32,
         },
         caps,
@@ -167,9 +156,10 @@ mod tests {
     #[test]
     fn pieces_from_a_known_crossing_list_match_a_fresh_test() {
         let m = beside(&cube_without(&[]), &crossing_piece(), 3.0);
-        let fresh = proven_pieces(&m, m.faces.len(), None);
         let e = super::super::examine(&m);
-        let known = proven_pieces(&m, m.faces.len(), Some(&e.crossing));
+        let surface = e.surface.as_ref().expect("closed");
+        let fresh = proven_pieces(&m, surface, m.faces.len(), None);
+        let known = proven_pieces(&m, surface, m.faces.len(), Some(&e.crossing));
         assert!(!e.crossing.is_empty());
         assert_eq!(fresh, known);
     }
