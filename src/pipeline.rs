@@ -327,11 +327,13 @@ pub fn render_with<'s>(
     };
     let mut plot = None;
     stats.timed(Stage::Emit, progress, || -> Result<()> {
-        if out.json {
-            r.json = Some(r.to_json(out.json_lines));
-        }
-        if pictures {
-            let pic = r.picture(&out.picture)?;
+        // The JSON and the picture read the same solved view: made side by side.
+        let (json, pic) = rayon::join(
+            || out.json.then(|| r.to_json(out.json_lines)),
+            || pictures.then(|| r.picture(&out.picture)).transpose(),
+        );
+        r.json = json;
+        if let Some(pic) = pic? {
             if out.svg {
                 r.svg = Some(to_svg(&pic));
             }

@@ -4,6 +4,10 @@
 //! border (one face beside it, or more than two), crease (dihedral angle above a threshold),
 //! plain (any other polygon edge); intersection curves come from [`super::intersect`].
 
+use std::ops::Range;
+
+use rayon::prelude::*;
+
 use crate::geom::{P3, V3};
 use crate::scene::FaceId;
 use crate::view::{Facing, View};
@@ -106,6 +110,7 @@ pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Ed
     let cos_crease = opts.crease_deg.to_radians().cos();
     // Each face's facing once (a warped face's is a sum over its pieces).
     let facing: Vec<Facing> = (0..view.screen.face_count())
+        .into_par_iter()
         .map(|f| view.screen.face_facing(FaceId(f as u32)))
         .collect();
     let mut out = Vec::new();
@@ -116,14 +121,14 @@ pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Ed
             .find(|&f| world.faces[f].leaf != leaf)
             .unwrap_or(world.faces.len());
         let half = half_edges(world, start, end);
-        for g in edge_groups(&half) {
+        let edge = |g: Range<usize>| {
             let adj = &half[g];
             let kind = classify(adj, world, &facing, cos_crease);
-            if opts.set == EdgeSet::All || kind != EdgeKind::Plain {
+            (opts.set == EdgeSet::All || kind != EdgeKind::Plain).then(|| {
                 let h = &adj[0];
                 let pts = &world.faces[h.face as usize].points;
                 let (i, j) = (h.at as usize, (h.at as usize + 1) % pts.len());
-                out.push(Edge {
+                Edge {
                     leaf,
                     ends: if h.fwd {
                         [pts[i], pts[j]]
@@ -132,13 +137,25 @@ pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Ed
                     },
                     faces: adj.iter().map(|h| FaceId(h.face)).collect(),
                     kind,
-                });
-            }
+                }
+            })
+        };
+        let groups = edge_groups(&half);
+        if groups.len() > PARALLEL_ABOVE {
+            // In parallel, in the same order.
+            let found: Vec<Edge> = groups.into_par_iter().filter_map(edge).collect();
+            out.extend(found);
+        } else {
+            out.extend(groups.into_iter().filter_map(edge));
         }
         start = end;
     }
     out
 }
+
+/// Above this many half-edges or edges a leaf's are sorted and classified on all threads
+/// (the pool's overhead would outweigh the work of a small leaf).
+const PARALLEL_ABOVE: usize = 4096;
 
 /// Every traversal of an edge by the faces `start..end` (one leaf), grouped by edge, each
 /// group in face order.
@@ -160,12 +177,17 @@ fn half_edges(world: &WorldFaces, start: usize, end: usize) -> Vec<HalfEdge> {
             }
         }
     }
-    half.sort_unstable_by_key(|h| (h.a, h.b, h.seq));
+    // seq is unique: the order is the same however the sort runs.
+    if half.len() > PARALLEL_ABOVE {
+        half.par_sort_unstable_by_key(|h| (h.a, h.b, h.seq));
+    } else {
+        half.sort_unstable_by_key(|h| (h.a, h.b, h.seq));
+    }
     half
 }
 
 /// The index ranges of the edges in grouped half-edges, in order of first appearance.
-fn edge_groups(half: &[HalfEdge]) -> Vec<std::ops::Range<usize>> {
+fn edge_groups(half: &[HalfEdge]) -> Vec<Range<usize>> {
     let mut groups = Vec::new();
     let mut s = 0;
     for i in 1..=half.len() {
@@ -174,7 +196,11 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<std::ops::Range<usize>> {
             s = i;
         }
     }
-    groups.sort_unstable_by_key(|g| half[g.start].seq);
+    if groups.len() > PARALLEL_ABOVE {
+        groups.par_sort_unstable_by_key(|g| half[g.start].seq);
+    } else {
+        groups.sort_unstable_by_key(|g| half[g.start].seq);
+    }
     groups
 }
 

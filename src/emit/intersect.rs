@@ -5,24 +5,45 @@
 //! decisions use the exact `robust::orient3d`. A vertex exactly on the other plane counts as
 //! on its positive side (symbolic perturbation), so crossings always pair up.
 
-use crate::geom::box_pairs::filter_map_pairs;
+use rayon::prelude::*;
+
+use crate::geom::box_pairs::{filter_map_pairs, overlap, Bounds3};
 use crate::geom::{orient3d_refs, P3, V3};
 use crate::scene::FaceId;
 
 use super::edges::{Edge, EdgeKind};
-use super::world::{WorldFace, WorldFaces};
+use super::world::{WorldFace, WorldFaces, NO_PIECE};
 
 /// Every intersection segment between pairs of faces that cross (both faces with vertices
 /// strictly on both sides of the other's plane); `keep(f)` filters faces worth testing.
 pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sync) -> Vec<Edge> {
     let faces = &world.faces;
-    let ids: Vec<usize> = (0..faces.len())
+    let cand: Vec<usize> = (0..faces.len())
         .filter(|&f| keep(FaceId(f as u32)) && faces[f].points.len() >= 3)
         .collect();
+    // Per face, once: its plane's reference points, and whether it is flat (exactly: every
+    // corner on the plane of the reference points).
+    let cand_refs: Vec<[P3; 3]> = cand
+        .par_iter()
+        .map(|&f| plane_refs(&faces[f].points))
+        .collect();
+    let cand_flat: Vec<bool> = cand
+        .par_iter()
+        .zip(&cand_refs)
+        .map(|(&f, r)| {
+            let p = &faces[f].points;
+            p.len() == 3 || p.iter().all(|q| orient3d_refs(r, q) == 0.0)
+        })
+        .collect();
+    // Faces that can cross nothing are not paired at all.
+    let alone = alone(world, &cand, &cand_flat);
+    let left: Vec<usize> = (0..cand.len()).filter(|&k| !alone[k]).collect();
+    let ids: Vec<usize> = left.iter().map(|&k| cand[k]).collect();
+    let refs: Vec<[P3; 3]> = left.iter().map(|&k| cand_refs[k]).collect();
+    let flat: Vec<bool> = left.iter().map(|&k| cand_flat[k]).collect();
     let boxes: Vec<_> = ids.iter().map(|&f| faces[f].bbox).collect();
-    // Per face, once: its plane's reference points, and its corners sorted when many (so
-    // that a pair's adjacency costs what the smaller face has, not the product).
-    let refs: Vec<[P3; 3]> = ids.iter().map(|&f| plane_refs(&faces[f].points)).collect();
+    // Per face, its corners sorted when many (so that a pair's adjacency costs what the
+    // smaller face has, not the product).
     let sorted: Vec<Option<Vec<u32>>> = ids
         .iter()
         .map(|&f| {
@@ -40,7 +61,12 @@ pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sy
         let (i, j) = (i as usize, j as usize);
         let (lo, hi) = (ids[i], ids[j]);
         let (f, g) = (&faces[lo], &faces[hi]);
-        let segs = if adjacent(f, g, &sorted[i], &sorted[j]) {
+        let piece = world.clean_piece[lo];
+        // Flat faces of one piece proven free of self-intersection meet in nothing but
+        // shared vertices and edges: no curve to find. (The proof is on the faces'
+        // triangles; a face off its plane is not the union of its triangles.)
+        let clean = piece != NO_PIECE && piece == world.clean_piece[hi] && flat[i] && flat[j];
+        let segs = if clean || adjacent(f, g, &sorted[i], &sorted[j]) {
             Vec::new()
         } else {
             cross_with(f, g, &refs[i], &refs[j])
@@ -57,6 +83,65 @@ pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sy
         })
     });
     found.into_iter().flatten().collect()
+}
+
+/// Most clean pieces compared pairwise by [`alone`] (beyond, no face is left out).
+const MAX_PIECES: usize = 4096;
+
+/// By candidate face (`cand`, flat or not by `flat`): true when it is a flat face of a piece
+/// proven free of self-intersection ([`WorldFaces::clean_piece`]) whose box meets the box
+/// of no face outside that piece's flat faces. Such a face meets only faces of its own
+/// piece, and those only in shared vertices and edges: it crosses nothing.
+fn alone(world: &WorldFaces, cand: &[usize], flat: &[bool]) -> Vec<bool> {
+    let mut pieces: Vec<(u32, Bounds3)> = Vec::new();
+    let mut loose: Option<Bounds3> = None;
+    let join = |a: Option<Bounds3>, b: &Bounds3| match a {
+        None => *b,
+        Some(a) => [
+            std::array::from_fn(|k| a[0][k].min(b[0][k])),
+            std::array::from_fn(|k| a[1][k].max(b[1][k])),
+        ],
+    };
+    for (k, &f) in cand.iter().enumerate() {
+        let (p, b) = (world.clean_piece[f], &world.faces[f].bbox);
+        if p == NO_PIECE || !flat[k] {
+            loose = Some(join(loose, b));
+            continue;
+        }
+        match pieces.last_mut() {
+            Some((q, qb)) if *q == p => *qb = join(Some(*qb), b),
+            _ => pieces.push((p, *b)),
+        }
+    }
+    // A piece's faces are consecutive (numbered leaf by leaf), so each piece appears once
+    // unless its faces interleave with another's: then merge the entries.
+    pieces.sort_by_key(|e| e.0);
+    pieces.dedup_by(|b, a| {
+        let same = a.0 == b.0;
+        if same {
+            a.1 = join(Some(a.1), &b.1);
+        }
+        same
+    });
+    if pieces.len() > MAX_PIECES {
+        return vec![false; cand.len()];
+    }
+    let apart = |i: usize| {
+        let b = &pieces[i].1;
+        loose.is_none_or(|l| !overlap(b, &l))
+            && pieces
+                .iter()
+                .enumerate()
+                .all(|(j, q)| j == i || !overlap(b, &q.1))
+    };
+    let isolated: Vec<u32> = (0..pieces.len())
+        .filter(|&i| apart(i))
+        .map(|i| pieces[i].0)
+        .collect();
+    cand.iter()
+        .enumerate()
+        .map(|(k, &f)| flat[k] && isolated.binary_search(&world.clean_piece[f]).is_ok())
+        .collect()
 }
 
 /// Faces with more corners than this are searched through a sorted copy.
@@ -220,13 +305,56 @@ mod tests {
         let mut e = [segs[0][0], segs[0][1]];
         e.sort_by(|p, q| p.y.total_cmp(&q.y));
         assert_eq!(e, [P3::new(1., 0.5, 0.), P3::new(1., 2., 0.)]);
-        let w = WorldFaces {
+        let mut w = WorldFaces {
             faces: vec![f, g],
             paths: Vec::new(),
+            clean_piece: vec![NO_PIECE; 2],
         };
         let all = intersection_edges(&w, |_| true);
         assert_eq!(all.len(), 1);
         assert_eq!(all[0].faces, vec![FaceId(0), FaceId(1)]);
+        // Faces of one piece known free of self-intersection are not tested (here the claim
+        // is false on purpose, to show that it is what is used).
+        w.clean_piece = vec![7, 7];
+        assert!(intersection_edges(&w, |_| true).is_empty());
+        w.clean_piece = vec![7, 8];
+        assert_eq!(intersection_edges(&w, |_| true).len(), 1);
+        // A face off its plane is not the union of the triangles the claim was proven on:
+        // it is tested whatever the claim.
+        w.clean_piece = vec![7, 7];
+        w.faces[0].points[2].z = 1e-3;
+        assert_eq!(intersection_edges(&w, |_| true).len(), 1);
+    }
+
+    #[test]
+    fn faces_alone_on_a_clean_piece_are_not_paired() {
+        let sq = |z: f64| [[0., 0., z], [1., 0., z], [1., 1., z], [0., 1., z]];
+        let far = |x: f64| [[x, 0., 0.], [x + 1., 0., 0.], [x, 1., 0.]];
+        let faces = vec![
+            face(0, 0, &sq(0.)),
+            face(0, 4, &sq(0.5)),
+            face(1, 0, &far(5.)),
+            face(2, 0, &far(5.5)),
+        ];
+        let mut w = WorldFaces {
+            faces,
+            paths: Vec::new(),
+            clean_piece: vec![0, 0, 1, NO_PIECE],
+        };
+        let all = [0, 1, 2, 3];
+        let flat = [true; 4];
+        // Piece 0 is apart from everything; piece 1 overlaps the loose face 3.
+        assert_eq!(alone(&w, &all, &flat), [true, true, false, false]);
+        // A face off its plane is loose, and its own piece is near it.
+        assert_eq!(alone(&w, &all, &[true, false, true, true]), [false; 4]);
+        // Two clean pieces whose boxes meet are both paired.
+        w.clean_piece = vec![0, 0, 1, 2];
+        assert_eq!(alone(&w, &all, &flat), [true, true, false, false]);
+        w.clean_piece = vec![0, 0, 1, 1];
+        assert_eq!(alone(&w, &all, &flat), [true; 4]);
+        // Only the candidates count.
+        w.clean_piece = vec![0, 0, 1, NO_PIECE];
+        assert_eq!(alone(&w, &[0, 2], &[true, true]), [true, true]);
     }
 
     #[test]

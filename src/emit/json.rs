@@ -7,6 +7,7 @@
 use std::fmt::Write as _;
 
 use crate::geom::poly2::Pt2;
+use crate::scene::flatten::write_num;
 use crate::view::{Projection, View};
 use crate::visibility::Visibility;
 
@@ -25,7 +26,11 @@ pub fn num(x: f64) -> String {
 }
 
 fn point(s: &mut String, p: &Pt2) {
-    let _ = write!(s, "[{},{}]", num(p[0]), num(p[1]));
+    s.push('[');
+    write_num(s, p[0]);
+    s.push(',');
+    write_num(s, p[1]);
+    s.push(']');
 }
 
 fn ring(s: &mut String, r: &[Pt2]) {

@@ -13,6 +13,7 @@
 use std::collections::BTreeMap;
 
 use geo::{LineString, Simplify};
+use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::geom::poly2::{polyline_length as length, Pt2};
@@ -185,8 +186,10 @@ pub fn picture(
             .or_default()
             .extend(strokes.into_iter().map(|l| (pen, l)));
     }
+    // Each layer's drawing order is planned on its own: in parallel, in layer order.
+    let by_layer: Vec<_> = by_layer.into_iter().collect();
     let layers: Vec<Layer> = by_layer
-        .into_iter()
+        .into_par_iter()
         .map(|(number, strokes)| {
             let name = match opts.layers {
                 LayerMode::Pen => Pen::ALL

@@ -1,7 +1,13 @@
 //! World-space polygons of every face (unclipped, in mesh vertex order), with their leaf and vertex indices.
 
+use rayon::prelude::*;
+
 use crate::geom::{newell, Box3, P3, V3};
-use crate::scene::Scene;
+use crate::scene::topology::edge_pieces;
+use crate::scene::{Face, Mesh, Scene};
+
+/// Above this many faces a leaf's world faces are made on all threads.
+const PARALLEL_ABOVE: usize = 4096;
 
 /// One face in world space.
 #[derive(Debug, Clone)]
@@ -25,31 +31,77 @@ pub struct WorldFaces {
     pub faces: Vec<WorldFace>,
     /// Object path of every leaf, in [`Scene::leaves`] order.
     pub paths: Vec<String>,
+    /// By face: a number shared by exactly the faces of one edge-connected piece of a leaf
+    /// that the prepare stage proved free of self-intersection (two of its faces meet only
+    /// in shared vertices and edges), [`NO_PIECE`] elsewhere.
+    pub clean_piece: Vec<u32>,
 }
+
+/// [`WorldFaces::clean_piece`] of a face on no piece proven free of self-intersection.
+pub const NO_PIECE: u32 = u32::MAX;
 
 impl WorldFaces {
     /// The world polygons of every face of `scene`, in global face order.
     pub fn build(scene: &Scene) -> WorldFaces {
         let mut faces = Vec::with_capacity(scene.face_count());
+        let mut clean_piece = Vec::with_capacity(scene.face_count());
+        let mut next_piece = 0;
         let leaves = scene.leaves();
         for (li, leaf) in leaves.iter().enumerate() {
+            clean_pieces(leaf.mesh, &mut clean_piece, &mut next_piece);
             let world: Vec<P3> = (0..leaf.mesh.vertices.len() as u32)
                 .map(|k| leaf.world_vertex(k))
                 .collect();
-            for f in &leaf.mesh.faces {
+            let face = |f: &Face| {
                 let points: Vec<P3> = f.vertices.iter().map(|&k| world[k as usize]).collect();
-                faces.push(WorldFace {
+                WorldFace {
                     leaf: li as u32,
                     vertices: f.vertices.clone(),
                     normal: newell(&points),
                     bbox: bbox(&points),
                     points,
-                });
+                }
+            };
+            // In face order either way; a big mesh's faces on all threads.
+            if leaf.mesh.faces.len() > PARALLEL_ABOVE {
+                faces.par_extend(leaf.mesh.faces.par_iter().map(face));
+            } else {
+                faces.extend(leaf.mesh.faces.iter().map(face));
             }
         }
         let paths = leaves.into_iter().map(|l| l.path).collect();
-        WorldFaces { faces, paths }
+        WorldFaces {
+            faces,
+            paths,
+            clean_piece,
+        }
     }
+}
+
+/// Appends a mesh's faces' [`WorldFaces::clean_piece`] numbers to `out`, numbering its
+/// pieces from `next` on. The solidity test examined every pair of triangles of
+/// one edge-connected piece (of the capped surface, for a capped mesh: a mesh's piece lies
+/// in one of those) and found none meeting other than in shared vertices and edges, when it
+/// proved the mesh a solid, capped it, or proved the piece ([`Mesh::proven`]).
+fn clean_pieces(mesh: &Mesh, out: &mut Vec<u32>, next: &mut u32) {
+    let n = mesh.faces.len();
+    let whole = mesh.cullable() || mesh.capped();
+    let proven = mesh.proven.as_ref().filter(|p| p.faces.len() == n);
+    if !whole && proven.is_none() {
+        out.extend(std::iter::repeat_n(NO_PIECE, n));
+        return;
+    }
+    let base = *next;
+    let pieces = edge_pieces(&mesh.faces);
+    *next += pieces.count as u32;
+    out.extend((0..n).map(|f| {
+        let clean = whole || proven.is_some_and(|p| p.faces[f]);
+        if clean {
+            base + pieces.of_face[f]
+        } else {
+            NO_PIECE
+        }
+    }));
 }
 
 /// Bounding box of points: min then max.
@@ -61,6 +113,8 @@ fn bbox(pts: &[P3]) -> [[f64; 3]; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::emit::intersect::intersection_edges;
+    use crate::scene::Object;
 
     #[test]
     fn square_face_in_world() {
@@ -69,5 +123,62 @@ mod tests {
         assert_eq!(w.faces.len(), 1);
         assert_eq!(w.faces[0].normal, V3::new(0., 0., 2.));
         assert_eq!(w.faces[0].bbox, [[0., 0., 0.], [1., 1., 0.]]);
+        // Not prepared: no piece is known to be free of self-intersection.
+        assert_eq!(w.clean_piece, vec![NO_PIECE]);
+    }
+
+    /// Two tetrahedra in one mesh, the second moved by `shift` (on every axis).
+    fn two_tetrahedra(shift: f64) -> Scene {
+        let tet = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]];
+        let out: [[u32; 3]; 4] = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+        let mut pts: Vec<P3> = tet.iter().map(|&p| P3::from(p)).collect();
+        pts.extend(
+            tet.iter()
+                .map(|p| P3::new(p[0] + shift, p[1] + shift, p[2] + shift)),
+        );
+        let faces = (0..2)
+            .flat_map(|k| {
+                out.iter()
+                    .map(move |f| f.iter().map(|v| v + 4 * k).collect())
+            })
+            .collect();
+        let raw = crate::geom::PolyMesh::new(pts, faces);
+        let root = Object::group("", vec![crate::scene::testing::leaf("two", &raw)]);
+        let mut scene = Scene::new(root, "t".into());
+        crate::prepare::prepare(&mut scene);
+        scene
+    }
+
+    #[test]
+    fn pieces_of_a_solid_are_clean_and_their_crossings_still_drawn() {
+        // A solid of two pieces passing through one another: each piece is free of
+        // self-intersection, the pair is not, and its curves are found.
+        let scene = two_tetrahedra(0.25);
+        assert!(scene.leaves()[0].mesh.cullable());
+        let w = WorldFaces::build(&scene);
+        assert_eq!(w.clean_piece, [0, 0, 0, 0, 1, 1, 1, 1]);
+        let curves = intersection_edges(&w, |_| true);
+        assert!(!curves.is_empty());
+        assert!(curves.iter().all(|e| e.faces[0].0 < 4 && e.faces[1].0 >= 4));
+        // Apart, no curve.
+        let w = WorldFaces::build(&two_tetrahedra(3.0));
+        assert!(intersection_edges(&w, |_| true).is_empty());
+    }
+
+    #[test]
+    fn a_piece_crossing_itself_is_not_clean() {
+        // A mesh not proven (here: its verdict replaced) has no clean piece: every pair is
+        // tested.
+        let mut scene = two_tetrahedra(0.25);
+        let crate::scene::Content::Subobjects(kids) = &mut scene.root.content else {
+            panic!("a group");
+        };
+        let crate::scene::Content::Mesh(m) = &mut kids[0].content else {
+            panic!("a leaf");
+        };
+        m.solidity = Some(crate::scene::Solidity::InsideOut);
+        let w = WorldFaces::build(&scene);
+        assert!(w.clean_piece.iter().all(|&k| k == NO_PIECE));
+        assert!(!intersection_edges(&w, |_| true).is_empty());
     }
 }

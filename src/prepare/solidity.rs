@@ -36,7 +36,7 @@ use crate::geom::box_pairs::{filter_map_pairs, overlap, Bounds3};
 use crate::geom::box_tree::BoxTree;
 use crate::geom::tri_intersect::{plane_axes, segment_meets_triangle, triangles_intersect};
 use crate::geom::{newell, orient2d, orient3d, Box3, P3};
-use crate::scene::topology::{edge_topology, sort, Topology};
+use crate::scene::topology::{edge_pieces, edge_topology, Pieces, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Content, Mesh, Object, Solidity};
 
@@ -71,7 +71,7 @@ impl Surface {
             tris,
             face_of,
             flat,
-            pieces: edge_pieces(mesh),
+            pieces: edge_pieces(&mesh.faces),
         }
     }
 
@@ -484,54 +484,6 @@ fn touch_beyond_vertex(t: &Tri, i: usize, u: &Tri, j: usize) -> bool {
 fn in_cone(v: [f64; 2], a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
     let s = orient2d(v, a, b).signum();
     orient2d(v, a, p) * s >= 0.0 && orient2d(v, p, b) * s >= 0.0
-}
-
-/// Connected pieces of a mesh's faces through shared edges.
-#[derive(Debug)]
-struct Pieces {
-    of_face: Vec<u32>,
-    count: usize,
-}
-
-fn edge_pieces(mesh: &Mesh) -> Pieces {
-    let n = mesh.faces.len();
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            parent[x as usize] = parent[parent[x as usize] as usize];
-            x = parent[x as usize];
-        }
-        x
-    }
-    // Undirected edges with their faces, sorted: the faces of one edge are neighbours in the
-    // list (no hashing). The pieces depend only on which faces share edges, not on order.
-    let mut edges: Vec<(u64, u32)> = Vec::with_capacity(n * 3);
-    for (k, f) in mesh.faces.iter().enumerate() {
-        let m = f.vertices.len();
-        for e in 0..m {
-            let (a, b) = (f.vertices[e], f.vertices[(e + 1) % m]);
-            edges.push(((a.min(b) as u64) << 32 | a.max(b) as u64, k as u32));
-        }
-    }
-    sort(&mut edges);
-    for w in edges.windows(2) {
-        if w[0].0 == w[1].0 {
-            let (ra, rb) = (find(&mut parent, w[0].1), find(&mut parent, w[1].1));
-            parent[ra.max(rb) as usize] = ra.min(rb);
-        }
-    }
-    let mut label = vec![u32::MAX; n];
-    let mut of_face = vec![0; n];
-    let mut count = 0;
-    for (k, slot) in of_face.iter_mut().enumerate() {
-        let r = find(&mut parent, k as u32) as usize;
-        if label[r] == u32::MAX {
-            label[r] = count as u32;
-            count += 1;
-        }
-        *slot = label[r];
-    }
-    Pieces { of_face, count }
 }
 
 /// Exact sign of the signed volume of closed triangles (+1 outward, -1 inward, 0 none): a

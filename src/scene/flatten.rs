@@ -87,13 +87,22 @@ impl FlatMesh {
 /// Shortest round-trip decimal form of `x` (exponent form for very small or large
 /// magnitudes, no trailing `.0` on integers), with -0 written as 0.
 pub fn num(x: f64) -> String {
-    if x == 0.0 {
-        "0".into()
+    let mut s = String::new();
+    write_num(&mut s, x);
+    s
+}
+
+/// [`num`] appended to `s` (no allocation of its own: the JSON writer's hot path).
+pub fn write_num(s: &mut String, x: f64) {
+    use std::fmt::Write as _;
+    // Writing to a String cannot fail.
+    let _ = if x == 0.0 {
+        s.write_str("0")
     } else if x == x.trunc() && x.abs() < 1e15 {
-        format!("{x}")
+        write!(s, "{x}")
     } else {
-        format!("{x:?}")
-    }
+        write!(s, "{x:?}")
+    };
 }
 
 #[cfg(test)]

@@ -62,6 +62,56 @@ pub(crate) fn sort<T: Ord + Send>(v: &mut [T]) {
     }
 }
 
+/// Connected pieces of a mesh's faces through shared edges.
+#[derive(Debug)]
+pub(crate) struct Pieces {
+    /// By face: its piece, numbered from 0 in order of first face.
+    pub(crate) of_face: Vec<u32>,
+    /// Number of pieces.
+    pub(crate) count: usize,
+}
+
+pub(crate) fn edge_pieces(faces: &[Face]) -> Pieces {
+    let n = faces.len();
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn find(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            parent[x as usize] = parent[parent[x as usize] as usize];
+            x = parent[x as usize];
+        }
+        x
+    }
+    // Undirected edges with their faces, sorted: the faces of one edge are neighbours in the
+    // list (no hashing). The pieces depend only on which faces share edges, not on order.
+    let mut edges: Vec<(u64, u32)> = Vec::with_capacity(n * 3);
+    for (k, f) in faces.iter().enumerate() {
+        let m = f.vertices.len();
+        for e in 0..m {
+            let (a, b) = (f.vertices[e], f.vertices[(e + 1) % m]);
+            edges.push(((a.min(b) as u64) << 32 | a.max(b) as u64, k as u32));
+        }
+    }
+    sort(&mut edges);
+    for w in edges.windows(2) {
+        if w[0].0 == w[1].0 {
+            let (ra, rb) = (find(&mut parent, w[0].1), find(&mut parent, w[1].1));
+            parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+    }
+    let mut label = vec![u32::MAX; n];
+    let mut of_face = vec![0; n];
+    let mut count = 0;
+    for (k, slot) in of_face.iter_mut().enumerate() {
+        let r = find(&mut parent, k as u32) as usize;
+        if label[r] == u32::MAX {
+            label[r] = count as u32;
+            count += 1;
+        }
+        *slot = label[r];
+    }
+    Pieces { of_face, count }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
