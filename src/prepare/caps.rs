@@ -44,6 +44,8 @@
 
 use std::collections::HashMap;
 
+use rayon::prelude::*;
+
 use crate::geom::{newell, orient3d, P3};
 use crate::scene::topology::{edge_topology, Topology};
 use crate::scene::triangulate::ear_clip_simple;
@@ -303,21 +305,20 @@ pub fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
             (0..n).map(move |i| (f.vertices[i] as u64) << 32 | f.vertices[(i + 1) % n] as u64)
         })
         .collect();
-    directed.sort_unstable();
-    // Loop steps b→a for each boundary edge a→b, in face order.
-    let mut steps: Vec<(u32, u32)> = Vec::new();
-    for f in faces {
-        let n = f.vertices.len();
-        for i in 0..n {
-            let (a, b) = (f.vertices[i], f.vertices[(i + 1) % n]);
-            if directed
-                .binary_search(&((b as u64) << 32 | a as u64))
-                .is_err()
-            {
-                steps.push((b, a));
-            }
-        }
-    }
+    directed.par_sort_unstable();
+    // Loop steps b→a for each boundary edge a→b, in face order (on all threads, in order).
+    let steps: Vec<(u32, u32)> = faces
+        .par_iter()
+        .flat_map_iter(|f| {
+            let n = f.vertices.len();
+            let directed = &directed;
+            (0..n).filter_map(move |i| {
+                let (a, b) = (f.vertices[i], f.vertices[(i + 1) % n]);
+                let reverse = (b as u64) << 32 | a as u64;
+                directed.binary_search(&reverse).is_err().then_some((b, a))
+            })
+        })
+        .collect();
     let mut out_of: HashMap<u32, Vec<usize>> = HashMap::new();
     for (k, &(from, _)) in steps.iter().enumerate().rev() {
         out_of.entry(from).or_default().push(k);

@@ -38,7 +38,7 @@ use crate::geom::tri_intersect::{plane_axes, segment_meets_triangle, triangles_i
 use crate::geom::{newell, orient2d, orient3d, Box3, P3};
 use crate::scene::topology::{edge_pieces, edge_topology, Pieces, Topology};
 use crate::scene::triangulate::ear_clip_simple;
-use crate::scene::{CapFailure, Content, Mesh, Object, Solidity};
+use crate::scene::{CapFailure, Content, Face, Mesh, Object, Solidity};
 
 /// A triangle of a mesh's surface: vertex indices and their points.
 #[derive(Debug, Clone, Copy)]
@@ -237,40 +237,73 @@ fn mark(obj: &mut Object, done: &mut Marked) {
 /// the view's planar pieces), with each triangle's face, and the faces that give none (not
 /// simple, or a flat triangle; ascending).
 fn triangulate(mesh: &Mesh) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
-    let mut tris = Vec::with_capacity(mesh.faces.len() * 2);
-    let mut face_of = Vec::with_capacity(mesh.faces.len() * 2);
-    let mut bad = Vec::new();
-    for (k, f) in mesh.faces.iter().enumerate() {
-        let pts: Vec<P3> = f
-            .vertices
-            .iter()
-            .map(|&v| mesh.vertices[v as usize])
-            .collect();
-        let local = if pts.len() == 3 {
-            vec![[0, 1, 2]]
-        } else {
-            match ear_clip_simple(&pts, &newell(&pts)) {
-                Some(t) => t,
-                None => {
-                    bad.push(k as u32);
-                    continue;
-                }
+    // In chunks of faces on all threads, joined in face order: the same lists as one pass.
+    let parts: Vec<(Vec<Tri>, Vec<u32>, Vec<u32>)> = mesh
+        .faces
+        .par_chunks(TRIANGULATED_CHUNK)
+        .enumerate()
+        .map(|(c, faces)| {
+            let first = c * TRIANGULATED_CHUNK;
+            let mut part = (Vec::with_capacity(faces.len()), Vec::new(), Vec::new());
+            for (k, f) in faces.iter().enumerate() {
+                triangulate_face(mesh, f, (first + k) as u32, &mut part);
             }
-        };
-        let first = tris.len();
-        tris.extend(local.iter().map(|t| Tri {
-            v: t.map(|i| f.vertices[i]),
-            p: t.map(|i| pts[i]),
-        }));
-        if tris[first..].iter().any(|t| degenerate(&t.p)) {
-            // A face with a flat triangle gives none.
-            tris.truncate(first);
-            bad.push(k as u32);
-        } else {
-            face_of.resize(tris.len(), k as u32);
-        }
+            part
+        })
+        .collect();
+    let mut out = (
+        Vec::with_capacity(mesh.faces.len() * 2),
+        Vec::new(),
+        Vec::new(),
+    );
+    out.1.reserve(out.0.capacity());
+    for (t, f, b) in parts {
+        out.0.extend(t);
+        out.1.extend(f);
+        out.2.extend(b);
     }
-    (tris, face_of, bad)
+    out
+}
+
+/// Faces per chunk of [`triangulate`].
+const TRIANGULATED_CHUNK: usize = 4096;
+
+/// Appends face `k`'s triangles and their face to `out.0` and `out.1`, or `k` to `out.2`
+/// when it gives none.
+fn triangulate_face(mesh: &Mesh, f: &Face, k: u32, out: &mut (Vec<Tri>, Vec<u32>, Vec<u32>)) {
+    let (tris, face_of, bad) = out;
+    let at = |v: u32| mesh.vertices[v as usize];
+    if let [a, b, c] = f.vertices[..] {
+        // A triangle, the usual case: no ear clipping, no allocation.
+        let t = Tri {
+            v: [a, b, c],
+            p: [at(a), at(b), at(c)],
+        };
+        if degenerate(&t.p) {
+            bad.push(k);
+        } else {
+            tris.push(t);
+            face_of.push(k);
+        }
+        return;
+    }
+    let pts: Vec<P3> = f.vertices.iter().map(|&v| at(v)).collect();
+    let Some(local) = ear_clip_simple(&pts, &newell(&pts)) else {
+        bad.push(k);
+        return;
+    };
+    let first = tris.len();
+    tris.extend(local.iter().map(|t| Tri {
+        v: t.map(|i| f.vertices[i]),
+        p: t.map(|i| pts[i]),
+    }));
+    if tris[first..].iter().any(|t| degenerate(&t.p)) {
+        // A face with a flat triangle gives none.
+        tris.truncate(first);
+        bad.push(k);
+    } else {
+        face_of.resize(tris.len(), k);
+    }
 }
 
 /// Exact: the three points are collinear (every coordinate-plane projection is degenerate).
@@ -344,22 +377,48 @@ fn grid_pairs(
             ((is[i as usize] || is[j as usize]) && crosses(i, j)).then_some((i, j))
         });
     }
-    let mut found: Vec<(u32, u32)> = few
-        .par_iter()
-        .flat_map_iter(|&i| {
-            (0..boxes.len() as u32)
-                .filter(move |&j| {
-                    j != i
-                        && (!is[j as usize] || j > i)
-                        && overlap(&boxes[i as usize], &boxes[j as usize])
-                        && crosses(i, j)
-                })
-                .map(move |j| (i.min(j), i.max(j)))
-        })
-        .collect();
+    let wanted = |i: u32, j: u32| j != i && (!is[j as usize] || j > i) && crosses(i, j);
+    let mut found: Vec<(u32, u32)> = if few.len() <= SCANNED_SUSPECTS {
+        few.par_iter()
+            .flat_map_iter(|&i| {
+                (0..boxes.len() as u32)
+                    .filter(move |&j| overlap(&boxes[i as usize], &boxes[j as usize]))
+                    .filter(move |&j| wanted(i, j))
+                    .map(move |j| (i.min(j), i.max(j)))
+            })
+            .collect()
+    } else {
+        // Many suspects search a tree over the present boxes (an absent one meets nothing)
+        // instead of each scanning them all: the same pairs, found in time that follows them.
+        let present: Vec<u32> = (0..boxes.len() as u32)
+            .filter(|&j| !boxes[j as usize][0][0].is_nan())
+            .collect();
+        let as_box = |b: &Bounds3| Box3::new(P3::from(b[0]), P3::from(b[1]));
+        let all: Vec<Box3> = present
+            .iter()
+            .map(|&j| as_box(&boxes[j as usize]))
+            .collect();
+        let tree = BoxTree::new(&all);
+        few.par_iter()
+            .flat_map_iter(|&i| {
+                let mut near = Vec::new();
+                tree.any_meeting(&all, &as_box(&boxes[i as usize]), |u| {
+                    let j = present[u as usize];
+                    if wanted(i, j) {
+                        near.push((i.min(j), i.max(j)));
+                    }
+                    false
+                });
+                near
+            })
+            .collect()
+    };
     found.sort_unstable();
     found
 }
+
+/// Up to this many suspect triangles, each finds its neighbours by scanning every box.
+const SCANNED_SUSPECTS: usize = 16;
 
 /// Up to this many plates, each finds its neighbours by scanning every box.
 const SCANNED_PLATES: usize = 8;
@@ -593,6 +652,42 @@ mod tests {
 
     const TET: [[f64; 3]; 4] = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]];
     const TET_OUT: [&[u32]; 4] = [&[0, 2, 1], &[0, 1, 3], &[0, 3, 2], &[1, 2, 3]];
+
+    #[test]
+    fn suspects_find_the_same_pairs_by_scan_and_by_tree() {
+        // Random boxes, some absent (NaN), a tenth or fewer suspect: whether each suspect
+        // scans every box (few) or searches the tree (more), the pairs are those a full
+        // comparison finds.
+        let mut rng = crate::geom::rng::XorShift::new(11);
+        for (n, suspects) in [(400, 5), (400, 17), (400, 40), (1000, 90)] {
+            let mut boxes: Vec<Bounds3> = (0..n)
+                .map(|_| {
+                    let lo: [f64; 3] = std::array::from_fn(|_| rng.unit() * 10.0);
+                    let hi = std::array::from_fn(|k| lo[k] + rng.unit());
+                    [lo, hi]
+                })
+                .collect();
+            boxes[7] = [[f64::NAN; 3]; 2];
+            let mut is = vec![false; n];
+            for k in 0..suspects {
+                is[(k * 37 + 3) % n] = true;
+            }
+            is[7] = true;
+            let odd = |i: u32, j: u32| (i + j) % 3 != 0;
+            let got = grid_pairs(&boxes, &is, &odd);
+            let mut want = Vec::new();
+            for i in 0..n as u32 {
+                for j in i + 1..n as u32 {
+                    let (a, b) = (&boxes[i as usize], &boxes[j as usize]);
+                    if (is[i as usize] || is[j as usize]) && overlap(a, b) && odd(i, j) {
+                        want.push((i, j));
+                    }
+                }
+            }
+            assert!(!want.is_empty());
+            assert_eq!(got, want, "{n} boxes, {suspects} suspects");
+        }
+    }
 
     #[test]
     fn outward_tetrahedron_and_cube_are_solid() {
