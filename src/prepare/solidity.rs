@@ -673,7 +673,7 @@ mod tests {
                 is[(k * 37 + 3) % n] = true;
             }
             is[7] = true;
-            let odd = |i: u32, j: u32| (i + j) % 3 != 0;
+            let odd = |i: u32, j: u32| !(i + j).is_multiple_of(3);
             let got = grid_pairs(&boxes, &is, &odd);
             let mut want = Vec::new();
             for i in 0..n as u32 {
