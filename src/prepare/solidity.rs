@@ -388,22 +388,22 @@ fn grid_pairs(
             })
             .collect()
     } else {
-        // Many suspects search a tree over the present boxes (an absent one meets nothing)
-        // instead of each scanning them all: the same pairs, found in time that follows them.
-        let present: Vec<u32> = (0..boxes.len() as u32)
-            .filter(|&j| !boxes[j as usize][0][0].is_nan())
-            .collect();
+        // Many suspects go in a tree that every present box searches (an absent one meets
+        // nothing), instead of each suspect scanning every box: the same pairs.
         let as_box = |b: &Bounds3| Box3::new(P3::from(b[0]), P3::from(b[1]));
-        let all: Vec<Box3> = present
-            .iter()
-            .map(|&j| as_box(&boxes[j as usize]))
+        let few: Vec<u32> = few
+            .into_iter()
+            .filter(|&i| !boxes[i as usize][0][0].is_nan())
             .collect();
-        let tree = BoxTree::new(&all);
-        few.par_iter()
-            .flat_map_iter(|&i| {
+        let suspects: Vec<Box3> = few.iter().map(|&i| as_box(&boxes[i as usize])).collect();
+        let tree = BoxTree::new(&suspects);
+        (0..boxes.len() as u32)
+            .into_par_iter()
+            .filter(|&j| !boxes[j as usize][0][0].is_nan())
+            .flat_map_iter(|j| {
                 let mut near = Vec::new();
-                tree.any_meeting(&all, &as_box(&boxes[i as usize]), |u| {
-                    let j = present[u as usize];
+                tree.any_meeting(&suspects, &as_box(&boxes[j as usize]), |u| {
+                    let i = few[u as usize];
                     if wanted(i, j) {
                         near.push((i.min(j), i.max(j)));
                     }
