@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 
 use crate::geom::poly2::Pt2;
 use crate::scene::flatten::write_num;
-use crate::view::{Projection, View};
+use crate::view::{PieceId, Projection, View};
 use crate::visibility::Visibility;
 
 /// Polylines of a line drawing, in screen space.
@@ -82,6 +82,13 @@ pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
         }
     }
     s.push_str("},\n\"faces\":[");
+    // Each leaf's path as a JSON string, once.
+    let paths: Vec<String> = view
+        .screen
+        .leaves
+        .iter()
+        .map(|l| json_string(&l.path))
+        .collect();
     let mut first = true;
     for (id, f) in vis.iter() {
         if f.visible.is_empty() {
@@ -89,13 +96,17 @@ pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
         }
         s.push_str(if first { "\n" } else { ",\n" });
         first = false;
-        let leaf = view.screen.leaf_of_face(id);
+        let leaf = view
+            .screen
+            .piece(PieceId(view.screen.face_starts[id.index()]))
+            .leaf;
         let _ = write!(
             s,
-            "{{\"id\":{id},\"object\":{},\"area\":{},\"visible\":",
-            json_string(&leaf.path),
-            num(f.area)
+            "{{\"id\":{id},\"object\":{},\"area\":",
+            paths[leaf as usize]
         );
+        write_num(&mut s, f.area);
+        s.push_str(",\"visible\":");
         list(&mut s, &f.visible, |s, poly| {
             list(s, poly, |s, r| ring(s, r))
         });
