@@ -68,8 +68,9 @@ pub enum CapFailure {
     /// A connected piece of the capped surface has negative or zero volume (the mesh is
     /// wound inwards, or is a sheet with nothing inside).
     InsideOut,
-    /// The capped surface is not closed and consistent (cannot happen for well-traced
-    /// loops; kept so that no outcome is unnamed).
+    /// The capped surface is not closed and consistent: an ear-clipped cap repeats a face of
+    /// the mesh (a face with all three corners on the loop, as at a height field's corner
+    /// cells), so an edge gets three faces.
     Inconsistent,
 }
 
@@ -144,7 +145,8 @@ impl CapFailure {
                 "capping failed: the capped surface has a piece of negative or zero volume".into()
             }
             CapFailure::Inconsistent => {
-                "capping failed: the capped surface is not closed and consistent".into()
+                "capping failed: the capped surface is not closed and consistent (a cap repeats a face)"
+                    .into()
             }
         }
     }
