@@ -54,7 +54,7 @@ use crate::scene::{CapFailure, Face, Mesh, Solidity};
 use super::slits::close_slits;
 #[cfg(test)]
 use super::solidity::solidity;
-use super::solidity::{degenerate, examine_where, Surface};
+use super::solidity::{degenerate, examine_until, Surface, NO_GROUP};
 
 /// The caps of an open mesh that capping made a solid.
 #[derive(Debug, Clone, PartialEq)]
@@ -97,6 +97,9 @@ pub(crate) struct Failed {
     /// own triangles (every pair with a cap found apart, every piece outward): then the
     /// pieces need no second test.
     pub(crate) crossing: Option<Vec<[u32; 2]>>,
+    /// Some crossing pairs of its faces (at least one of each cap that crosses), where not
+    /// all are known.
+    pub(crate) known: Vec<[u32; 2]>,
 }
 
 /// A failure to cap, with the capped surface that failed where one was built and tested
@@ -106,12 +109,13 @@ pub(crate) type Refused = (CapFailure, Option<Box<Failed>>);
 /// [`cap_holes`], saying on failure which capped surface failed.
 pub(crate) fn capping(mesh: &Mesh) -> Result<Caps, Refused> {
     let refuse = |why| (why, None);
-    let failed = |mesh, surface: Option<Surface>| {
+    let failed = |mesh, surface: Option<Surface>, known: Vec<[u32; 2]>| {
         surface.map(|surface| {
             Box::new(Failed {
                 mesh,
                 surface,
                 crossing: None,
+                known,
             })
         })
     };
@@ -145,7 +149,19 @@ pub(crate) fn capping(mesh: &Mesh) -> Result<Caps, Refused> {
     let mut suspect: Vec<bool> = vec![true; loops.len()];
     for attempt in 1..=ATTEMPTS {
         let (capped, loop_of) = with_caps(mesh, &loops, &ways);
-        let e = examine_where(&capped, |f| f >= n && suspect[loop_of[(f - n) as usize]]);
+        // A hole's cap is settled by its first crossing: the retry needs only which holes
+        // cross (a height field's fan crosses it along O(sqrt F) triangles each).
+        let hole_of: Vec<u32> = (0..capped.faces.len() as u32)
+            .map(|f| match f.checked_sub(n).map(|k| loop_of[k as usize]) {
+                Some(l) if suspect[l] => l as u32,
+                _ => NO_GROUP,
+            })
+            .collect();
+        let e = examine_until(
+            &capped,
+            |f| f >= n && suspect[loop_of[(f - n) as usize]],
+            Some(&hole_of),
+        );
         let cap = |f: u32| f.checked_sub(n).map(|k| loop_of[k as usize]);
         let reached_crossings = !matches!(e.solidity, Solidity::Degenerate);
         let mut retry: Vec<usize> = match e.solidity {
@@ -155,7 +171,10 @@ pub(crate) fn capping(mesh: &Mesh) -> Result<Caps, Refused> {
             }
             Solidity::Degenerate => {
                 if e.degenerate.iter().any(|&f| f < n) {
-                    return Err((CapFailure::MeshDegenerate, failed(capped, e.surface)));
+                    return Err((
+                        CapFailure::MeshDegenerate,
+                        failed(capped, e.surface, e.crossing),
+                    ));
                 }
                 e.degenerate.iter().filter_map(|&f| cap(f)).collect()
             }
@@ -165,7 +184,9 @@ pub(crate) fn capping(mesh: &Mesh) -> Result<Caps, Refused> {
                 .flatten()
                 .filter_map(|&f| cap(f))
                 .collect(),
-            Solidity::InsideOut => return Err((CapFailure::InsideOut, failed(capped, e.surface))),
+            Solidity::InsideOut => {
+                return Err((CapFailure::InsideOut, failed(capped, e.surface, e.crossing)))
+            }
             Solidity::Open(_) | Solidity::Capped(_) | Solidity::Inconsistent => {
                 return Err(refuse(CapFailure::Inconsistent))
             }
@@ -177,10 +198,10 @@ pub(crate) fn capping(mesh: &Mesh) -> Result<Caps, Refused> {
         let fixable = |l: &usize| ways[*l] == Way::Fan && ears(mesh, &loops[*l]).is_some();
         if retry.is_empty() || !retry.iter().all(fixable) || attempt == ATTEMPTS {
             let why = match e.solidity {
-                Solidity::SelfIntersecting(k) => CapFailure::SelfIntersecting(k),
+                Solidity::SelfIntersecting(_) => CapFailure::SelfIntersecting(retry.len() as u64),
                 _ => CapFailure::Degenerate,
             };
-            return Err((why, failed(capped, e.surface)));
+            return Err((why, failed(capped, e.surface, e.crossing)));
         }
         if reached_crossings {
             suspect.iter_mut().for_each(|s| *s = false);
@@ -207,6 +228,7 @@ fn whole(mesh: &Mesh, capped: Mesh, surface: Surface, loops: u32) -> Result<Caps
             mesh: capped,
             surface,
             crossing: Some(c),
+            known: Vec::new(),
         };
         return Err((why, Some(Box::new(failed))));
     }

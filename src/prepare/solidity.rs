@@ -21,6 +21,7 @@
 //! Anything else keeps two-sided faces: correct, only slower.
 
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
 
 use num_bigint::BigInt;
@@ -29,6 +30,8 @@ use num_traits::{Signed, Zero};
 use rayon::prelude::*;
 
 pub mod pieces;
+
+use pieces::Crossings;
 mod plates;
 mod slab;
 
@@ -87,10 +90,26 @@ impl Surface {
         mesh: &Mesh,
         suspect: impl Fn(u32) -> bool + Sync,
     ) -> Vec<[u32; 2]> {
+        self.crossing_until(mesh, suspect, None)
+    }
+
+    /// [`Self::crossing`] with an early exit by `groups` of faces ([`examine_until`]).
+    pub(crate) fn crossing_until(
+        &self,
+        mesh: &Mesh,
+        suspect: impl Fn(u32) -> bool + Sync,
+        groups: Option<&[u32]>,
+    ) -> Vec<[u32; 2]> {
         let face_of = &self.face_of;
-        crossing_pairs(mesh, &self.tris, face_of, &self.pieces.of_face, |t| {
-            suspect(face_of[t as usize])
-        })
+        let groups = groups.map(|g| Groups::new(face_of.iter().map(|&f| g[f as usize]).collect()));
+        crossing_pairs(
+            mesh,
+            &self.tris,
+            face_of,
+            &self.pieces.of_face,
+            |t| suspect(face_of[t as usize]),
+            groups.as_ref(),
+        )
         .into_iter()
         .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
         .collect()
@@ -133,6 +152,18 @@ pub(crate) fn examine(mesh: &Mesh) -> Examined {
 /// [`examine`], testing for crossings only the pairs of triangles where one's face passes
 /// `suspect` (the others known not to cross).
 pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -> Examined {
+    examine_until(mesh, suspect, None)
+}
+
+/// [`examine_where`], where the suspect faces fall in `groups` (by face, [`NO_GROUP`] for
+/// none): once a pair of a group is found crossing, its other pairs are not tested. Then the
+/// crossing list holds at least one pair of every group that crosses and none of any other,
+/// but not every pair, and the count in [`Solidity::SelfIntersecting`] is of the pairs found.
+pub(crate) fn examine_until(
+    mesh: &Mesh,
+    suspect: impl Fn(u32) -> bool + Sync,
+    groups: Option<&[u32]>,
+) -> Examined {
     let mut e = Examined {
         solidity: Solidity::Solid,
         degenerate: Vec::new(),
@@ -148,7 +179,7 @@ pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -
                 e.solidity = Solidity::Degenerate;
                 e.degenerate = surface.flat.clone();
             } else {
-                e.crossing = surface.crossing(mesh, suspect);
+                e.crossing = surface.crossing_until(mesh, suspect, groups);
                 if !e.crossing.is_empty() {
                     e.solidity = Solidity::SelfIntersecting(e.crossing.len() as u64);
                 } else if !surface.outward(|_| true).iter().all(|&o| o) {
@@ -176,13 +207,21 @@ pub fn decide(mesh: &mut Mesh) {
             Err((why, failed)) => (
                 Solidity::Open(why),
                 failed.and_then(|f| {
-                    pieces::proven_pieces(&f.mesh, &f.surface, n, f.crossing.as_deref())
+                    let crossing = match &f.crossing {
+                        Some(all) => Crossings::All(all),
+                        None => Crossings::Some(&f.known),
+                    };
+                    pieces::proven_pieces(&f.mesh, &f.surface, n, crossing)
                 }),
             ),
         },
         s @ (Solidity::SelfIntersecting(_) | Solidity::InsideOut | Solidity::Degenerate) => {
             // Past the flat faces every pair was tested: the crossing list is complete.
-            let known = (s != Solidity::Degenerate).then_some(whole.crossing.as_slice());
+            let known = if s == Solidity::Degenerate {
+                Crossings::Some(&[])
+            } else {
+                Crossings::All(&whole.crossing)
+            };
             let proof = whole
                 .surface
                 .as_ref()
@@ -328,6 +367,7 @@ fn crossing_pairs(
     face_of: &[u32],
     piece_of: &[u32],
     suspect: impl Fn(u32) -> bool + Sync,
+    groups: Option<&Groups>,
 ) -> Vec<(u32, u32)> {
     let boxes: Vec<Bounds3> = tris
         .iter()
@@ -346,14 +386,14 @@ fn crossing_pairs(
     };
     let plates = plates::find(mesh, face_of);
     let mut found = if plates.is_empty() {
-        grid_pairs(&boxes, &is, &crosses)
+        grid_pairs(&boxes, &is, &crosses, groups)
     } else {
         // Plate triangles leave the grid (an absent box is ignored there).
         let mut rest = boxes.clone();
         for p in &plates {
             rest[p.tris.start as usize..p.tris.end as usize].fill([[f64::NAN; 3]; 2]);
         }
-        let mut found = grid_pairs(&rest, &is, &crosses);
+        let mut found = grid_pairs(&rest, &is, &crosses, groups);
         found.extend(plate_pairs(&plates, tris, &boxes, &is, &crosses));
         found.sort_unstable();
         found.dedup();
@@ -368,6 +408,7 @@ fn grid_pairs(
     boxes: &[Bounds3],
     is: &[bool],
     crosses: &(impl Fn(u32, u32) -> bool + Sync),
+    groups: Option<&Groups>,
 ) -> Vec<(u32, u32)> {
     let few: Vec<u32> = (0..boxes.len() as u32)
         .filter(|&i| is[i as usize])
@@ -397,15 +438,28 @@ fn grid_pairs(
             .collect();
         let suspects: Vec<Box3> = few.iter().map(|&i| as_box(&boxes[i as usize])).collect();
         let tree = BoxTree::new(&suspects);
+        let left = groups.map(|g| g.start(&few));
         (0..boxes.len() as u32)
             .into_par_iter()
             .filter(|&j| !boxes[j as usize][0][0].is_nan())
             .flat_map_iter(|j| {
                 let mut near = Vec::new();
+                if left
+                    .as_ref()
+                    .is_some_and(|l| l.load(Ordering::Relaxed) == 0)
+                {
+                    return near; // every group has crossed
+                }
                 tree.any_meeting(&suspects, &as_box(&boxes[j as usize]), |u| {
                     let i = few[u as usize];
+                    if groups.is_some_and(|g| g.settled(i, j)) {
+                        return false;
+                    }
                     if wanted(i, j) {
                         near.push((i.min(j), i.max(j)));
+                        if let (Some(g), Some(l)) = (groups, &left) {
+                            g.cross(i, j, l);
+                        }
                     }
                     false
                 });
@@ -419,6 +473,69 @@ fn grid_pairs(
 
 /// Up to this many suspect triangles, each finds its neighbours by scanning every box.
 const SCANNED_SUSPECTS: usize = 16;
+
+/// A face or triangle in no group of an early-exit crossing search ([`examine_until`]).
+pub(crate) const NO_GROUP: u32 = u32::MAX;
+
+/// The groups of an early-exit crossing search (the holes whose caps are tested): each
+/// triangle's group, and whether the group is known to cross. A pair is skipped when every
+/// group it touches is known to cross, so each group that has a crossing pair is found to
+/// cross and no other, whatever the order the threads take (the pairs found may differ).
+#[derive(Debug)]
+pub(crate) struct Groups {
+    /// By triangle: its group, or [`NO_GROUP`].
+    of: Vec<u32>,
+    /// By group: a crossing pair of it has been found.
+    crossed: Vec<AtomicBool>,
+}
+
+impl Groups {
+    fn new(of: Vec<u32>) -> Groups {
+        let count = of
+            .iter()
+            .filter(|&&g| g != NO_GROUP)
+            .max()
+            .map_or(0, |&g| g as usize + 1);
+        Groups {
+            of,
+            crossed: (0..count).map(|_| AtomicBool::new(false)).collect(),
+        }
+    }
+
+    /// The number of groups among the `suspects`, none found crossing yet.
+    fn start(&self, suspects: &[u32]) -> AtomicUsize {
+        let mut g: Vec<u32> = suspects
+            .iter()
+            .map(|&t| self.of[t as usize])
+            .filter(|&g| g != NO_GROUP)
+            .collect();
+        g.sort_unstable();
+        g.dedup();
+        AtomicUsize::new(g.len())
+    }
+
+    fn known(&self, t: u32) -> bool {
+        let g = self.of[t as usize];
+        g == NO_GROUP || self.crossed[g as usize].load(Ordering::Relaxed)
+    }
+
+    /// True when the pair need not be tested: every group it touches has crossed (and it
+    /// touches one).
+    fn settled(&self, i: u32, j: u32) -> bool {
+        let grouped = |t: u32| self.of[t as usize] != NO_GROUP;
+        (grouped(i) || grouped(j)) && self.known(i) && self.known(j)
+    }
+
+    /// Records the crossing pair (i, j), counting down `left` for each group newly crossed.
+    fn cross(&self, i: u32, j: u32, left: &AtomicUsize) {
+        for t in [i, j] {
+            let g = self.of[t as usize];
+            if g != NO_GROUP && !self.crossed[g as usize].swap(true, Ordering::Relaxed) {
+                left.fetch_sub(1, Ordering::Relaxed);
+            }
+        }
+    }
+}
 
 /// Up to this many plates, each finds its neighbours by scanning every box.
 const SCANNED_PLATES: usize = 8;
@@ -654,6 +771,48 @@ mod tests {
     const TET_OUT: [&[u32]; 4] = [&[0, 2, 1], &[0, 1, 3], &[0, 3, 2], &[1, 2, 3]];
 
     #[test]
+    fn an_early_exit_finds_every_group_that_crosses() {
+        // 90 suspects in 7 groups among 1000 random boxes; group 6 crosses nothing. With the
+        // early exit the pairs found are some of all, and touch exactly the same groups.
+        let mut rng = crate::geom::rng::XorShift::new(5);
+        let n = 1000;
+        let boxes: Vec<Bounds3> = (0..n)
+            .map(|_| {
+                let lo: [f64; 3] = std::array::from_fn(|_| rng.unit() * 10.0);
+                [lo, std::array::from_fn(|k| lo[k] + rng.unit())]
+            })
+            .collect();
+        let mut is = vec![false; n];
+        let mut of = vec![NO_GROUP; n];
+        for k in 0..90 {
+            let t = (k * 11 + 5) % n;
+            is[t] = true;
+            of[t] = (k % 7) as u32;
+        }
+        let crosses = |i: u32, j: u32| {
+            let quiet = |t: u32| of[t as usize] == 6;
+            !(i + j).is_multiple_of(3) && !quiet(i) && !quiet(j)
+        };
+        let all = grid_pairs(&boxes, &is, &crosses, None);
+        let groups = Groups::new(of.clone());
+        let some = grid_pairs(&boxes, &is, &crosses, Some(&groups));
+        assert!(some.iter().all(|p| all.binary_search(p).is_ok()));
+        assert!(some.len() < all.len(), "the exit skipped pairs");
+        let touched = |pairs: &[(u32, u32)]| {
+            let mut g: Vec<u32> = pairs
+                .iter()
+                .flat_map(|&(i, j)| [of[i as usize], of[j as usize]])
+                .filter(|&g| g != NO_GROUP)
+                .collect();
+            g.sort_unstable();
+            g.dedup();
+            g
+        };
+        assert_eq!(touched(&some), touched(&all));
+        assert_eq!(touched(&all), [0, 1, 2, 3, 4, 5]);
+    }
+
+    #[test]
     fn suspects_find_the_same_pairs_by_scan_and_by_tree() {
         // Random boxes, some absent (NaN), a tenth or fewer suspect: whether each suspect
         // scans every box (few) or searches the tree (more), the pairs are those a full
@@ -674,7 +833,7 @@ mod tests {
             }
             is[7] = true;
             let odd = |i: u32, j: u32| !(i + j).is_multiple_of(3);
-            let got = grid_pairs(&boxes, &is, &odd);
+            let got = grid_pairs(&boxes, &is, &odd, None);
             let mut want = Vec::new();
             for i in 0..n as u32 {
                 for j in i + 1..n as u32 {

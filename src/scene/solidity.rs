@@ -63,7 +63,8 @@ pub enum CapFailure {
     Slit,
     /// A cap has a triangle of zero area, fanned or ear-clipped.
     Degenerate,
-    /// Caps cross the mesh or each other, fanned or ear-clipped (pairs of triangles).
+    /// Caps cross the mesh or each other, fanned or ear-clipped (the number of holes whose
+    /// caps cross: each cap's test stops at its first crossing).
     SelfIntersecting(u64),
     /// A connected piece of the capped surface has negative or zero volume (the mesh is
     /// wound inwards, or is a sheet with nothing inside).
@@ -138,7 +139,7 @@ impl CapFailure {
             CapFailure::Degenerate => "capping failed: a cap triangle has zero area".into(),
             CapFailure::SelfIntersecting(n) => {
                 format!(
-                    "capping failed: caps cross the mesh or each other ({n} pairs of triangles)"
+                    "capping failed: caps cross the mesh or each other (the caps of {n} holes)"
                 )
             }
             CapFailure::InsideOut => {

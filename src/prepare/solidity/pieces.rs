@@ -21,31 +21,38 @@ use crate::scene::{Mesh, ProvenPieces};
 
 use super::Surface;
 
+/// What a test of the whole surface already knows of its crossing pairs of faces.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Crossings<'a> {
+    /// Every crossing pair: the pieces need no test of their own.
+    All(&'a [[u32; 2]]),
+    /// Some crossing pairs: their pieces fail, the others are tested.
+    Some(&'a [[u32; 2]]),
+}
+
 /// The proven pieces of `mesh`, a closed, consistently oriented mesh whose first `n` faces
 /// are the original mesh's (the rest: caps, triangles), tested on its `surface`; with the
-/// caps of the proven pieces. `crossing`: every crossing pair of faces, where a test of the
-/// whole already found them all (then it is not repeated). None when no piece is proven.
+/// caps of the proven pieces. `crossing`: what is known of the crossing pairs (not tested
+/// again). None when no piece is proven.
 pub(crate) fn proven_pieces(
     mesh: &Mesh,
     surface: &Surface,
     n: usize,
-    crossing: Option<&[[u32; 2]]>,
+    crossing: Crossings,
 ) -> Option<(ProvenPieces, Vec<[P3; 3]>)> {
     let piece = |f: u32| surface.piece(f);
     let mut good = vec![true; surface.pieces.count];
     for &f in &surface.flat {
         good[piece(f)] = false;
     }
-    let found;
-    let crossing = match crossing {
-        Some(known) => known,
-        None => {
-            found = surface.crossing(mesh, |_| true);
-            &found
-        }
-    };
     // Both faces of a pair are on one piece.
-    crossing.iter().for_each(|&[f, _]| good[piece(f)] = false);
+    let (Crossings::All(known) | Crossings::Some(known)) = crossing;
+    known.iter().for_each(|&[f, _]| good[piece(f)] = false);
+    if let Crossings::Some(_) = crossing {
+        // Every pair of the pieces not yet failed (pairs never leave a piece).
+        let found = surface.crossing(mesh, |f| good[piece(f)]);
+        found.iter().for_each(|&[f, _]| good[piece(f)] = false);
+    }
     let good = surface.outward(|k| good[k]);
     let proven = good.iter().filter(|&&g| g).count();
     if proven == 0 {
@@ -158,9 +165,17 @@ mod tests {
         let m = beside(&cube_without(&[]), &crossing_piece(), 3.0);
         let e = super::super::examine(&m);
         let surface = e.surface.as_ref().expect("closed");
-        let fresh = proven_pieces(&m, surface, m.faces.len(), None);
-        let known = proven_pieces(&m, surface, m.faces.len(), Some(&e.crossing));
+        let fresh = proven_pieces(&m, surface, m.faces.len(), Crossings::Some(&[]));
+        let known = proven_pieces(&m, surface, m.faces.len(), Crossings::All(&e.crossing));
         assert!(!e.crossing.is_empty());
         assert_eq!(fresh, known);
+        // Some of the pairs: their piece fails, the rest is tested.
+        let some = proven_pieces(
+            &m,
+            surface,
+            m.faces.len(),
+            Crossings::Some(&e.crossing[..1]),
+        );
+        assert_eq!(fresh, some);
     }
 }

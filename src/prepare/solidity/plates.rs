@@ -319,7 +319,7 @@ mod tests {
     fn pairs(m: &Mesh) -> Vec<(u32, u32)> {
         let (tris, face_of) = surface_triangles(m).unwrap();
         // One piece: every pair is tested, as `brute` tests them.
-        crossing_pairs(m, &tris, &face_of, &vec![0; m.faces.len()], |_| true)
+        crossing_pairs(m, &tris, &face_of, &vec![0; m.faces.len()], |_| true, None)
     }
 
     fn plates_of(m: &Mesh) -> usize {
