@@ -12,6 +12,8 @@
 
 use std::path::Path;
 
+use rayon::prelude::*;
+
 use crate::error::{Error, Location, Pos, Result, Warning, Warnings};
 use crate::geom::{newell, PolyMesh, MAX_COORD, P3, V3};
 
@@ -55,10 +57,30 @@ pub fn cleanup(raw: &PolyMesh, origin: &Origin, warnings: &mut Warnings) -> Resu
             message: format!("merged {merged} duplicate vertices"),
         });
     }
+    let clean_chunk = |(c, chunk): (usize, &[Vec<u32>])| {
+        let mut part = (Vec::with_capacity(chunk.len()), Warnings::new());
+        for (k, f) in chunk.iter().enumerate() {
+            let idx: Vec<u32> = f.iter().map(|&v| remap[v as usize]).collect();
+            let at = || origin.at(c * CLEANED_CHUNK + k);
+            clean_face(idx, &vertices, at, &mut part.0, &mut part.1);
+        }
+        part
+    };
+    // A big mesh in chunks of faces on all threads, joined in order: the same faces and
+    // warnings (a small one stays off the thread pool).
+    let parts: Vec<(Vec<Face>, Warnings)> = if raw.faces.len() > CLEANED_CHUNK {
+        raw.faces
+            .par_chunks(CLEANED_CHUNK)
+            .enumerate()
+            .map(clean_chunk)
+            .collect()
+    } else {
+        vec![clean_chunk((0, &raw.faces[..]))]
+    };
     let mut faces = Vec::with_capacity(raw.faces.len());
-    for (i, f) in raw.faces.iter().enumerate() {
-        let idx: Vec<u32> = f.iter().map(|&k| remap[k as usize]).collect();
-        clean_face(idx, &vertices, &origin.at(i), &mut faces, warnings);
+    for (f, w) in parts {
+        faces.extend(f);
+        warnings.extend(w);
     }
     let (vertices, faces) = drop_unused_vertices(vertices, faces);
     let closed = is_closed_oriented(&faces);
@@ -168,10 +190,14 @@ fn dedup_cyclic(mut idx: Vec<u32>) -> Vec<u32> {
     idx
 }
 
+/// Faces per chunk of [`cleanup`].
+const CLEANED_CHUNK: usize = 4096;
+
+/// Cleans one face into `out`; `loc` gives its place, made only for a warning.
 fn clean_face(
     idx: Vec<u32>,
     verts: &[P3],
-    loc: &Location,
+    loc: impl Fn() -> Location,
     out: &mut Vec<Face>,
     warnings: &mut Warnings,
 ) {
@@ -181,7 +207,7 @@ fn clean_face(
     distinct.dedup();
     if distinct.len() < 3 {
         warnings.push(Warning {
-            location: loc.clone(),
+            location: loc(),
             message: format!("face has {} distinct vertices; dropped", distinct.len()),
         });
         return;
@@ -190,7 +216,7 @@ fn clean_face(
     let shape = FaceShape::of(&pts);
     if shape.area2 <= AREA_TOL * shape.diameter * shape.diameter {
         warnings.push(Warning {
-            location: loc.clone(),
+            location: loc(),
             message: "face has zero area; dropped".into(),
         });
         return;
@@ -201,7 +227,7 @@ fn clean_face(
     }
     if shape.deviation <= SPLIT_TOL * shape.diameter {
         warnings.push(Warning {
-            location: loc.clone(),
+            location: loc(),
             message: format!(
                 "face is not planar (a vertex is {:.2e} of its diameter off its plane); kept as one face (split above {SPLIT_TOL})",
                 shape.deviation / shape.diameter
@@ -220,7 +246,7 @@ fn clean_face(
         }
     }
     warnings.push(Warning {
-        location: loc.clone(),
+        location: loc(),
         message: format!(
             "face is not planar (a vertex is {:.2e} of its diameter off its plane, above {SPLIT_TOL}); split into {} triangles",
             shape.deviation / shape.diameter,
