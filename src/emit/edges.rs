@@ -9,6 +9,7 @@ use std::ops::Range;
 use rayon::prelude::*;
 
 use crate::geom::{P3, V3};
+use crate::scene::topology::sort_by_key;
 use crate::scene::FaceId;
 use crate::view::{Facing, View};
 
@@ -153,8 +154,8 @@ pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Ed
     out
 }
 
-/// Above this many half-edges or edges a leaf's are sorted and classified on all threads
-/// (the pool's overhead would outweigh the work of a small leaf).
+/// Above this many edges a leaf's are classified on all threads (the pool's overhead would
+/// outweigh the work of a small leaf).
 const PARALLEL_ABOVE: usize = 4096;
 
 /// Every traversal of an edge by the faces `start..end` (one leaf), grouped by edge, each
@@ -178,11 +179,7 @@ fn half_edges(world: &WorldFaces, start: usize, end: usize) -> Vec<HalfEdge> {
         }
     }
     // seq is unique: the order is the same however the sort runs.
-    if half.len() > PARALLEL_ABOVE {
-        half.par_sort_unstable_by_key(|h| (h.a, h.b, h.seq));
-    } else {
-        half.sort_unstable_by_key(|h| (h.a, h.b, h.seq));
-    }
+    sort_by_key(&mut half, |h| (h.a, h.b, h.seq));
     half
 }
 
@@ -196,11 +193,7 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<Range<usize>> {
             s = i;
         }
     }
-    if groups.len() > PARALLEL_ABOVE {
-        groups.par_sort_unstable_by_key(|g| half[g.start].seq);
-    } else {
-        groups.sort_unstable_by_key(|g| half[g.start].seq);
-    }
+    sort_by_key(&mut groups, |g| half[g.start].seq);
     groups
 }
 

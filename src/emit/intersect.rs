@@ -23,18 +23,17 @@ pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sy
         .collect();
     // Per face, once: its plane's reference points, and whether it is flat (exactly: every
     // corner on the plane of the reference points).
-    let cand_refs: Vec<[P3; 3]> = cand
+    let (cand_refs, cand_flat): (Vec<[P3; 3]>, Vec<bool>) = cand
         .par_iter()
-        .map(|&f| plane_refs(&faces[f].points))
-        .collect();
-    let cand_flat: Vec<bool> = cand
-        .par_iter()
-        .zip(&cand_refs)
-        .map(|(&f, r)| {
+        .map(|&f| {
             let p = &faces[f].points;
-            p.len() == 3 || p.iter().all(|q| orient3d_refs(r, q) == 0.0)
+            let r = plane_refs(p);
+            (
+                r,
+                p.len() == 3 || p.iter().all(|q| orient3d_refs(&r, q) == 0.0),
+            )
         })
-        .collect();
+        .unzip();
     // Faces that can cross nothing are not paired at all.
     let alone = alone(world, &cand, &cand_flat);
     let left: Vec<usize> = (0..cand.len()).filter(|&k| !alone[k]).collect();

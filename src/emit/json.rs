@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 
 use crate::geom::poly2::Pt2;
 use crate::scene::flatten::write_num;
-use crate::view::{PieceId, Projection, View};
+use crate::view::{Projection, View};
 use crate::visibility::Visibility;
 
 /// Polylines of a line drawing, in screen space.
@@ -96,10 +96,7 @@ pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
         }
         s.push_str(if first { "\n" } else { ",\n" });
         first = false;
-        let leaf = view
-            .screen
-            .piece(PieceId(view.screen.face_starts[id.index()]))
-            .leaf;
+        let leaf = view.screen.leaf_index_of_face(id);
         let _ = write!(
             s,
             "{{\"id\":{id},\"object\":{},\"area\":",

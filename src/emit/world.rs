@@ -1,9 +1,11 @@
 //! World-space polygons of every face (unclipped, in mesh vertex order), with their leaf and vertex indices.
 
+use std::collections::HashMap;
+
 use rayon::prelude::*;
 
 use crate::geom::{newell, Box3, P3, V3};
-use crate::scene::topology::edge_pieces;
+use crate::scene::topology::{edge_pieces, Pieces};
 use crate::scene::{Face, Mesh, Scene};
 
 /// Above this many faces a leaf's world faces are made on all threads.
@@ -46,9 +48,11 @@ impl WorldFaces {
         let mut faces = Vec::with_capacity(scene.face_count());
         let mut clean_piece = Vec::with_capacity(scene.face_count());
         let mut next_piece = 0;
+        // Each mesh's pieces once, however many instances place it.
+        let mut pieces_of: HashMap<*const Mesh, Pieces> = HashMap::new();
         let leaves = scene.leaves();
         for (li, leaf) in leaves.iter().enumerate() {
-            clean_pieces(leaf.mesh, &mut clean_piece, &mut next_piece);
+            clean_pieces(leaf.mesh, &mut pieces_of, &mut clean_piece, &mut next_piece);
             let world: Vec<P3> = (0..leaf.mesh.vertices.len() as u32)
                 .map(|k| leaf.world_vertex(k))
                 .collect();
@@ -79,11 +83,16 @@ impl WorldFaces {
 }
 
 /// Appends a mesh's faces' [`WorldFaces::clean_piece`] numbers to `out`, numbering its
-/// pieces from `next` on. The solidity test examined every pair of triangles of
+/// pieces from `next` on (its pieces found once, in `pieces_of`). The solidity test examined every pair of triangles of
 /// one edge-connected piece (of the capped surface, for a capped mesh: a mesh's piece lies
 /// in one of those) and found none meeting other than in shared vertices and edges, when it
 /// proved the mesh a solid, capped it, or proved the piece ([`Mesh::proven`]).
-fn clean_pieces(mesh: &Mesh, out: &mut Vec<u32>, next: &mut u32) {
+fn clean_pieces(
+    mesh: &Mesh,
+    pieces_of: &mut HashMap<*const Mesh, Pieces>,
+    out: &mut Vec<u32>,
+    next: &mut u32,
+) {
     let n = mesh.faces.len();
     let whole = mesh.cullable() || mesh.capped();
     let proven = mesh.proven.as_ref().filter(|p| p.faces.len() == n);
@@ -92,7 +101,9 @@ fn clean_pieces(mesh: &Mesh, out: &mut Vec<u32>, next: &mut u32) {
         return;
     }
     let base = *next;
-    let pieces = edge_pieces(&mesh.faces);
+    let pieces = pieces_of
+        .entry(mesh as *const Mesh)
+        .or_insert_with(|| edge_pieces(&mesh.faces));
     *next += pieces.count as u32;
     out.extend((0..n).map(|f| {
         let clean = whole || proven.is_some_and(|p| p.faces[f]);

@@ -47,11 +47,12 @@ use std::collections::HashMap;
 use rayon::prelude::*;
 
 use crate::geom::{newell, orient3d, P3};
-use crate::scene::topology::{edge_topology, Topology};
+use crate::scene::topology::{edge_topology, sort, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Face, Mesh, Solidity};
 
 use super::slits::close_slits;
+use super::solidity::pieces::Crossings;
 #[cfg(test)]
 use super::solidity::solidity;
 use super::solidity::{degenerate, examine_until, Surface, NO_GROUP};
@@ -93,13 +94,24 @@ pub(crate) struct Failed {
     pub(crate) mesh: Mesh,
     /// Its surface, as tested.
     pub(crate) surface: Surface,
-    /// Every crossing pair of its faces, when capping failed only on pairs of the mesh's
-    /// own triangles (every pair with a cap found apart, every piece outward): then the
-    /// pieces need no second test.
-    pub(crate) crossing: Option<Vec<[u32; 2]>>,
-    /// Some crossing pairs of its faces (at least one of each cap that crosses), where not
-    /// all are known.
-    pub(crate) known: Vec<[u32; 2]>,
+    /// Crossing pairs of its faces found by the test that failed: some of them (at least one
+    /// of each cap that crosses), or all of them when `complete`.
+    pub(crate) crossing: Vec<[u32; 2]>,
+    /// `crossing` holds every crossing pair: capping failed only on pairs of the mesh's own
+    /// triangles (every pair with a cap found apart, every piece outward), so the pieces
+    /// need no second test.
+    pub(crate) complete: bool,
+}
+
+impl Failed {
+    /// What its test knows of the crossing pairs.
+    pub(crate) fn crossings(&self) -> Crossings<'_> {
+        if self.complete {
+            Crossings::All(&self.crossing)
+        } else {
+            Crossings::Some(&self.crossing)
+        }
+    }
 }
 
 /// A failure to cap, with the capped surface that failed where one was built and tested
@@ -109,13 +121,13 @@ pub(crate) type Refused = (CapFailure, Option<Box<Failed>>);
 /// [`cap_holes`], saying on failure which capped surface failed.
 pub(crate) fn capping(mesh: &Mesh) -> Result<Caps, Refused> {
     let refuse = |why| (why, None);
-    let failed = |mesh, surface: Option<Surface>, known: Vec<[u32; 2]>| {
+    let failed = |mesh, surface: Option<Surface>, crossing| {
         surface.map(|surface| {
             Box::new(Failed {
                 mesh,
                 surface,
-                crossing: None,
-                known,
+                crossing,
+                complete: false,
             })
         })
     };
@@ -227,8 +239,8 @@ fn whole(mesh: &Mesh, capped: Mesh, surface: Surface, loops: u32) -> Result<Caps
         let failed = Failed {
             mesh: capped,
             surface,
-            crossing: Some(c),
-            known: Vec::new(),
+            crossing: c,
+            complete: true,
         };
         return Err((why, Some(Box::new(failed))));
     }
@@ -327,7 +339,7 @@ pub fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
             (0..n).map(move |i| (f.vertices[i] as u64) << 32 | f.vertices[(i + 1) % n] as u64)
         })
         .collect();
-    directed.par_sort_unstable();
+    sort(&mut directed);
     // Loop steps b→a for each boundary edge a→b, in face order (on all threads, in order).
     let steps: Vec<(u32, u32)> = faces
         .par_iter()

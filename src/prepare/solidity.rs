@@ -206,13 +206,7 @@ pub fn decide(mesh: &mut Mesh) {
             }
             Err((why, failed)) => (
                 Solidity::Open(why),
-                failed.and_then(|f| {
-                    let crossing = match &f.crossing {
-                        Some(all) => Crossings::All(all),
-                        None => Crossings::Some(&f.known),
-                    };
-                    pieces::proven_pieces(&f.mesh, &f.surface, n, crossing)
-                }),
+                failed.and_then(|f| pieces::proven_pieces(&f.mesh, &f.surface, n, f.crossings())),
             ),
         },
         s @ (Solidity::SelfIntersecting(_) | Solidity::InsideOut | Solidity::Degenerate) => {
@@ -276,26 +270,25 @@ fn mark(obj: &mut Object, done: &mut Marked) {
 /// the view's planar pieces), with each triangle's face, and the faces that give none (not
 /// simple, or a flat triangle; ascending).
 fn triangulate(mesh: &Mesh) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
+    let chunk = |(c, faces): (usize, &[Face])| {
+        let mut part = (Vec::with_capacity(faces.len()), Vec::new(), Vec::new());
+        for (k, f) in faces.iter().enumerate() {
+            triangulate_face(mesh, f, (c * TRIANGULATED_CHUNK + k) as u32, &mut part);
+        }
+        part
+    };
+    if mesh.faces.len() <= TRIANGULATED_CHUNK {
+        // A small mesh stays off the thread pool (many one-box objects would each wait on it).
+        return chunk((0, &mesh.faces));
+    }
     // In chunks of faces on all threads, joined in face order: the same lists as one pass.
     let parts: Vec<(Vec<Tri>, Vec<u32>, Vec<u32>)> = mesh
         .faces
         .par_chunks(TRIANGULATED_CHUNK)
         .enumerate()
-        .map(|(c, faces)| {
-            let first = c * TRIANGULATED_CHUNK;
-            let mut part = (Vec::with_capacity(faces.len()), Vec::new(), Vec::new());
-            for (k, f) in faces.iter().enumerate() {
-                triangulate_face(mesh, f, (first + k) as u32, &mut part);
-            }
-            part
-        })
+        .map(chunk)
         .collect();
-    let mut out = (
-        Vec::with_capacity(mesh.faces.len() * 2),
-        Vec::new(),
-        Vec::new(),
-    );
-    out.1.reserve(out.0.capacity());
+    let mut out = (Vec::new(), Vec::new(), Vec::new());
     for (t, f, b) in parts {
         out.0.extend(t);
         out.1.extend(f);
@@ -438,17 +431,16 @@ fn grid_pairs(
             .collect();
         let suspects: Vec<Box3> = few.iter().map(|&i| as_box(&boxes[i as usize])).collect();
         let tree = BoxTree::new(&suspects);
-        let left = groups.map(|g| g.start(&few));
+        // The whole search may stop once every group has crossed only when every suspect
+        // is in a group (an ungrouped suspect's pairs must all be tested).
+        let stops = groups.filter(|g| few.iter().all(|&i| g.grouped(i)));
         (0..boxes.len() as u32)
             .into_par_iter()
             .filter(|&j| !boxes[j as usize][0][0].is_nan())
             .flat_map_iter(|j| {
                 let mut near = Vec::new();
-                if left
-                    .as_ref()
-                    .is_some_and(|l| l.load(Ordering::Relaxed) == 0)
-                {
-                    return near; // every group has crossed
+                if stops.is_some_and(Groups::all_crossed) {
+                    return near;
                 }
                 tree.any_meeting(&suspects, &as_box(&boxes[j as usize]), |u| {
                     let i = few[u as usize];
@@ -457,8 +449,8 @@ fn grid_pairs(
                     }
                     if wanted(i, j) {
                         near.push((i.min(j), i.max(j)));
-                        if let (Some(g), Some(l)) = (groups, &left) {
-                            g.cross(i, j, l);
+                        if let Some(g) = groups {
+                            g.cross(i, j);
                         }
                     }
                     false
@@ -487,31 +479,30 @@ pub(crate) struct Groups {
     of: Vec<u32>,
     /// By group: a crossing pair of it has been found.
     crossed: Vec<AtomicBool>,
+    /// Groups of some triangle not yet found crossing (at 0 the search may stop).
+    left: AtomicUsize,
 }
 
 impl Groups {
     fn new(of: Vec<u32>) -> Groups {
-        let count = of
-            .iter()
-            .filter(|&&g| g != NO_GROUP)
-            .max()
-            .map_or(0, |&g| g as usize + 1);
+        let mut present: Vec<u32> = of.iter().copied().filter(|&g| g != NO_GROUP).collect();
+        present.sort_unstable();
+        present.dedup();
+        let count = present.last().map_or(0, |&g| g as usize + 1);
         Groups {
             of,
             crossed: (0..count).map(|_| AtomicBool::new(false)).collect(),
+            left: AtomicUsize::new(present.len()),
         }
     }
 
-    /// The number of groups among the `suspects`, none found crossing yet.
-    fn start(&self, suspects: &[u32]) -> AtomicUsize {
-        let mut g: Vec<u32> = suspects
-            .iter()
-            .map(|&t| self.of[t as usize])
-            .filter(|&g| g != NO_GROUP)
-            .collect();
-        g.sort_unstable();
-        g.dedup();
-        AtomicUsize::new(g.len())
+    /// Every group has been found crossing.
+    fn all_crossed(&self) -> bool {
+        self.left.load(Ordering::Relaxed) == 0
+    }
+
+    fn grouped(&self, t: u32) -> bool {
+        self.of[t as usize] != NO_GROUP
     }
 
     fn known(&self, t: u32) -> bool {
@@ -522,16 +513,15 @@ impl Groups {
     /// True when the pair need not be tested: every group it touches has crossed (and it
     /// touches one).
     fn settled(&self, i: u32, j: u32) -> bool {
-        let grouped = |t: u32| self.of[t as usize] != NO_GROUP;
-        (grouped(i) || grouped(j)) && self.known(i) && self.known(j)
+        (self.grouped(i) || self.grouped(j)) && self.known(i) && self.known(j)
     }
 
-    /// Records the crossing pair (i, j), counting down `left` for each group newly crossed.
-    fn cross(&self, i: u32, j: u32, left: &AtomicUsize) {
+    /// Records the crossing pair (i, j).
+    fn cross(&self, i: u32, j: u32) {
         for t in [i, j] {
             let g = self.of[t as usize];
             if g != NO_GROUP && !self.crossed[g as usize].swap(true, Ordering::Relaxed) {
-                left.fetch_sub(1, Ordering::Relaxed);
+                self.left.fetch_sub(1, Ordering::Relaxed);
             }
         }
     }
@@ -750,7 +740,7 @@ pub fn decompose(x: f64) -> (i64, i32) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::geom::PolyMesh;
     use crate::scene::cleanup::{cleanup, Origin};
@@ -907,23 +897,36 @@ mod tests {
         assert_eq!(solidity(&mesh(&pts, &refs)), Solidity::InsideOut);
     }
 
+    /// One closed piece crossing itself: tetrahedron A's three sides, glued along its base
+    /// edges to the reversed sides of tetrahedron B on the same base with apex (1/2, 1/2,
+    /// 1/2). It is closed, consistent and of positive volume (1/6 - 1/12), and B's edge from
+    /// the origin to its apex pierces A's face x + y + z = 1 at (1/3, 1/3, 1/3).
+    pub(crate) fn crossing_piece() -> Mesh {
+        let p = [
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [0., 1., 0.],
+            [0., 0., 1.],
+            [0.5, 0.5, 0.5],
+        ];
+        let f: [[u32; 3]; 6] = [
+            [0, 1, 3],
+            [0, 3, 2],
+            [1, 2, 3],
+            [4, 1, 0],
+            [2, 4, 0],
+            [4, 2, 1],
+        ];
+        Mesh {
+            vertices: p.iter().map(|q| P3::new(q[0], q[1], q[2])).collect(),
+            faces: f.iter().map(|t| Face::new(t.to_vec())).collect(),
+            ..Mesh::default()
+        }
+    }
+
     #[test]
     fn one_piece_crossing_itself_self_intersects() {
-        // Tetrahedron A's three sides, glued along its base edges to the reversed sides of
-        // tetrahedron B on the same base with apex (1/2, 1/2, 1/2): one closed, consistent
-        // piece of positive volume (1/6 - 1/12). B's edge from the origin to its apex
-        // pierces A's face x + y + z = 1 at (1/3, 1/3, 1/3), inside that face.
-        let mut pts: Vec<[f64; 3]> = TET.to_vec();
-        pts.push([0.5, 0.5, 0.5]);
-        let faces: [&[u32]; 6] = [
-            &[0, 1, 3],
-            &[0, 3, 2],
-            &[1, 2, 3],
-            &[4, 1, 0],
-            &[2, 4, 0],
-            &[4, 2, 1],
-        ];
-        let e = examine(&mesh(&pts, &faces));
+        let e = examine(&crossing_piece());
         assert!(matches!(e.solidity, Solidity::SelfIntersecting(n) if n > 0));
         assert!(e.crossing.contains(&[2, 4]) || e.crossing.contains(&[4, 2]));
     }

@@ -55,12 +55,24 @@ pub fn edge_topology(faces: &[Face]) -> Topology {
 /// Sorts on all threads when the list is long; short lists stay off the thread pool (200k
 /// one-box objects would each wait on it).
 pub(crate) fn sort<T: Ord + Send>(v: &mut [T]) {
-    if v.len() > 1 << 14 {
+    if v.len() > SORTED_IN_PARALLEL_ABOVE {
         v.par_sort_unstable();
     } else {
         v.sort_unstable();
     }
 }
+
+/// [`sort`] by a key.
+pub(crate) fn sort_by_key<T: Send, K: Ord>(v: &mut [T], key: impl Fn(&T) -> K + Sync) {
+    if v.len() > SORTED_IN_PARALLEL_ABOVE {
+        v.par_sort_unstable_by_key(key);
+    } else {
+        v.sort_unstable_by_key(key);
+    }
+}
+
+/// Above this many items [`sort`] and [`sort_by_key`] use all threads.
+const SORTED_IN_PARALLEL_ABOVE: usize = 1 << 14;
 
 /// Connected pieces of a mesh's faces through shared edges.
 #[derive(Debug)]
@@ -71,6 +83,8 @@ pub(crate) struct Pieces {
     pub(crate) count: usize,
 }
 
+/// The pieces of `faces` connected through shared edges (union-find over the sorted
+/// undirected edges).
 pub(crate) fn edge_pieces(faces: &[Face]) -> Pieces {
     let n = faces.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();

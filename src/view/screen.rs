@@ -221,8 +221,12 @@ impl ScreenFaces {
 
     /// The leaf object of face `f` (which must have pieces).
     pub fn leaf_of_face(&self, f: FaceId) -> &LeafInfo {
-        let first = PieceId(self.face_starts[f.index()]);
-        &self.leaves[self.piece(first).leaf as usize]
+        &self.leaves[self.leaf_index_of_face(f) as usize]
+    }
+
+    /// The index in [`ScreenFaces::leaves`] of face `f`'s leaf (`f` must have pieces).
+    pub fn leaf_index_of_face(&self, f: FaceId) -> u32 {
+        self.piece(PieceId(self.face_starts[f.index()])).leaf
     }
 
     /// The projected points (x, y, depth) of piece `p`.

@@ -83,6 +83,7 @@ mod tests {
     use super::*;
     use crate::prepare::caps::tests::{box_with_chimney, cube_without};
     use crate::prepare::solidity::decide;
+    use crate::prepare::solidity::tests::crossing_piece;
     use crate::scene::{CapFailure, Face, Solidity};
 
     /// `b`'s faces after `a`'s, its vertices moved by `dx` along x.
@@ -97,31 +98,6 @@ mod tests {
                 .map(|f| Face::new(f.vertices.iter().map(|v| v + off).collect())),
         );
         m
-    }
-
-    /// One closed piece crossing itself: tetrahedron A's sides glued along its base to the
-    /// reversed sides of tetrahedron B on the same base, B's apex beyond A's slanted face.
-    fn crossing_piece() -> Mesh {
-        let p = [
-            [0., 0., 0.],
-            [1., 0., 0.],
-            [0., 1., 0.],
-            [0., 0., 1.],
-            [0.5, 0.5, 0.5],
-        ];
-        let f: [[u32; 3]; 6] = [
-            [0, 1, 3],
-            [0, 3, 2],
-            [1, 2, 3],
-            [4, 1, 0],
-            [2, 4, 0],
-            [4, 2, 1],
-        ];
-        Mesh {
-            vertices: p.iter().map(|q| P3::new(q[0], q[1], q[2])).collect(),
-            faces: f.iter().map(|t| Face::new(t.to_vec())).collect(),
-            ..Mesh::default()
-        }
     }
 
     #[test]
