@@ -64,23 +64,34 @@ pub fn plan(ends: &[[Pt2; 2]]) -> Vec<(usize, bool)> {
     t.order()
 }
 
+/// Where a node is in the tour.
+#[derive(Clone, Copy)]
+struct Place {
+    /// Its position.
+    pos: u32,
+    /// Drawn end to start (along the array's forward direction).
+    rev: bool,
+}
+
 /// A cyclic tour: the strokes and the depot (index n), each stroke with its direction.
 struct Tour<'a> {
     ends: &'a [[Pt2; 2]],
     /// Node at each position (n is the depot).
     seq: Vec<usize>,
-    /// Position of each node.
-    pos: Vec<usize>,
-    /// Stroke drawn end to start (along the array's forward direction).
-    rev: Vec<bool>,
+    /// Each node's position and direction, side by side: a reversal updates both.
+    place: Vec<Place>,
     /// For each end slot (2i start, 2i + 1 end of stroke i): nearest other strokes' slots.
     near: Vec<Vec<usize>>,
     /// Least gain a move must bring (a rounding guard).
     eps: f64,
-    /// Reversals made, when they are to be undone.
-    log: Option<Vec<(usize, usize)>>,
+    /// Whether reversals are logged in `log`, to be undone.
+    logging: bool,
+    /// Reversals made while logging.
+    log: Vec<(usize, usize)>,
     /// Strokes in the local search's work queue (all false between searches).
     queued: Vec<bool>,
+    /// The local search's work queue (empty between searches).
+    queue: std::collections::VecDeque<usize>,
 }
 
 impl<'a> Tour<'a> {
@@ -88,29 +99,39 @@ impl<'a> Tour<'a> {
         let n = ends.len();
         let mut seq: Vec<usize> = order.iter().map(|o| o.0).collect();
         seq.push(n);
-        let mut pos = vec![0; n + 1];
+        let mut place = vec![Place { pos: 0, rev: false }; n + 1];
         for (k, &v) in seq.iter().enumerate() {
-            pos[v] = k;
+            place[v].pos = k as u32;
         }
-        let mut rev = vec![false; n + 1];
         for &(i, r) in order {
-            rev[i] = r;
+            place[i].rev = r;
         }
         let b = crate::geom::Rect::of_points(ends.iter().flatten());
         Tour {
             ends,
             seq,
-            pos,
-            rev,
+            place,
             near: neighbours(ends),
             eps: 1e-12 * b.longer_side().max(f64::MIN_POSITIVE),
-            log: None,
+            logging: false,
+            log: Vec::new(),
             queued: vec![false; n],
+            queue: std::collections::VecDeque::new(),
         }
     }
 
     fn len(&self) -> usize {
         self.seq.len()
+    }
+
+    /// Position of node v.
+    fn pos(&self, v: usize) -> usize {
+        self.place[v].pos as usize
+    }
+
+    /// Whether stroke v is drawn end to start (along the array's forward direction).
+    fn rev(&self, v: usize) -> bool {
+        self.place[v].rev
     }
 
     fn at(&self, k: isize) -> usize {
@@ -120,12 +141,12 @@ impl<'a> Tour<'a> {
 
     /// Entry point of node v in the forward direction (None for the depot).
     fn start(&self, v: usize) -> Option<Pt2> {
-        (v < self.ends.len()).then(|| self.ends[v][usize::from(self.rev[v])])
+        (v < self.ends.len()).then(|| self.ends[v][usize::from(self.rev(v))])
     }
 
     /// Exit point of node v in the forward direction (None for the depot).
     fn end(&self, v: usize) -> Option<Pt2> {
-        (v < self.ends.len()).then(|| self.ends[v][usize::from(!self.rev[v])])
+        (v < self.ends.len()).then(|| self.ends[v][usize::from(!self.rev(v))])
     }
 
     fn d(p: Option<Pt2>, q: Option<Pt2>) -> f64 {
@@ -138,20 +159,23 @@ impl<'a> Tour<'a> {
     /// Reverses the cyclic run of positions from `i` forward to `j` (inclusive), flipping the
     /// strokes in it.
     fn reverse(&mut self, i: usize, j: usize) {
-        if let Some(log) = &mut self.log {
-            log.push((i, j));
+        if self.logging {
+            self.log.push((i, j));
         }
         let n = self.len();
         let len = (j + n - i) % n + 1;
-        for k in 0..len / 2 {
-            let (a, b) = ((i + k) % n, (j + n - k) % n);
+        let (mut a, mut b) = (i, j);
+        for _ in 0..len / 2 {
             self.seq.swap(a, b);
+            a = if a + 1 == n { 0 } else { a + 1 };
+            b = if b == 0 { n - 1 } else { b - 1 };
         }
-        for k in 0..len {
-            let p = (i + k) % n;
-            let v = self.seq[p];
-            self.pos[v] = p;
-            self.rev[v] = !self.rev[v];
+        let mut p = i;
+        for _ in 0..len {
+            let at = &mut self.place[self.seq[p]];
+            at.pos = p as u32;
+            at.rev = !at.rev;
+            p = if p + 1 == n { 0 } else { p + 1 };
         }
     }
 
@@ -182,7 +206,7 @@ impl<'a> Tour<'a> {
     /// The best 2-opt move with a new edge at stroke v: (gain, i, j).
     fn best_two_opt(&self, v: usize) -> Option<(f64, usize, usize)> {
         let n = self.len();
-        let pv = self.pos[v];
+        let pv = self.pos(v);
         let mut best: Option<(f64, usize, usize)> = None;
         // Strictly better only: the first of equal gains wins.
         let mut consider = |g: f64, i: usize, j: usize| {
@@ -191,17 +215,17 @@ impl<'a> Tour<'a> {
             }
         };
         // New edge end(v) – end(m): positions (pos v, pos m).
-        for &q in &self.near[2 * v + usize::from(!self.rev[v])] {
+        for &q in &self.near[2 * v + usize::from(!self.rev(v))] {
             let m = q / 2;
-            if q % 2 == usize::from(!self.rev[m]) {
-                consider(self.two_opt_gain(pv, self.pos[m]), pv, self.pos[m]);
+            if q % 2 == usize::from(!self.rev(m)) {
+                consider(self.two_opt_gain(pv, self.pos(m)), pv, self.pos(m));
             }
         }
         // New edge start(v) – start(m): positions (pos v − 1, pos m − 1).
-        for &q in &self.near[2 * v + usize::from(self.rev[v])] {
+        for &q in &self.near[2 * v + usize::from(self.rev(v))] {
             let m = q / 2;
-            if q % 2 == usize::from(self.rev[m]) {
-                let (i, j) = ((pv + n - 1) % n, (self.pos[m] + n - 1) % n);
+            if q % 2 == usize::from(self.rev(m)) {
+                let (i, j) = ((pv + n - 1) % n, (self.pos(m) + n - 1) % n);
                 consider(self.two_opt_gain(i, j), i, j);
             }
         }
@@ -212,11 +236,15 @@ impl<'a> Tour<'a> {
     /// to insert after, reversed).
     fn best_or_opt(&self, v: usize) -> Option<(f64, usize, usize, bool)> {
         let n = self.len();
-        let s0 = self.pos[v];
+        let s0 = self.pos(v);
         let mut best: Option<(f64, usize, usize, bool)> = None;
         for run in 1..=OR_RUN.min(n.saturating_sub(3)) {
             let s1 = (s0 + run - 1) % n;
-            let nodes: Vec<usize> = (0..run).map(|k| self.seq[(s0 + k) % n]).collect();
+            let mut held = [usize::MAX; OR_RUN];
+            for (k, h) in held.iter_mut().enumerate().take(run) {
+                *h = self.seq[(s0 + k) % n];
+            }
+            let nodes = &held[..run];
             if nodes.contains(&(n - 1)) {
                 break; // the depot never moves
             }
@@ -230,8 +258,8 @@ impl<'a> Tour<'a> {
             }
             let (sp, ep) = (self.start(first), self.end(last));
             let slots = [
-                2 * first + usize::from(self.rev[first]),
-                2 * last + usize::from(!self.rev[last]),
+                2 * first + usize::from(self.rev(first)),
+                2 * last + usize::from(!self.rev(last)),
             ];
             for &slot in &slots {
                 for &q in &self.near[slot] {
@@ -239,7 +267,7 @@ impl<'a> Tour<'a> {
                     if nodes.contains(&m) {
                         continue;
                     }
-                    let pm = self.pos[m];
+                    let pm = self.pos(m);
                     for p in [(pm + n - 1) % n, pm] {
                         let (u, w) = (self.seq[p], self.at(p as isize + 1));
                         if nodes.contains(&u) || nodes.contains(&w) {
@@ -265,7 +293,7 @@ impl<'a> Tour<'a> {
     /// reversed when `r`, by reversals over the shorter way round.
     fn or_opt_move(&mut self, v: usize, run: usize, p: usize, r: bool) {
         let n = self.len();
-        let s0 = self.pos[v];
+        let s0 = self.pos(v);
         let s1 = (s0 + run - 1) % n;
         // Forward from the run to p: run, Y = (s1+1 ..= p). Rotating [run Y] to [Y run].
         let ahead = (p + n - s1) % n;
@@ -302,7 +330,7 @@ impl<'a> Tour<'a> {
         let strokes = self.ends.len();
         let mut budget = MOVES_PER_STROKE * strokes;
         let all: Vec<usize> = self.seq[..strokes].to_vec();
-        self.local_search(all, &mut budget);
+        self.local_search(&all, &mut budget);
         if self.len() < 8 {
             return;
         }
@@ -311,48 +339,50 @@ impl<'a> Tour<'a> {
             if budget == 0 {
                 break;
             }
-            self.log = Some(Vec::new());
+            self.log.clear();
+            self.logging = true;
             let (worse, touched) = self.kick(&mut rng);
-            let gain = self.local_search(touched, &mut budget);
-            let log = self.log.take().unwrap_or_default();
+            let gain = self.local_search(&touched, &mut budget);
+            self.logging = false;
             if gain - worse <= self.eps {
+                let log = std::mem::take(&mut self.log);
                 for &(i, j) in log.iter().rev() {
                     self.reverse(i, j);
                 }
+                self.log = log;
             }
         }
     }
 
     /// Local search from the strokes in `queue` until no move gains (or the budget is
     /// spent): the total gain.
-    fn local_search(&mut self, queue: Vec<usize>, budget: &mut usize) -> f64 {
+    fn local_search(&mut self, from: &[usize], budget: &mut usize) -> f64 {
         let strokes = self.ends.len();
         let mut queued = std::mem::take(&mut self.queued);
-        let mut queue: std::collections::VecDeque<usize> =
-            queue.into_iter().filter(|&v| v < strokes).collect();
-        queue.retain(|&v| !std::mem::replace(&mut queued[v], true));
+        let mut queue = std::mem::take(&mut self.queue);
+        for &v in from {
+            if v < strokes && !std::mem::replace(&mut queued[v], true) {
+                queue.push_back(v);
+            }
+        }
         let mut gained = 0.0;
         while let Some(v) = queue.pop_front() {
             queued[v] = false;
             if *budget == 0 {
                 break;
             }
-            let nodes: Vec<usize> = if let Some((g, i, j)) = self.best_two_opt(v) {
-                let nodes = [i, i + 1, j, j + 1]
-                    .iter()
-                    .map(|&k| self.at(k as isize))
-                    .collect();
+            // The strokes at the edges a move changes, to look at again.
+            let nodes: [usize; 6] = if let Some((g, i, j)) = self.best_two_opt(v) {
+                let at = |k: usize| self.at(k as isize);
+                let nodes = [at(i), at(i + 1), at(j), at(j + 1), v, v];
                 self.two_opt_move(i, j);
                 gained += g;
-                [nodes, vec![v]].concat()
+                nodes
             } else if let Some((g, run, p, r)) = self.best_or_opt(v) {
-                let s0 = self.pos[v] as isize;
-                let nodes = [s0 - 1, s0, s0 + run as isize - 1, s0 + run as isize]
-                    .into_iter()
-                    .chain([p as isize, p as isize + 1])
-                    .map(|k| self.at(k))
-                    .collect();
-                self.or_opt_move(v, run, p, r);
+                let s0 = self.pos(v) as isize;
+                let (e0, p) = (s0 + run as isize, p as isize);
+                let nodes = [s0 - 1, s0, e0 - 1, e0, p, p + 1].map(|k| self.at(k));
+                self.or_opt_move(v, run, p as usize, r);
                 gained += g;
                 nodes
             } else {
@@ -367,10 +397,11 @@ impl<'a> Tour<'a> {
             }
         }
         // A spent budget leaves strokes queued: clear them for the next search.
-        for v in queue {
+        for v in queue.drain(..) {
             queued[v] = false;
         }
         self.queued = queued;
+        self.queue = queue;
         gained
     }
 
@@ -384,7 +415,7 @@ impl<'a> Tour<'a> {
 
     /// A local double bridge: the runs B and C after a random position p swapped. Returns how
     /// much longer the travel got and the strokes at the changed edges.
-    fn kick(&mut self, rng: &mut XorShift) -> (f64, Vec<usize>) {
+    fn kick(&mut self, rng: &mut XorShift) -> (f64, [usize; 6]) {
         let n = self.len();
         let most = KICK_RUN.min((n - 2) / 2).max(1);
         let p = rng.below(n);
@@ -396,21 +427,18 @@ impl<'a> Tour<'a> {
         self.reverse((p + 1) % n, (p + l2) % n);
         self.reverse((p + l2 + 1) % n, (p + l1 + l2) % n);
         let after = cost(self);
-        let touched = [0, 1, l2, l2 + 1, l1 + l2, l1 + l2 + 1]
-            .iter()
-            .map(|&k| self.seq[(p + k) % n])
-            .collect();
+        let touched = [0, 1, l2, l2 + 1, l1 + l2, l1 + l2 + 1].map(|k| self.seq[(p + k) % n]);
         (after - before, touched)
     }
 
     /// The strokes in drawing order, starting after the depot.
     fn order(&self) -> Vec<(usize, bool)> {
         let n = self.len();
-        let d = self.pos[n - 1];
+        let d = self.pos(n - 1);
         (1..n)
             .map(|k| {
                 let v = self.seq[(d + k) % n];
-                (v, self.rev[v])
+                (v, self.rev(v))
             })
             .collect()
     }
@@ -546,7 +574,7 @@ mod tests {
         t.or_opt_move(t.seq[4], 2, 8, true);
         t.or_opt_move(t.seq[9], 3, 1, false);
         for (k, &v) in t.seq.iter().enumerate() {
-            assert_eq!(t.pos[v], k);
+            assert_eq!(t.pos(v), k);
         }
         let mut all = t.seq.clone();
         all.sort_unstable();
