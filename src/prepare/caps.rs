@@ -120,6 +120,15 @@ pub(crate) type Refused = (CapFailure, Option<Box<Failed>>);
 
 /// [`cap_holes`], saying on failure which capped surface failed.
 pub(crate) fn capping(mesh: &Mesh) -> Result<Caps, Refused> {
+    if edge_topology(&mesh.faces) != Topology::Open {
+        return Err((CapFailure::Inconsistent, None));
+    }
+    capping_open(mesh)
+}
+
+/// [`capping`] of a mesh whose edge topology the caller has found [`Topology::Open`] (it is
+/// not found again: that sorts every edge twice).
+pub(crate) fn capping_open(mesh: &Mesh) -> Result<Caps, Refused> {
     let refuse = |why| (why, None);
     let failed = |mesh, surface: Option<Surface>, crossing| {
         surface.map(|surface| {
@@ -131,9 +140,6 @@ pub(crate) fn capping(mesh: &Mesh) -> Result<Caps, Refused> {
             })
         })
     };
-    if edge_topology(&mesh.faces) != Topology::Open {
-        return Err(refuse(CapFailure::Inconsistent));
-    }
     if flat(&mesh.vertices) {
         // A sheet in one plane: whatever caps it, nothing is enclosed.
         return Err(refuse(CapFailure::InsideOut));

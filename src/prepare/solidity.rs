@@ -199,7 +199,8 @@ pub fn decide(mesh: &mut Mesh) {
     let n = mesh.faces.len();
     let whole = examine(mesh);
     let (s, proven) = match whole.solidity {
-        Solidity::Open(_) => match super::caps::capping(mesh) {
+        // `examine` found the edges open (only that makes the whole `Open`).
+        Solidity::Open(_) => match super::caps::capping_open(mesh) {
             Ok(caps) => {
                 mesh.caps = caps.triangles;
                 (Solidity::Capped(caps.loops), None)
