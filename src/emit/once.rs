@@ -10,6 +10,7 @@
 //! the other is removed. Ranks: edge kind (silhouette first, as [`EdgeKind::ALL`]), then
 //! order in the edge list.
 
+use crate::geom::box_pairs::{filter_map_pairs, Bounds3};
 use crate::geom::poly2::Pt2;
 
 use super::clip_segment::{at, complement, Interval};
@@ -42,8 +43,9 @@ impl Ranked {
 }
 
 /// What is left of each segment of `segs` once every shared part is kept only on the
-/// higher-ranked segment: for each, its remaining pieces (in order along it). Segments of
-/// `keep` always win and lose nothing themselves (visible lines over hidden ones).
+/// higher-ranked segment (of equal ranks, the one of lesser least x, then the earlier): for
+/// each, its remaining pieces (in order along it). Segments of `keep` always win and lose
+/// nothing themselves (visible lines over hidden ones).
 pub fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
     let extent = segs
         .iter()
@@ -63,32 +65,48 @@ pub fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
         .collect();
     let xmin = |s: &[Pt2; 2]| s[0][0].min(s[1][0]);
     let xmax = |s: &[Pt2; 2]| s[0][0].max(s[1][0]);
-    // `along` finds nothing for segments farther apart than `tol` in y (a point of one within
-    // `tol` of the other lies within `tol` of its y range; rounding in `along` is many orders
-    // below `tol`), so pairs more than twice `tol` apart in y are skipped before its square
-    // roots: the same cuts, far fewer calls.
+    // `along` finds nothing for segments farther apart than `tol` (a point of one within
+    // `tol` of the other lies within `tol` of its x and y ranges; rounding in `along` is many
+    // orders below `tol`), so a pair is tested only when their x ranges come within `tol` and
+    // their y ranges within `2 tol`: far fewer calls of its square roots.
     let (ylo, yhi) = (
         |s: &[Pt2; 2]| s[0][1].min(s[1][1]),
         |s: &[Pt2; 2]| s[0][1].max(s[1][1]),
     );
     let apart_in_y =
         |a: &[Pt2; 2], b: &[Pt2; 2]| ylo(a) > yhi(b) + 2.0 * tol || ylo(b) > yhi(a) + 2.0 * tol;
-    let mut order: Vec<usize> = (0..all.len()).collect();
-    order.sort_by(|&i, &j| xmin(&all[i].0).total_cmp(&xmin(&all[j].0)));
-    let mut cuts: Vec<Vec<Interval>> = vec![Vec::new(); all.len()];
-    for (k, &i) in order.iter().enumerate() {
-        for &j in &order[k + 1..] {
-            if xmin(&all[j].0) > xmax(&all[i].0) + tol {
-                break;
-            }
-            let (hi, lo) = if all[i].1 <= all[j].1 { (i, j) } else { (j, i) };
-            if all[lo].1 .0 == 0 || apart_in_y(&all[i].0, &all[j].0) {
-                continue; // both kept, or too far apart
-            }
-            if let Some(iv) = along(&all[lo].0, &all[hi].0, tol) {
-                cuts[lo].push(iv);
-            }
+    // Candidate pairs from a grid of boxes grown past that reach (every pair it allows is a
+    // candidate), on all threads; the exact tests below then decide.
+    let reach = |s: &[Pt2; 2]| -> Bounds3 {
+        [
+            [xmin(s) - 2.0 * tol, ylo(s) - 3.0 * tol, 0.0],
+            [xmax(s) + 2.0 * tol, yhi(s) + 3.0 * tol, 0.0],
+        ]
+    };
+    let boxes: Vec<Bounds3> = all.iter().map(|(s, _)| reach(s)).collect();
+    let found = filter_map_pairs(&boxes, |i, j| {
+        let (i, j) = (i as usize, j as usize);
+        // Of two segments of one rank, the one of lesser least x (ties: the earlier) wins.
+        let (first, second) = match xmin(&all[j].0).total_cmp(&xmin(&all[i].0)) {
+            std::cmp::Ordering::Less => (j, i),
+            _ => (i, j),
+        };
+        if xmin(&all[second].0) > xmax(&all[first].0) + tol {
+            return None;
         }
+        let (hi, lo) = if all[first].1 <= all[second].1 {
+            (first, second)
+        } else {
+            (second, first)
+        };
+        if all[lo].1 .0 == 0 || apart_in_y(&all[first].0, &all[second].0) {
+            return None; // both kept, or too far apart
+        }
+        along(&all[lo].0, &all[hi].0, tol).map(|iv| (lo, iv))
+    });
+    let mut cuts: Vec<Vec<Interval>> = vec![Vec::new(); all.len()];
+    for (lo, iv) in found {
+        cuts[lo].push(iv);
     }
     let nkeep = keep.len();
     (0..segs.len())
@@ -192,6 +210,105 @@ mod tests {
         assert_eq!(out[1], vec![[[3., 0.], [1., 0.]]]);
         assert_eq!(out[0], vec![[[0., 0.], [1., 0.]], [[3., 0.], [4., 0.]]]);
         assert_eq!(out[2], vec![[[4., 0.], [4., 3.]]]);
+    }
+
+    /// The rule by a sweep over all segments sorted by least x (stable), every later one
+    /// whose x range comes within `tol` paired with the earlier: the reference the grid of
+    /// candidate pairs must reproduce.
+    fn by_sweep(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
+        let extent = segs
+            .iter()
+            .map(|r| &r.seg)
+            .chain(keep)
+            .flatten()
+            .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+        let tol = ONCE_TOL * extent;
+        let all: Vec<([Pt2; 2], (usize, usize, u32))> = keep
+            .iter()
+            .map(|s| (*s, (0, 0, 0)))
+            .chain(segs.iter().map(|r| {
+                let (k, e) = r.rank();
+                (r.seg, (1, k, e))
+            }))
+            .collect();
+        let xmin = |s: &[Pt2; 2]| s[0][0].min(s[1][0]);
+        let xmax = |s: &[Pt2; 2]| s[0][0].max(s[1][0]);
+        let mut order: Vec<usize> = (0..all.len()).collect();
+        order.sort_by(|&i, &j| xmin(&all[i].0).total_cmp(&xmin(&all[j].0)));
+        let mut cuts: Vec<Vec<Interval>> = vec![Vec::new(); all.len()];
+        for (k, &i) in order.iter().enumerate() {
+            for &j in &order[k + 1..] {
+                if xmin(&all[j].0) > xmax(&all[i].0) + tol {
+                    break;
+                }
+                let (hi, lo) = if all[i].1 <= all[j].1 { (i, j) } else { (j, i) };
+                if all[lo].1 .0 != 0 {
+                    if let Some(iv) = along(&all[lo].0, &all[hi].0, tol) {
+                        cuts[lo].push(iv);
+                    }
+                }
+            }
+        }
+        (0..segs.len())
+            .map(|s| {
+                let seg = all[keep.len() + s].0;
+                let mut c = std::mem::take(&mut cuts[keep.len() + s]);
+                if c.is_empty() {
+                    return vec![seg];
+                }
+                c.sort_by(|a, b| a[0].total_cmp(&b[0]));
+                complement(&merge(c))
+                    .into_iter()
+                    .filter(|iv| iv[1] > iv[0])
+                    .map(|iv| [at(seg[0], seg[1], iv[0]), at(seg[0], seg[1], iv[1])])
+                    .filter(|p| (p[1][0] - p[0][0]).hypot(p[1][1] - p[0][1]) > tol)
+                    .collect()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn grid_pairs_cut_what_a_sweep_cuts() {
+        // Pieces of a few lines (so many overlap along them, ranks tied and not), some an ulp
+        // off, reversed, or turned slightly, with kept lines among them.
+        let mut rng = crate::geom::rng::XorShift::new(41);
+        let lines: Vec<(Pt2, Pt2)> = (0..6)
+            .map(|_| {
+                let a = [rng.range(-5., 5.), rng.range(-5., 5.)];
+                let t = rng.range(0., std::f64::consts::TAU);
+                (a, [t.cos(), t.sin()])
+            })
+            .collect();
+        let piece = |rng: &mut crate::geom::rng::XorShift| {
+            let (a, d) = lines[rng.below(lines.len())];
+            let (t0, t1) = (rng.range(0., 8.), rng.range(0., 8.));
+            let off = if rng.below(3) == 0 { 1e-15 } else { 0.0 };
+            let turn = if rng.below(5) == 0 { 1e-7 } else { 0.0 };
+            [
+                [a[0] + d[0] * t0 + off, a[1] + d[1] * t0],
+                [a[0] + (d[0] + turn) * t1, a[1] + (d[1] - turn) * t1 + off],
+            ]
+        };
+        let kinds = [EdgeKind::Silhouette, EdgeKind::Crease, EdgeKind::Plain];
+        let mut cut_some = 0;
+        for round in 0..20 {
+            let segs: Vec<Ranked> = (0..60)
+                .map(|_| Ranked {
+                    kind: kinds[rng.below(3)],
+                    edge: rng.below(12) as u32,
+                    seg: piece(&mut rng),
+                })
+                .collect();
+            let keep: Vec<[Pt2; 2]> = (0..round % 4).map(|_| piece(&mut rng)).collect();
+            let (grid, sweep) = (stroke_once(&segs, &keep), by_sweep(&segs, &keep));
+            assert_eq!(grid, sweep, "round {round}");
+            cut_some += grid
+                .iter()
+                .zip(&segs)
+                .filter(|(g, s)| g.as_slice() != [s.seg])
+                .count();
+        }
+        assert!(cut_some > 100, "the pieces overlap: {cut_some} cut");
     }
 
     #[test]
