@@ -3,7 +3,6 @@
 //! and progress. Every command, the benchmarks and the tests render through [`render`].
 
 use std::borrow::Cow;
-use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use crate::emit::json::to_json;
@@ -15,6 +14,7 @@ use crate::emit::png::to_png;
 use crate::emit::svg::to_svg;
 use crate::error::{Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
+pub use crate::progress::{Progress, Stage};
 use crate::scene::Scene;
 use crate::view::{substitute, Camera, Cull, LodOptions, LodStats, View};
 use crate::visibility::empty::why_empty;
@@ -56,98 +56,6 @@ pub struct Outputs {
 }
 
 pub use crate::emit::picture::PictureOptions;
-
-/// A stage of the pipeline, for times and progress.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Stage {
-    /// Loading the scene (timed by the caller).
-    Load,
-    /// Level-of-detail substitution.
-    Lod,
-    /// INBOXes (the caller's, or the substitutes' under `lod`).
-    Prepare,
-    /// HIDDEN subtrees from boxes, before any face is projected.
-    Cull,
-    /// Projection of the remaining faces and the view tree.
-    View,
-    /// Every face's VTP.
-    Visibility,
-    /// The line drawing: edges and intersection curves clipped to the VTPs.
-    Lines,
-    /// JSON, SVG and PNG into memory.
-    Emit,
-}
-
-impl Stage {
-    const ALL: [Stage; 8] = [
-        Stage::Load,
-        Stage::Lod,
-        Stage::Prepare,
-        Stage::Cull,
-        Stage::View,
-        Stage::Visibility,
-        Stage::Lines,
-        Stage::Emit,
-    ];
-
-    /// Lower-case name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Stage::Load => "load",
-            Stage::Lod => "lod",
-            Stage::Prepare => "prepare",
-            Stage::Cull => "cull",
-            Stage::View => "view",
-            Stage::Visibility => "visibility",
-            Stage::Lines => "lines",
-            Stage::Emit => "emit",
-        }
-    }
-}
-
-/// Where a render is, shared with a watcher thread (a progress bar): the current stage and,
-/// for stages that count, units done of a total. Plain atomics: watching never changes the
-/// result.
-#[derive(Debug, Default)]
-pub struct Progress {
-    stage: AtomicU8,
-    done: AtomicUsize,
-    total: AtomicUsize,
-}
-
-impl Progress {
-    /// A new, idle progress (stage [`Stage::Load`], nothing counted).
-    pub fn new() -> Progress {
-        Progress::default()
-    }
-
-    /// The current stage.
-    pub fn stage(&self) -> Stage {
-        Stage::ALL[usize::from(self.stage.load(Ordering::Relaxed)).min(Stage::ALL.len() - 1)]
-    }
-
-    /// Units done of the current stage's total (0 of 0 when the stage does not count).
-    pub fn counts(&self) -> (usize, usize) {
-        (
-            self.done.load(Ordering::Relaxed),
-            self.total.load(Ordering::Relaxed),
-        )
-    }
-
-    /// Enters a stage of `total` units (0: not counted).
-    pub fn enter(&self, stage: Stage, total: usize) {
-        self.total.store(0, Ordering::Relaxed);
-        self.done.store(0, Ordering::Relaxed);
-        let k = Stage::ALL.iter().position(|&s| s == stage).unwrap_or(0);
-        self.stage.store(k as u8, Ordering::Relaxed);
-        self.total.store(total, Ordering::Relaxed);
-    }
-
-    /// The counter of units done, for the stage's worker to add to.
-    pub fn done_counter(&self) -> &AtomicUsize {
-        &self.done
-    }
-}
 
 /// Stage times and work counters of one render.
 #[derive(Debug, Clone, Default, PartialEq)]
