@@ -3,13 +3,17 @@
 //! work, never per item, and nothing they compute reads it: watching never changes a result.
 //!
 //! - [`stage`]: the stages, their phases and what each phase counts.
+//! - `share`: a piece of work that fills a fixed share of a phase's count (one mesh's faces
+//!   of all the meshes a phase handles), by steps or by fractions.
 
+mod share;
 pub mod stage;
 
 use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
+pub(crate) use share::{Share, Span};
 pub use stage::{Phase, Stage, Unit};
 
 /// Items a loop does between two adds to the shared counter ([`Progress::tick`]).
