@@ -3,9 +3,11 @@
 //! work, never per item, and nothing they compute reads it: watching never changes a result.
 //!
 //! - [`stage`]: the stages, their phases and what each phase counts.
+//! - `cursor`: a sequential pass through a file, counted by its position in bytes.
 //! - `share`: a piece of work that fills a fixed share of a phase's count (one mesh's faces
 //!   of all the meshes a phase handles), by steps or by fractions.
 
+mod cursor;
 mod share;
 pub mod stage;
 
@@ -13,6 +15,7 @@ use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
+pub(crate) use cursor::Cursor;
 pub(crate) use share::{Share, Span};
 pub use stage::{Phase, Stage, Unit};
 
