@@ -5,8 +5,8 @@
 use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
-use crate::emit::json::to_json;
-use crate::emit::lines::{draw, Drawing, LineOptions};
+use crate::emit::json::to_json_counted;
+use crate::emit::lines::{draw_counted, Drawing, LineOptions};
 use crate::emit::marks::face_marks;
 use crate::emit::picture::{Picture, PlotStats};
 use crate::emit::plot::picture;
@@ -14,6 +14,7 @@ use crate::emit::png::to_png;
 use crate::emit::svg::to_svg;
 use crate::error::{Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
+use crate::progress::Phase;
 pub use crate::progress::{Progress, Stage};
 use crate::scene::Scene;
 use crate::view::{substitute, Camera, Cull, LodOptions, LodStats, View};
@@ -85,10 +86,8 @@ impl RenderStats {
         self.times.iter().map(|(_, d)| *d).sum()
     }
 
-    fn timed<T>(&mut self, stage: Stage, progress: Option<&Progress>, f: impl FnOnce() -> T) -> T {
-        if let Some(p) = progress {
-            p.enter(stage, 0);
-        }
+    /// Runs `f` as `stage`, timed (the stage's phases are entered in `f`).
+    fn timed<T>(&mut self, stage: Stage, f: impl FnOnce() -> T) -> T {
         let t = Instant::now();
         let out = f();
         self.times.push((stage, t.elapsed()));
@@ -125,8 +124,13 @@ impl Rendered<'_> {
     /// The `kepler-visible/1` JSON of the visible regions, with the drawing's polylines
     /// when `lines` (and a drawing was made).
     pub fn to_json(&self, lines: bool) -> String {
+        self.to_json_counted(lines, &Progress::new())
+    }
+
+    /// [`Rendered::to_json`], counting the faces written in `progress`.
+    fn to_json_counted(&self, lines: bool, progress: &Progress) -> String {
         let lines = self.drawing.as_ref().filter(|_| lines).map(Drawing::lines);
-        to_json(&self.view, &self.visibility, lines.as_ref())
+        to_json_counted(&self.view, &self.visibility, lines.as_ref(), progress)
     }
 
     /// The picture both SVG and PNG draw (texture markings included).
@@ -160,50 +164,53 @@ pub fn render<'s>(scene: &'s Scene, camera: &Camera, opts: &RenderOptions) -> Re
     render_with(scene, camera, opts, None)
 }
 
-/// [`render`], reporting its stage and counts to `progress` as it goes.
+/// [`render`], reporting its stages, their phases and their counts to `progress` as it
+/// goes ([`Progress::phases`] lists them afterwards). The result is the same with or
+/// without it.
 pub fn render_with<'s>(
     scene: &'s Scene,
     camera: &Camera,
     opts: &RenderOptions,
     progress: Option<&Progress>,
 ) -> Result<Rendered<'s>> {
+    let sink = Progress::new();
+    let progress = progress.unwrap_or(&sink);
     let mut stats = RenderStats::default();
     let scene = match &opts.lod {
         Some(lod) => {
-            let (mut s, lod_stats) =
-                stats.timed(Stage::Lod, progress, || substitute(scene, camera, lod));
+            progress.enter(Stage::Lod, 0);
+            let (mut s, lod_stats) = stats.timed(Stage::Lod, || substitute(scene, camera, lod));
             stats.lod = Some(lod_stats);
             let prep = PrepareOptions {
                 hierarchy: opts.hierarchy,
             };
-            stats.timed(Stage::Prepare, progress, || {
-                crate::prepare::prepare_with(&mut s, &prep)
+            stats.timed(Stage::Prepare, || {
+                crate::prepare::prepare_counted(&mut s, &prep, Some(progress))
             });
             Cow::Owned(s)
         }
         None => Cow::Borrowed(scene),
     };
     // Hidden lines need every face's facing, so they keep every face in the view.
-    let cull = stats.timed(Stage::Cull, progress, || {
+    progress.enter(Stage::Cull, 0);
+    let cull = stats.timed(Stage::Cull, || {
         if opts.no_inbox || opts.lines.hidden {
             Cull::none(&scene)
         } else {
             Cull::new(&scene, camera)
         }
     });
-    let mut view = stats.timed(Stage::View, progress, || {
-        View::from_cull(&scene, *camera, &cull)
+    let mut view = stats.timed(Stage::View, || {
+        View::from_cull_counted(&scene, *camera, &cull, progress)
     });
     drop(cull);
     crate::view::finite::check_screen(&view.screen, &view.camera)?;
     let pass = PassOptions {
         use_inbox: !opts.no_inbox,
     };
-    if let Some(p) = progress {
-        p.enter(Stage::Visibility, view.screen.pieces.len());
-    }
+    progress.enter(Stage::Visibility, view.screen.pieces.len());
     let t = Instant::now();
-    let visibility = solve_counted(&view, pass, progress.map(Progress::done_counter));
+    let visibility = solve_counted(&view, pass, Some(progress.done_counter()));
     stats.times.push((Stage::Visibility, t.elapsed()));
     stats.counters = visibility.counters;
     let mut warnings = Vec::new();
@@ -218,8 +225,8 @@ pub fn render_with<'s>(
     let out = &opts.outputs;
     let pictures = out.svg || out.png;
     let drawing = (pictures || out.drawing || (out.json && out.json_lines)).then(|| {
-        stats.timed(Stage::Lines, progress, || {
-            draw(&scene, &view, &visibility, &opts.lines)
+        stats.timed(Stage::Lines, || {
+            draw_counted(&scene, &view, &visibility, &opts.lines, progress)
         })
     });
     let mut r = Rendered {
@@ -234,10 +241,19 @@ pub fn render_with<'s>(
         warnings,
     };
     let mut plot = None;
-    stats.timed(Stage::Emit, progress, || -> Result<()> {
+    // The JSON is counted by faces written; the pictures alone are not counted.
+    if out.json {
+        progress.enter_phase(Stage::Emit, Phase::Json, r.visibility.solved_count());
+    } else {
+        progress.enter(Stage::Emit, 0);
+    }
+    stats.timed(Stage::Emit, || -> Result<()> {
         // The JSON and the picture read the same solved view: made side by side.
         let (json, pic) = rayon::join(
-            || out.json.then(|| r.to_json(out.json_lines)),
+            || {
+                out.json
+                    .then(|| r.to_json_counted(out.json_lines, progress))
+            },
             || pictures.then(|| r.picture(&out.picture)).transpose(),
         );
         r.json = json;

@@ -26,6 +26,12 @@ impl<'p> Share<'p> {
         }
     }
 
+    /// Counts `n` more units (never past the share).
+    pub(crate) fn add(&self, n: usize) {
+        let old = self.given.fetch_add(n, Ordering::Relaxed);
+        self.give(old, old.saturating_add(n));
+    }
+
     /// Fills the share up to `fraction` of its units (never back): the work is that far.
     pub(crate) fn reach(&self, fraction: f64) {
         let target = (self.units as f64 * fraction.clamp(0.0, 1.0)) as usize;
@@ -137,10 +143,10 @@ mod tests {
         let p = Progress::new();
         p.enter_phase(Stage::Prepare, Phase::Solidity, 150);
         let a = Share::new(&p, 100);
-        a.reach(0.6);
+        a.add(60);
         a.reach(0.5);
         assert_eq!(p.counts().0, 60, "reach never goes back");
-        a.reach(1.3);
+        a.add(70);
         assert_eq!(p.counts().0, 100);
         a.finish();
         let b = Share::new(&p, 50);
