@@ -151,11 +151,12 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     let mut warnings = Vec::new();
     let (scene, load, prepare) = follow(&progress, PROGRESS_AFTER, || -> Result<_> {
         let t = Instant::now();
-        let mut scene = kepler_hsr::load_scene_with(&a.scene, load_opts, &mut warnings)?;
+        let mut scene =
+            kepler_hsr::load_scene_counted(&a.scene, load_opts, &mut warnings, Some(&progress))?;
         let load = t.elapsed();
-        progress.enter(Stage::Prepare, 0);
         let t = Instant::now();
-        kepler_hsr::prepare::prepare_with(&mut scene, &a.hierarchy.prepare());
+        let prep = a.hierarchy.prepare();
+        kepler_hsr::prepare::prepare_counted(&mut scene, &prep, Some(&progress));
         Ok((scene, load, t.elapsed()))
     })?;
     if !a.quiet {
