@@ -152,13 +152,17 @@ pub fn eta_text(secs: f64) -> String {
 /// Runs `work` while a bar follows a render's `progress` (its stage and phase, and done of
 /// total where the phase counts, with the time the phase has left at its rate so far), drawn
 /// from a watcher thread that wakes every 100 ms (and at once when the work ends); on a
-/// non-terminal no thread is started at all.
+/// non-terminal no thread is started at all. The bar's clock runs from `start` (the
+/// command's start, so that it goes on across bars), and the bar shows itself once `delay`
+/// has passed since.
 pub fn follow<T: Send>(
     progress: &kepler_hsr::Progress,
+    start: Instant,
     delay: Duration,
     work: impl FnOnce() -> T + Send,
 ) -> T {
     let mut bar = Progress::new("render", 0, delay);
+    bar.start = start;
     if !bar.enabled {
         return work();
     }
@@ -240,7 +244,7 @@ mod tests {
     #[test]
     fn follow_returns_the_work() {
         let p = kepler_hsr::Progress::new();
-        let v = follow(&p, Duration::ZERO, || {
+        let v = follow(&p, Instant::now(), Duration::ZERO, || {
             p.enter(kepler_hsr::Stage::Visibility, 3);
             7
         });
