@@ -33,6 +33,7 @@ pub mod load;
 pub mod pipeline;
 pub mod prepare;
 pub mod primitives;
+pub mod progress;
 pub mod scene;
 pub mod tribox;
 pub mod view;
@@ -40,12 +41,12 @@ pub mod visibility;
 
 pub use emit::{Drawing, EdgeKind, EdgeOptions, EdgeSet, LineOptions};
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
-pub use load::{load_scene, load_scene_with, LoadOptions};
+pub use load::{load_scene, load_scene_counted, load_scene_with, LoadOptions};
 pub use pipeline::{
-    render, render_with, Outputs, PictureOptions, Progress, RenderOptions, RenderStats, Rendered,
-    Stage,
+    render, render_with, Outputs, PictureOptions, RenderOptions, RenderStats, Rendered,
 };
 pub use prepare::prepare;
+pub use progress::{Phase, PhaseCount, Progress, Stage, Unit};
 pub use scene::{FaceId, Object, Scene};
 pub use view::{Camera, CameraRequest, LodOptions, PieceId, Projection, View};
 pub use visibility::{FaceVisibility, Visibility};

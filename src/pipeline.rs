@@ -3,11 +3,10 @@
 //! and progress. Every command, the benchmarks and the tests render through [`render`].
 
 use std::borrow::Cow;
-use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
-use crate::emit::json::to_json;
-use crate::emit::lines::{draw, Drawing, LineOptions};
+use crate::emit::json::to_json_counted;
+use crate::emit::lines::{draw_counted, Drawing, LineOptions};
 use crate::emit::marks::face_marks;
 use crate::emit::picture::{Picture, PlotStats};
 use crate::emit::plot::picture;
@@ -15,6 +14,8 @@ use crate::emit::png::to_png;
 use crate::emit::svg::to_svg;
 use crate::error::{Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
+use crate::progress::Phase;
+pub use crate::progress::{Progress, Stage};
 use crate::scene::Scene;
 use crate::view::{substitute, Camera, Cull, LodOptions, LodStats, View};
 use crate::visibility::empty::why_empty;
@@ -57,98 +58,6 @@ pub struct Outputs {
 
 pub use crate::emit::picture::PictureOptions;
 
-/// A stage of the pipeline, for times and progress.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Stage {
-    /// Loading the scene (timed by the caller).
-    Load,
-    /// Level-of-detail substitution.
-    Lod,
-    /// INBOXes (the caller's, or the substitutes' under `lod`).
-    Prepare,
-    /// HIDDEN subtrees from boxes, before any face is projected.
-    Cull,
-    /// Projection of the remaining faces and the view tree.
-    View,
-    /// Every face's VTP.
-    Visibility,
-    /// The line drawing: edges and intersection curves clipped to the VTPs.
-    Lines,
-    /// JSON, SVG and PNG into memory.
-    Emit,
-}
-
-impl Stage {
-    const ALL: [Stage; 8] = [
-        Stage::Load,
-        Stage::Lod,
-        Stage::Prepare,
-        Stage::Cull,
-        Stage::View,
-        Stage::Visibility,
-        Stage::Lines,
-        Stage::Emit,
-    ];
-
-    /// Lower-case name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Stage::Load => "load",
-            Stage::Lod => "lod",
-            Stage::Prepare => "prepare",
-            Stage::Cull => "cull",
-            Stage::View => "view",
-            Stage::Visibility => "visibility",
-            Stage::Lines => "lines",
-            Stage::Emit => "emit",
-        }
-    }
-}
-
-/// Where a render is, shared with a watcher thread (a progress bar): the current stage and,
-/// for stages that count, units done of a total. Plain atomics: watching never changes the
-/// result.
-#[derive(Debug, Default)]
-pub struct Progress {
-    stage: AtomicU8,
-    done: AtomicUsize,
-    total: AtomicUsize,
-}
-
-impl Progress {
-    /// A new, idle progress (stage [`Stage::Load`], nothing counted).
-    pub fn new() -> Progress {
-        Progress::default()
-    }
-
-    /// The current stage.
-    pub fn stage(&self) -> Stage {
-        Stage::ALL[usize::from(self.stage.load(Ordering::Relaxed)).min(Stage::ALL.len() - 1)]
-    }
-
-    /// Units done of the current stage's total (0 of 0 when the stage does not count).
-    pub fn counts(&self) -> (usize, usize) {
-        (
-            self.done.load(Ordering::Relaxed),
-            self.total.load(Ordering::Relaxed),
-        )
-    }
-
-    /// Enters a stage of `total` units (0: not counted).
-    pub fn enter(&self, stage: Stage, total: usize) {
-        self.total.store(0, Ordering::Relaxed);
-        self.done.store(0, Ordering::Relaxed);
-        let k = Stage::ALL.iter().position(|&s| s == stage).unwrap_or(0);
-        self.stage.store(k as u8, Ordering::Relaxed);
-        self.total.store(total, Ordering::Relaxed);
-    }
-
-    /// The counter of units done, for the stage's worker to add to.
-    pub fn done_counter(&self) -> &AtomicUsize {
-        &self.done
-    }
-}
-
 /// Stage times and work counters of one render.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct RenderStats {
@@ -177,10 +86,8 @@ impl RenderStats {
         self.times.iter().map(|(_, d)| *d).sum()
     }
 
-    fn timed<T>(&mut self, stage: Stage, progress: Option<&Progress>, f: impl FnOnce() -> T) -> T {
-        if let Some(p) = progress {
-            p.enter(stage, 0);
-        }
+    /// Runs `f` as `stage`, timed (the stage's phases are entered in `f`).
+    fn timed<T>(&mut self, stage: Stage, f: impl FnOnce() -> T) -> T {
         let t = Instant::now();
         let out = f();
         self.times.push((stage, t.elapsed()));
@@ -217,8 +124,13 @@ impl Rendered<'_> {
     /// The `kepler-visible/1` JSON of the visible regions, with the drawing's polylines
     /// when `lines` (and a drawing was made).
     pub fn to_json(&self, lines: bool) -> String {
+        self.to_json_counted(lines, &Progress::new())
+    }
+
+    /// [`Rendered::to_json`], counting the faces written in `progress`.
+    fn to_json_counted(&self, lines: bool, progress: &Progress) -> String {
         let lines = self.drawing.as_ref().filter(|_| lines).map(Drawing::lines);
-        to_json(&self.view, &self.visibility, lines.as_ref())
+        to_json_counted(&self.view, &self.visibility, lines.as_ref(), progress)
     }
 
     /// The picture both SVG and PNG draw (texture markings included).
@@ -252,50 +164,53 @@ pub fn render<'s>(scene: &'s Scene, camera: &Camera, opts: &RenderOptions) -> Re
     render_with(scene, camera, opts, None)
 }
 
-/// [`render`], reporting its stage and counts to `progress` as it goes.
+/// [`render`], reporting its stages, their phases and their counts to `progress` as it
+/// goes ([`Progress::phases`] lists them afterwards). The result is the same with or
+/// without it.
 pub fn render_with<'s>(
     scene: &'s Scene,
     camera: &Camera,
     opts: &RenderOptions,
     progress: Option<&Progress>,
 ) -> Result<Rendered<'s>> {
+    let sink = Progress::new();
+    let progress = progress.unwrap_or(&sink);
     let mut stats = RenderStats::default();
     let scene = match &opts.lod {
         Some(lod) => {
-            let (mut s, lod_stats) =
-                stats.timed(Stage::Lod, progress, || substitute(scene, camera, lod));
+            progress.enter(Stage::Lod, 0);
+            let (mut s, lod_stats) = stats.timed(Stage::Lod, || substitute(scene, camera, lod));
             stats.lod = Some(lod_stats);
             let prep = PrepareOptions {
                 hierarchy: opts.hierarchy,
             };
-            stats.timed(Stage::Prepare, progress, || {
-                crate::prepare::prepare_with(&mut s, &prep)
+            stats.timed(Stage::Prepare, || {
+                crate::prepare::prepare_counted(&mut s, &prep, Some(progress))
             });
             Cow::Owned(s)
         }
         None => Cow::Borrowed(scene),
     };
     // Hidden lines need every face's facing, so they keep every face in the view.
-    let cull = stats.timed(Stage::Cull, progress, || {
+    progress.enter(Stage::Cull, 0);
+    let cull = stats.timed(Stage::Cull, || {
         if opts.no_inbox || opts.lines.hidden {
             Cull::none(&scene)
         } else {
             Cull::new(&scene, camera)
         }
     });
-    let mut view = stats.timed(Stage::View, progress, || {
-        View::from_cull(&scene, *camera, &cull)
+    let mut view = stats.timed(Stage::View, || {
+        View::from_cull_counted(&scene, *camera, &cull, progress)
     });
     drop(cull);
     crate::view::finite::check_screen(&view.screen, &view.camera)?;
     let pass = PassOptions {
         use_inbox: !opts.no_inbox,
     };
-    if let Some(p) = progress {
-        p.enter(Stage::Visibility, view.screen.pieces.len());
-    }
+    progress.enter(Stage::Visibility, view.screen.pieces.len());
     let t = Instant::now();
-    let visibility = solve_counted(&view, pass, progress.map(Progress::done_counter));
+    let visibility = solve_counted(&view, pass, Some(progress.done_counter()));
     stats.times.push((Stage::Visibility, t.elapsed()));
     stats.counters = visibility.counters;
     let mut warnings = Vec::new();
@@ -310,8 +225,8 @@ pub fn render_with<'s>(
     let out = &opts.outputs;
     let pictures = out.svg || out.png;
     let drawing = (pictures || out.drawing || (out.json && out.json_lines)).then(|| {
-        stats.timed(Stage::Lines, progress, || {
-            draw(&scene, &view, &visibility, &opts.lines)
+        stats.timed(Stage::Lines, || {
+            draw_counted(&scene, &view, &visibility, &opts.lines, progress)
         })
     });
     let mut r = Rendered {
@@ -326,10 +241,19 @@ pub fn render_with<'s>(
         warnings,
     };
     let mut plot = None;
-    stats.timed(Stage::Emit, progress, || -> Result<()> {
+    // The JSON is counted by faces written; the pictures alone are not counted.
+    if out.json {
+        progress.enter_phase(Stage::Emit, Phase::Json, r.visibility.solved_count());
+    } else {
+        progress.enter(Stage::Emit, 0);
+    }
+    stats.timed(Stage::Emit, || -> Result<()> {
         // The JSON and the picture read the same solved view: made side by side.
         let (json, pic) = rayon::join(
-            || out.json.then(|| r.to_json(out.json_lines)),
+            || {
+                out.json
+                    .then(|| r.to_json_counted(out.json_lines, progress))
+            },
             || pictures.then(|| r.picture(&out.picture)).transpose(),
         );
         r.json = json;

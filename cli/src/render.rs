@@ -150,13 +150,14 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     // start. Load warnings wait until the bar is gone.
     let progress = Progress::new();
     let mut warnings = Vec::new();
-    let (scene, load, prepare) = follow(&progress, PROGRESS_AFTER, || -> Result<_> {
+    let (scene, load, prepare) = follow(&progress, start, PROGRESS_AFTER, || -> Result<_> {
         let t = Instant::now();
-        let mut scene = kepler_hsr::load_scene_with(&a.scene, load_opts, &mut warnings)?;
+        let mut scene =
+            kepler_hsr::load_scene_counted(&a.scene, load_opts, &mut warnings, Some(&progress))?;
         let load = t.elapsed();
-        progress.enter(Stage::Prepare, 0);
         let t = Instant::now();
-        kepler_hsr::prepare::prepare_with(&mut scene, &a.hierarchy.prepare());
+        let prep = a.hierarchy.prepare();
+        kepler_hsr::prepare::prepare_counted(&mut scene, &prep, Some(&progress));
         Ok((scene, load, t.elapsed()))
     })?;
     if !a.quiet {
@@ -168,8 +169,7 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         let mut opts = opts.clone();
         opts.outputs.picture.frame = frame;
         let progress = Progress::new();
-        let delay = PROGRESS_AFTER.saturating_sub(start.elapsed());
-        let r = follow(&progress, delay, || {
+        let r = follow(&progress, start, PROGRESS_AFTER, || {
             render_with(&scene, camera, &opts, Some(&progress))
         })?;
         if !a.quiet {

@@ -9,6 +9,7 @@ use std::ops::Range;
 use rayon::prelude::*;
 
 use crate::geom::{P3, V3};
+use crate::progress::{Progress, Share};
 use crate::scene::topology::sort_by_key;
 use crate::scene::FaceId;
 use crate::view::{Facing, View};
@@ -108,12 +109,26 @@ struct HalfEdge {
 
 /// The mesh edges of every leaf (in order of first appearance), classified, filtered by `opts.set`.
 pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Edge> {
+    mesh_edges_counted(world, view, opts, &Progress::new())
+}
+
+/// [`mesh_edges`], counting in `progress` the world faces whose edges are done: each
+/// leaf's faces fill as its edges are found, grouped and classified.
+pub(crate) fn mesh_edges_counted(
+    world: &WorldFaces,
+    view: &View,
+    opts: &EdgeOptions,
+    progress: &Progress,
+) -> Vec<Edge> {
     let cos_crease = opts.crease_deg.to_radians().cos();
+    let all = world.faces.len().max(1) as f64;
+    let share = Share::new(progress, world.faces.len());
     // Each face's facing once (a warped face's is a sum over its pieces).
     let facing: Vec<Facing> = (0..view.screen.face_count())
         .into_par_iter()
         .map(|f| view.screen.face_facing(FaceId(f as u32)))
         .collect();
+    share.reach(FACING_SHARE);
     let mut out = Vec::new();
     let mut start = 0;
     while start < world.faces.len() {
@@ -121,6 +136,8 @@ pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Ed
         let end = (start..world.faces.len())
             .find(|&f| world.faces[f].leaf != leaf)
             .unwrap_or(world.faces.len());
+        let at = |f: usize| FACING_SHARE + (1.0 - FACING_SHARE) * f as f64 / all;
+        let span = share.span(at(start), at(end));
         let half = half_edges(world, start, end);
         let edge = |g: Range<usize>| {
             let adj = &half[g];
@@ -141,18 +158,35 @@ pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Ed
                 }
             })
         };
+        span.reach(0.25);
         let groups = edge_groups(&half);
+        span.reach(0.5);
+        let classified = span.span(0.5, 1.0).steps(groups.len());
+        let counted = |(i, g): (usize, Range<usize>)| {
+            classified.tick(i);
+            edge(g)
+        };
         if groups.len() > PARALLEL_ABOVE {
             // In parallel, in the same order.
-            let found: Vec<Edge> = groups.into_par_iter().filter_map(edge).collect();
+            let found: Vec<Edge> = groups
+                .into_par_iter()
+                .enumerate()
+                .filter_map(counted)
+                .collect();
             out.extend(found);
         } else {
-            out.extend(groups.into_iter().filter_map(edge));
+            out.extend(groups.into_iter().enumerate().filter_map(counted));
         }
+        span.finish();
         start = end;
     }
+    share.finish();
     out
 }
+
+/// The part of [`mesh_edges_counted`]'s count that every face's facing fills (the rest is
+/// the leaves' edges, by faces).
+const FACING_SHARE: f64 = 0.1;
 
 /// Above this many edges a leaf's are classified on all threads (the pool's overhead would
 /// outweigh the work of a small leaf).

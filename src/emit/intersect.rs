@@ -7,8 +7,9 @@
 
 use rayon::prelude::*;
 
-use crate::geom::box_pairs::{filter_map_pairs, overlap, Bounds3};
+use crate::geom::box_pairs::{filter_map_pairs_counted, overlap, Bounds3};
 use crate::geom::{orient3d_refs, P3, V3};
+use crate::progress::{Progress, Share};
 use crate::scene::FaceId;
 
 use super::edges::{Edge, EdgeKind};
@@ -17,6 +18,17 @@ use super::world::{WorldFace, WorldFaces, NO_PIECE};
 /// Every intersection segment between pairs of faces that cross (both faces with vertices
 /// strictly on both sides of the other's plane); `keep(f)` filters faces worth testing.
 pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sync) -> Vec<Edge> {
+    intersection_edges_counted(world, keep, &Progress::new())
+}
+
+/// [`intersection_edges`], filling in `progress` a share of the world's faces: the faces
+/// that can cross nothing set aside first, then the search of the pairs left.
+pub(crate) fn intersection_edges_counted(
+    world: &WorldFaces,
+    keep: impl Fn(FaceId) -> bool + Sync,
+    progress: &Progress,
+) -> Vec<Edge> {
+    let share = Share::new(progress, world.faces.len());
     let faces = &world.faces;
     let cand: Vec<usize> = (0..faces.len())
         .filter(|&f| keep(FaceId(f as u32)) && faces[f].points.len() >= 3)
@@ -56,31 +68,37 @@ pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sy
         .collect();
     // Results come in ascending (position, position) pair order, so in (face, face) order:
     // fixed whatever the thread count.
-    let found = filter_map_pairs(&boxes, |i, j| {
-        let (i, j) = (i as usize, j as usize);
-        let (lo, hi) = (ids[i], ids[j]);
-        let (f, g) = (&faces[lo], &faces[hi]);
-        let piece = world.clean_piece[lo];
-        // Flat faces of one piece proven free of self-intersection meet in nothing but
-        // shared vertices and edges: no curve to find. (The proof is on the faces'
-        // triangles; a face off its plane is not the union of its triangles.)
-        let clean = piece != NO_PIECE && piece == world.clean_piece[hi] && flat[i] && flat[j];
-        let segs = if clean || adjacent(f, g, &sorted[i], &sorted[j]) {
-            Vec::new()
-        } else {
-            cross_with(f, g, &refs[i], &refs[j])
-        };
-        (!segs.is_empty()).then(|| {
-            segs.into_iter()
-                .map(|seg| Edge {
-                    leaf: f.leaf,
-                    ends: seg,
-                    faces: vec![FaceId(lo as u32), FaceId(hi as u32)],
-                    kind: EdgeKind::Intersection,
-                })
-                .collect::<Vec<_>>()
-        })
-    });
+    share.reach(0.2);
+    let found = filter_map_pairs_counted(
+        &boxes,
+        |i, j| {
+            let (i, j) = (i as usize, j as usize);
+            let (lo, hi) = (ids[i], ids[j]);
+            let (f, g) = (&faces[lo], &faces[hi]);
+            let piece = world.clean_piece[lo];
+            // Flat faces of one piece proven free of self-intersection meet in nothing but
+            // shared vertices and edges: no curve to find. (The proof is on the faces'
+            // triangles; a face off its plane is not the union of its triangles.)
+            let clean = piece != NO_PIECE && piece == world.clean_piece[hi] && flat[i] && flat[j];
+            let segs = if clean || adjacent(f, g, &sorted[i], &sorted[j]) {
+                Vec::new()
+            } else {
+                cross_with(f, g, &refs[i], &refs[j])
+            };
+            (!segs.is_empty()).then(|| {
+                segs.into_iter()
+                    .map(|seg| Edge {
+                        leaf: f.leaf,
+                        ends: seg,
+                        faces: vec![FaceId(lo as u32), FaceId(hi as u32)],
+                        kind: EdgeKind::Intersection,
+                    })
+                    .collect::<Vec<_>>()
+            })
+        },
+        share.span(0.2, 1.0),
+    );
+    share.finish();
     found.into_iter().flatten().collect()
 }
 

@@ -7,6 +7,7 @@
 use std::fmt::Write as _;
 
 use crate::geom::poly2::Pt2;
+use crate::progress::Progress;
 use crate::scene::flatten::write_num;
 use crate::view::{Projection, View};
 use crate::visibility::Visibility;
@@ -58,6 +59,16 @@ fn list<T>(s: &mut String, items: &[T], mut each: impl FnMut(&mut String, &T)) {
 /// The JSON document for a view's visible-polygon set (faces with nothing visible left out),
 /// with `lines` when given.
 pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
+    to_json_counted(view, vis, lines, &Progress::new())
+}
+
+/// [`to_json`], counting in `progress` the solved faces as they are written.
+pub(crate) fn to_json_counted(
+    view: &View,
+    vis: &Visibility,
+    lines: Option<&Lines>,
+    progress: &Progress,
+) -> String {
     let mut s = String::with_capacity(256 + vis.solved_count() * 128);
     s.push_str("{\"format\":\"kepler-visible/1\",\n\"camera\":{\"projection\":");
     s.push_str(match view.camera.projection {
@@ -90,7 +101,8 @@ pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
         .map(|l| json_string(&l.path))
         .collect();
     let mut first = true;
-    for (id, f) in vis.iter() {
+    for (k, (id, f)) in vis.iter().enumerate() {
+        progress.tick(k);
         if f.visible.is_empty() {
             continue;
         }
@@ -109,6 +121,7 @@ pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
         });
         s.push('}');
     }
+    progress.tick_rest(vis.solved_count());
     s.push_str("\n]");
     if let Some(l) = lines {
         s.push_str(",\n\"lines\":{\"visible\":");

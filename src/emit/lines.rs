@@ -13,14 +13,15 @@ use rayon::prelude::*;
 
 use crate::geom::poly2::Pt2;
 use crate::geom::P3;
+use crate::progress::{Phase, Progress, Share, Stage};
 use crate::scene::{FaceId, Scene};
 use crate::view::{Camera, Projection, View};
 use crate::visibility::Visibility;
 
 use super::chain::{chain, order};
 use super::clip_segment::{at, complement, intervals_in, intervals_in_region, union, Interval};
-use super::edges::{mesh_edges, Edge, EdgeKind, EdgeOptions};
-use super::intersect::intersection_edges;
+use super::edges::{mesh_edges_counted, Edge, EdgeKind, EdgeOptions};
+use super::intersect::intersection_edges_counted;
 use super::json::Lines;
 use super::once::{stroke_once, Ranked};
 use super::region::Region;
@@ -70,12 +71,30 @@ impl Drawing {
 
 /// The line drawing of a solved view: mesh edges and intersection curves.
 pub fn draw(scene: &Scene, view: &View, vis: &Visibility, opts: &LineOptions) -> Drawing {
-    let world = WorldFaces::build(scene);
-    let mut edges = mesh_edges(&world, view, &opts.edges);
-    edges.extend(intersection_edges(&world, |f| {
-        opts.hidden || view.screen.face_is_occluder(f)
-    }));
-    let mut drawing = split_edges(view, vis, &edges, opts.hidden);
+    draw_counted(scene, view, vis, opts, &Progress::new())
+}
+
+/// [`draw`] as the lines stage's phases, each counted in `progress`: [`Phase::World`] and
+/// [`Phase::Edges`] and [`Phase::Intersections`] by faces, then [`Phase::Clip`] by edges.
+pub(crate) fn draw_counted(
+    scene: &Scene,
+    view: &View,
+    vis: &Visibility,
+    opts: &LineOptions,
+    progress: &Progress,
+) -> Drawing {
+    progress.enter_phase(Stage::Lines, Phase::World, scene.face_count());
+    let world = WorldFaces::build_counted(scene, progress);
+    progress.enter_phase(Stage::Lines, Phase::Edges, world.faces.len());
+    let mut edges = mesh_edges_counted(&world, view, &opts.edges, progress);
+    progress.enter_phase(Stage::Lines, Phase::Intersections, world.faces.len());
+    edges.extend(intersection_edges_counted(
+        &world,
+        |f| opts.hidden || view.screen.face_is_occluder(f),
+        progress,
+    ));
+    progress.enter_phase(Stage::Lines, Phase::Clip, edges.len());
+    let mut drawing = split_edges_counted(view, vis, &edges, opts.hidden, progress);
     drawing.leaf_paths = world.paths;
     drawing
 }
@@ -175,11 +194,30 @@ fn edge_pieces(view: &View, regions: &Regions, e: &Edge, hidden: bool) -> Pieces
 /// Clips every edge against the VTPs, strokes every piece of line once ([`stroke_once`]),
 /// then chains and orders the pieces per (leaf, kind).
 pub fn split_edges(view: &View, vis: &Visibility, edges: &[Edge], hidden: bool) -> Drawing {
+    split_edges_counted(view, vis, edges, hidden, &Progress::new())
+}
+
+/// [`split_edges`], filling in `progress` a share of the edges: most of it as they are
+/// clipped, the rest as their pieces are stroked once and chained.
+fn split_edges_counted(
+    view: &View,
+    vis: &Visibility,
+    edges: &[Edge],
+    hidden: bool,
+    progress: &Progress,
+) -> Drawing {
+    let share = Share::new(progress, edges.len());
+    let clipped = share.span(0.0, 0.7).steps(edges.len());
     let regions = Regions::new(vis, view.screen.face_count());
     let pieces: Vec<Pieces> = edges
         .par_iter()
-        .map(|e| edge_pieces(view, &regions, e, hidden))
+        .enumerate()
+        .map(|(i, e)| {
+            clipped.tick(i);
+            edge_pieces(view, &regions, e, hidden)
+        })
         .collect();
+    share.reach(0.7);
     // Every piece of line once: shared parts go to the higher-ranked edge, and hidden lines
     // give way to visible ones.
     let ranked = |pick: fn(&Pieces) -> &Vec<[Pt2; 2]>| -> Vec<(usize, Ranked)> {
@@ -204,6 +242,7 @@ pub fn split_edges(view: &View, vis: &Visibility, edges: &[Edge], hidden: bool) 
     let hid_ranked = ranked(|p| &p.1);
     let shown: Vec<[Pt2; 2]> = vis_once.iter().flatten().copied().collect();
     let hid_once = stroke_once(&hid_ranked.iter().map(|x| x.1).collect::<Vec<_>>(), &shown);
+    share.reach(0.85);
     let mut vis_groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>> = BTreeMap::new();
     let mut hid_groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>> = BTreeMap::new();
     for ((k, _), v) in vis_ranked.iter().zip(vis_once) {
@@ -214,11 +253,13 @@ pub fn split_edges(view: &View, vis: &Visibility, edges: &[Edge], hidden: bool) 
         let e = &edges[*k];
         hid_groups.entry((e.leaf, e.kind)).or_default().extend(h);
     }
-    Drawing {
+    let drawing = Drawing {
         visible: strokes(vis_groups),
         hidden: strokes(hid_groups),
         leaf_paths: Vec::new(),
-    }
+    };
+    share.finish();
+    drawing
 }
 
 /// Chained, ordered strokes of grouped segments.

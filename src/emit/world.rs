@@ -5,6 +5,7 @@ use std::collections::HashMap;
 use rayon::prelude::*;
 
 use crate::geom::{newell, Box3, P3, V3};
+use crate::progress::Progress;
 use crate::scene::topology::{edge_pieces, Pieces};
 use crate::scene::{Face, Mesh, Scene};
 
@@ -45,6 +46,11 @@ pub const NO_PIECE: u32 = u32::MAX;
 impl WorldFaces {
     /// The world polygons of every face of `scene`, in global face order.
     pub fn build(scene: &Scene) -> WorldFaces {
+        Self::build_counted(scene, &Progress::new())
+    }
+
+    /// [`WorldFaces::build`], counting in `progress` the faces as they are made.
+    pub(crate) fn build_counted(scene: &Scene, progress: &Progress) -> WorldFaces {
         let mut faces = Vec::with_capacity(scene.face_count());
         let mut clean_piece = Vec::with_capacity(scene.face_count());
         let mut next_piece = 0;
@@ -67,10 +73,16 @@ impl WorldFaces {
                 }
             };
             // In face order either way; a big mesh's faces on all threads.
-            if leaf.mesh.faces.len() > PARALLEL_ABOVE {
-                faces.par_extend(leaf.mesh.faces.par_iter().map(face));
+            let n = leaf.mesh.faces.len();
+            if n > PARALLEL_ABOVE {
+                faces.par_extend(leaf.mesh.faces.par_iter().enumerate().map(|(i, f)| {
+                    progress.tick(i);
+                    face(f)
+                }));
+                progress.tick_rest(n);
             } else {
                 faces.extend(leaf.mesh.faces.iter().map(face));
+                progress.add(n);
             }
         }
         let paths = leaves.into_iter().map(|l| l.path).collect();

@@ -7,6 +7,8 @@
 
 use rayon::prelude::*;
 
+use crate::progress::{Progress, Share, Span};
+
 /// A box as [min, max].
 pub type Bounds3 = [[f64; 3]; 2];
 
@@ -28,6 +30,17 @@ pub fn overlapping_pairs(boxes: &[Bounds3]) -> Vec<(u32, u32)> {
 pub fn filter_map_pairs<T: Send>(
     boxes: &[Bounds3],
     f: impl Fn(u32, u32) -> Option<T> + Sync,
+) -> Vec<T> {
+    let sink = Progress::new();
+    filter_map_pairs_counted(boxes, f, Share::new(&sink, 0).span(0.0, 1.0))
+}
+
+/// [`filter_map_pairs`], filling `span` as it goes: the grid made and sorted first, then
+/// the cells by chunks (most of the work), then the results sorted.
+pub(crate) fn filter_map_pairs_counted<T: Send>(
+    boxes: &[Bounds3],
+    f: impl Fn(u32, u32) -> Option<T> + Sync,
+    span: Span,
 ) -> Vec<T> {
     let ids: Vec<u32> = (0..boxes.len() as u32)
         .filter(|&i| valid(&boxes[i as usize]))
@@ -58,7 +71,9 @@ pub fn filter_map_pairs<T: Send>(
         entries.sort_unstable();
     }
     let runs = runs(&entries);
-    let (f, grid, lo_cell, entries) = (&f, &grid, &lo_cell, &entries);
+    span.reach(0.2);
+    let cells = span.span(0.2, 0.95).steps(runs.len());
+    let (f, grid, lo_cell, entries, cells) = (&f, &grid, &lo_cell, &entries, &cells);
     // The pairs first met in one cell (a run of equal keys).
     let in_cell = |r: &std::ops::Range<usize>| {
         let cell = &entries[r.clone()];
@@ -76,16 +91,23 @@ pub fn filter_map_pairs<T: Send>(
             })
         })
     };
-    let mut found: Vec<((u32, u32), T)> = if parallel {
-        runs.par_iter().flat_map_iter(in_cell).collect()
-    } else {
-        runs.iter().flat_map(in_cell).collect()
+    // Each cell counted as it is started.
+    let counted = |(k, r): (usize, &std::ops::Range<usize>)| {
+        cells.tick(k);
+        in_cell(r)
     };
+    let mut found: Vec<((u32, u32), T)> = if parallel {
+        runs.par_iter().enumerate().flat_map_iter(counted).collect()
+    } else {
+        runs.iter().enumerate().flat_map(counted).collect()
+    };
+    span.reach(0.95);
     if parallel {
         found.par_sort_unstable_by_key(|x| x.0);
     } else {
         found.sort_unstable_by_key(|x| x.0);
     }
+    span.finish();
     found.into_iter().map(|x| x.1).collect()
 }
 

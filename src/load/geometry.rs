@@ -12,7 +12,8 @@ use crate::error::{Error, Location, Pos, Result, Warning, Warnings};
 use crate::geom::MAX_COORD;
 use crate::geom::{Box3, PolyMesh, M4, P3};
 use crate::primitives;
-use crate::scene::cleanup::{cleanup, FaceShape, Origin};
+use crate::progress::{Phase, Progress, Share, Stage};
+use crate::scene::cleanup::{cleanup, cleanup_counted, FaceShape, Origin};
 use crate::scene::{Mesh, Object, Texture, TextureFrame};
 
 /// The names of the geometry nodes (each may carry `name=`).
@@ -47,6 +48,8 @@ pub(super) struct GeomCtx<'a> {
     pub warnings: &'a mut Warnings,
     /// Mesh files loaded so far.
     pub meshes: &'a mut MeshCache,
+    /// Where the load is (mesh files count their bytes and faces).
+    pub progress: &'a Progress,
 }
 
 /// One built geometry node: a leaf object (a mesh, or an instance of a mesh file) with the
@@ -146,20 +149,17 @@ fn mesh_node(n: &Node, cx: &mut GeomCtx) -> Result<Object> {
     n.no_children()?;
     let rel = n.one_string("string (the mesh file's path)")?;
     let path = cx.dir.join(rel);
-    let proto = mesh_prototype(&path, &n.loc(), cx.meshes, cx.warnings)?;
+    let proto = mesh_prototype(&path, &n.loc(), cx)?;
     let object = Object::instance("", proto, *cx.xf);
     check_cbox(n, &object.cbox)?;
     Ok(object)
 }
 
-/// The content of the mesh file at `path`, loaded and cleaned once per canonical path; `at`
-/// is the node that asked for it (where a missing file is reported).
-pub(super) fn mesh_prototype(
-    path: &Path,
-    at: &Location,
-    cache: &mut MeshCache,
-    warnings: &mut Warnings,
-) -> Result<Arc<Object>> {
+/// The content of the mesh file at `path`, loaded and cleaned once per canonical path (into
+/// the context's cache, with its warnings and progress); `at` is the node that asked for it
+/// (where a missing file is reported).
+fn mesh_prototype(path: &Path, at: &Location, cx: &mut GeomCtx) -> Result<Arc<Object>> {
+    let cache = &mut *cx.meshes;
     let canonical = std::fs::canonicalize(path).map_err(|e| {
         let msg = format!("cannot read mesh file {}: {e}", path.display());
         Error::Io(at.clone(), std::io::Error::new(e.kind(), msg))
@@ -167,8 +167,10 @@ pub(super) fn mesh_prototype(
     if let Some(p) = cache.files.get(&canonical) {
         return Ok(p.clone());
     }
-    let file = load_mesh_at(path, Some(at)).map_err(|e| e.via(at))?;
-    let mut objects = mesh_file_objects(&file, warnings).map_err(|e| e.via(at))?;
+    let file = load_mesh_at(path, Some(at), cx.progress).map_err(|e| e.via(at))?;
+    let mut objects = mesh_file_objects(&file, cx.warnings, cx.progress).map_err(|e| e.via(at))?;
+    // Back to the scene file's nodes.
+    cx.progress.enter(Stage::Load, 0);
     let proto = if objects.len() == 1 {
         objects.pop().map(Arc::new)
     } else {
@@ -185,8 +187,15 @@ fn stem(path: &Path) -> String {
 }
 
 /// The groups of a mesh file as cleaned leaf objects, named after the groups (`/` becomes
-/// `_`; repeated names get `.2`, `.3`, ...).
-pub(super) fn mesh_file_objects(file: &MeshFile, warnings: &mut Warnings) -> Result<Vec<Object>> {
+/// `_`; repeated names get `.2`, `.3`, ...); the load's phase [`Phase::Cleanup`], counting
+/// faces in `progress`.
+pub(super) fn mesh_file_objects(
+    file: &MeshFile,
+    warnings: &mut Warnings,
+    progress: &Progress,
+) -> Result<Vec<Object>> {
+    let faces = file.groups.iter().map(|g| g.mesh.faces.len()).sum();
+    progress.enter_phase(Stage::Load, Phase::Cleanup, faces);
     let mut names: Vec<String> = Vec::new();
     let mut out = Vec::with_capacity(file.groups.len());
     for g in &file.groups {
@@ -194,7 +203,8 @@ pub(super) fn mesh_file_objects(file: &MeshFile, warnings: &mut Warnings) -> Res
             file: &file.path,
             face_pos: &g.face_pos,
         };
-        let mesh = cleanup(&g.mesh, &origin, warnings)?;
+        let share = Share::new(progress, g.mesh.faces.len());
+        let mesh = cleanup_counted(&g.mesh, &origin, warnings, &share)?;
         let name = unique_name(&g.name.replace('/', "_"), &names);
         names.push(name.clone());
         out.push(Object::from_mesh(name, mesh));
@@ -441,11 +451,13 @@ mod tests {
             .collect();
         let mut warnings = Vec::new();
         let mut meshes = MeshCache::default();
+        let progress = Progress::new();
         let mut cx = GeomCtx {
             dir: Path::new("."),
             xf: &xf,
             warnings: &mut warnings,
             meshes: &mut meshes,
+            progress: &progress,
         };
         let result = build(&nodes[0], &faces, &mut cx);
         Built { warnings, result }

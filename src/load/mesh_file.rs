@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Location, Pos, Result};
 use crate::geom::{PolyMesh, MAX_COORD};
+use crate::progress::{Phase, Progress, Stage};
 
 /// One named group of faces from a mesh file (an OBJ `o`/`g` group, or the whole file).
 #[derive(Debug, Clone, PartialEq)]
@@ -72,18 +73,23 @@ fn format_of(path: &Path) -> Result<Format> {
 /// [`Error::Usage`] for an unknown extension, [`Error::Io`] if the file cannot be read, and the
 /// format parser's [`Error::Parse`] or [`Error::Invalid`] (with the position) for bad contents.
 pub fn load_mesh(path: &Path) -> Result<MeshFile> {
-    load_mesh_at(path, None)
+    load_mesh_at(path, None, &Progress::new())
 }
 
 /// [`load_mesh`] for the node at `at` (a scene file's `mesh` node): an unknown extension, a
-/// missing file, a directory or a device is reported there.
-pub(crate) fn load_mesh_at(path: &Path, at: Option<&Location>) -> Result<MeshFile> {
+/// missing file, a directory or a device is reported there. The load's phases
+/// [`Phase::Read`] and [`Phase::Parse`] count bytes in `progress`.
+pub(crate) fn load_mesh_at(
+    path: &Path,
+    at: Option<&Location>,
+    progress: &Progress,
+) -> Result<MeshFile> {
     if let (Err(e), Some(at)) = (format_of(path), at) {
         return Err(Error::invalid(at.clone(), e.to_string()));
     }
     format_of(path)?;
-    let bytes = super::read::read_file(path, at)?;
-    parse_mesh(path, &bytes)
+    let bytes = super::read::read_file_counted(path, at, progress)?;
+    parse_mesh_counted(path, &bytes, progress)
 }
 
 /// Parses mesh file contents already in memory; `path` picks the format by its extension
@@ -92,14 +98,24 @@ pub(crate) fn load_mesh_at(path: &Path, at: Option<&Location>) -> Result<MeshFil
 /// # Errors
 /// As [`load_mesh`], without I/O errors; an empty input is [`Error::Invalid`].
 pub fn parse_mesh(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
+    parse_mesh_counted(path, bytes, &Progress::new())
+}
+
+/// [`parse_mesh`] as the load's phase [`Phase::Parse`], counting the bytes parsed.
+pub(crate) fn parse_mesh_counted(
+    path: &Path,
+    bytes: &[u8],
+    progress: &Progress,
+) -> Result<MeshFile> {
     let format = format_of(path)?;
     if bytes.is_empty() {
         return Err(Error::invalid(Location::file(path), "empty file"));
     }
+    progress.enter_phase(Stage::Load, Phase::Parse, bytes.len());
     match format {
-        Format::Obj => super::obj::parse_obj(path, bytes),
-        Format::Stl => super::stl::parse_stl(path, bytes),
-        Format::Ply => super::ply::parse_ply(path, bytes),
+        Format::Obj => super::obj::parse_obj_counted(path, bytes, progress),
+        Format::Stl => super::stl::parse_stl_counted(path, bytes, progress),
+        Format::Ply => super::ply::parse_ply_counted(path, bytes, progress),
     }
 }
 
@@ -172,7 +188,7 @@ mod tests {
         assert!(matches!(e, Error::Io(..)));
         assert!(e.to_string().starts_with("/no/such/dir/m.obj: "), "{e}");
         let at = Location::line(Path::new("s.kdl"), 2, 7);
-        let e = load_mesh_at(Path::new("."), Some(&at))
+        let e = load_mesh_at(Path::new("."), Some(&at), &Progress::new())
             .unwrap_err()
             .to_string();
         assert_eq!(

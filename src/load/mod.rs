@@ -22,6 +22,7 @@ pub use mesh_file::{load_mesh, parse_mesh, MeshFile, MeshGroup};
 pub use scene_file::{load_scene_file, load_scene_file_with};
 
 use crate::error::{Error, Result, Warnings};
+use crate::progress::Progress;
 use crate::scene::{Object, Scene};
 
 /// Loads a scene: a `.kdl` scene file, or a mesh file (`.obj`, `.stl`, `.ply`) whose groups
@@ -35,9 +36,25 @@ pub fn load_scene(path: &Path, warnings: &mut Warnings) -> Result<Scene> {
 /// [`load_scene`] with limits: a scene with more faces than `opts.max_faces` once its
 /// instances are placed is an error, found from counts before anything is expanded.
 pub fn load_scene_with(path: &Path, opts: &LoadOptions, warnings: &mut Warnings) -> Result<Scene> {
+    load_scene_counted(path, opts, warnings, None)
+}
+
+/// [`load_scene_with`], reporting where it is to `progress` (stage [`crate::Stage::Load`]):
+/// a mesh file's bytes read and parsed and its faces cleaned up, each as a phase of its own
+/// ([`crate::Phase::Read`], [`crate::Phase::Parse`], [`crate::Phase::Cleanup`]), for the
+/// scene file's meshes as for a mesh file given alone. The scene is the same with or
+/// without it.
+pub fn load_scene_counted(
+    path: &Path,
+    opts: &LoadOptions,
+    warnings: &mut Warnings,
+    progress: Option<&Progress>,
+) -> Result<Scene> {
+    let sink = Progress::new();
+    let progress = progress.unwrap_or(&sink);
     match mesh_file::extension(path).as_str() {
-        "kdl" => load_scene_file_with(path, opts, warnings),
-        "obj" | "stl" | "ply" => mesh_scene(path, opts, warnings),
+        "kdl" => scene_file::load_scene_file_counted(path, opts, warnings, progress),
+        "obj" | "stl" | "ply" => mesh_scene(path, opts, warnings, progress),
         _ => Err(Error::Usage(format!(
             "{}: unknown scene file extension (expected .kdl, .obj, .stl or .ply)",
             path.display()
@@ -46,9 +63,14 @@ pub fn load_scene_with(path: &Path, opts: &LoadOptions, warnings: &mut Warnings)
 }
 
 /// A scene made of one mesh file: its cleaned groups under the root.
-fn mesh_scene(path: &Path, opts: &LoadOptions, warnings: &mut Warnings) -> Result<Scene> {
-    let file = load_mesh(path)?;
-    let objects = geometry::mesh_file_objects(&file, warnings)?;
+fn mesh_scene(
+    path: &Path,
+    opts: &LoadOptions,
+    warnings: &mut Warnings,
+    progress: &Progress,
+) -> Result<Scene> {
+    let file = mesh_file::load_mesh_at(path, None, progress)?;
+    let objects = geometry::mesh_file_objects(&file, warnings, progress)?;
     let root = Object::group("", objects);
     opts.check(&root, "the mesh", &crate::error::Location::file(path))?;
     Ok(Scene::new(root, path.to_path_buf()))

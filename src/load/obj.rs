@@ -6,6 +6,7 @@ use super::mesh_file::{coord_problem, finish, stem_name, MeshFile, MeshGroup};
 use super::text::{decode, Word, Words};
 use crate::error::{Error, Result};
 use crate::geom::P3;
+use crate::progress::{Cursor, Progress};
 
 /// Statements that are read and ignored (texture coordinates, normals, materials, smoothing, lines, points).
 const IGNORED: [&str; 8] = ["vt", "vn", "vp", "usemtl", "mtllib", "s", "l", "p"];
@@ -19,15 +20,27 @@ const IGNORED: [&str; 8] = ["vt", "vn", "vp", "usemtl", "mtllib", "s", "l", "p"]
 /// [`Error::Invalid`] for bad values (index 0 or out of range, faces with fewer than 3
 /// vertices, NaN or huge coordinates, no faces at all), each at the offending `file:line:col`.
 pub fn parse_obj(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
+    parse_obj_counted(path, bytes, &Progress::new())
+}
+
+/// [`parse_obj`], adding the bytes parsed to `progress` as it goes.
+pub(crate) fn parse_obj_counted(
+    path: &Path,
+    bytes: &[u8],
+    progress: &Progress,
+) -> Result<MeshFile> {
     let text = decode(path, bytes, 1)?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut parser = ObjParser::new(path);
     let mut words = Words::new(text, 1).with_continuation().with_comment(b'#');
+    let mut cursor = Cursor::new(progress);
     while words.next_line() {
+        cursor.at(words.consumed());
         if let Some(keyword) = words.next_in_line() {
             parser.statement(keyword, &mut words)?;
         }
     }
+    cursor.finish(bytes.len());
     let groups = parser.into_groups();
     finish(path, groups)
 }

@@ -6,6 +6,7 @@ use super::mesh_file::{coord_problem, finish, stem_name, MeshFile, MeshGroup};
 use super::text::{decode, Word, Words};
 use crate::error::{Error, Location, Pos, Result};
 use crate::geom::P3;
+use crate::progress::{Cursor, Progress};
 
 /// Parses a PLY file into one group named after the file stem: vertices from element `vertex`
 /// (properties `x`, `y`, `z` of any numeric type), faces from the list property
@@ -17,6 +18,16 @@ use crate::geom::P3;
 /// in a binary body), truncated data and missing elements or properties; [`Error::Invalid`] for
 /// indices out of range, faces with fewer than 3 vertices and NaN or huge coordinates.
 pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
+    parse_ply_counted(path, bytes, &Progress::new())
+}
+
+/// [`parse_ply`], adding the bytes parsed to `progress` as it goes.
+pub(crate) fn parse_ply_counted(
+    path: &Path,
+    bytes: &[u8],
+    progress: &Progress,
+) -> Result<MeshFile> {
+    let mut cursor = Cursor::new(progress);
     let header = parse_header(path, bytes)?;
     let roles = Roles::find(path, &header)?;
     let body = bytes.get(header.body..).unwrap_or_default();
@@ -32,8 +43,10 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
                     path,
                     words,
                     last: None,
+                    start: header.body,
                 },
                 bytes.len(),
+                &mut cursor,
             )?
         }
         Encoding::Little | Encoding::Big => {
@@ -45,9 +58,10 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
                 last: header.body,
                 big,
             };
-            read_body(path, &header, &roles, b, bytes.len())?
+            read_body(path, &header, &roles, b, bytes.len(), &mut cursor)?
         }
     };
+    cursor.finish(bytes.len());
     finish(path, vec![group])
 }
 
@@ -468,6 +482,8 @@ trait Body {
     fn end(&mut self, what: &str) -> Result<()>;
     /// Where the last value read is.
     fn last_pos(&self) -> Pos;
+    /// The file offset read up to (for progress).
+    fn offset(&self) -> usize;
     /// The error for data ending before `what`.
     fn missing(&self, what: &str) -> Error;
 }
@@ -477,6 +493,8 @@ struct AsciiBody<'a> {
     path: &'a Path,
     words: Words<'a>,
     last: Option<Word<'a>>,
+    /// The file offset of the body's first byte.
+    start: usize,
 }
 
 impl Body for AsciiBody<'_> {
@@ -535,6 +553,10 @@ impl Body for AsciiBody<'_> {
         self.last.map_or(Pos::File, |w| w.pos())
     }
 
+    fn offset(&self) -> usize {
+        self.start + self.words.consumed()
+    }
+
     fn missing(&self, what: &str) -> Error {
         let msg = if self.words.at_end() {
             format!("unexpected end of file: expected {what}")
@@ -586,6 +608,10 @@ impl Body for BinaryBody<'_> {
         Pos::Byte(self.last as u64)
     }
 
+    fn offset(&self) -> usize {
+        self.pos
+    }
+
     fn missing(&self, what: &str) -> Error {
         let msg = format!(
             "unexpected end of file in {what} (the file is {} bytes)",
@@ -602,6 +628,7 @@ fn read_body<B: Body>(
     roles: &Roles,
     body: B,
     file_len: usize,
+    cursor: &mut Cursor,
 ) -> Result<MeshGroup> {
     let cap = |n: u64| n.min(file_len as u64) as usize;
     let mut r = BodyReader {
@@ -626,6 +653,7 @@ fn read_body<B: Body>(
                 _ => Role::Other,
             };
             r.instance(el, i, role)?;
+            cursor.at(r.body.offset());
         }
     }
     Ok(r.group)

@@ -1,13 +1,55 @@
 //! Reading input files: regular files only (a directory or a device such as `/dev/zero` is
 //! an error, not a hang), errors reported where the file was asked for.
 
+use std::io::Read;
 use std::path::Path;
 
 use crate::error::{Error, Location, Result};
+use crate::progress::{Phase, Progress, Stage};
+
+/// Bytes read between two adds to the progress.
+const READ_CHUNK: u64 = 1 << 22;
 
 /// The bytes of the regular file at `path`. `at` is the node that asked for it (an include
 /// or `mesh` node), where a missing or unreadable file is reported; else the file itself.
 pub(crate) fn read_file(path: &Path, at: Option<&Location>) -> Result<Vec<u8>> {
+    check_regular(path, at)?;
+    std::fs::read(path).map_err(|e| failure(path, at, e))
+}
+
+/// [`read_file`] as the load's phase [`Phase::Read`], counting the bytes read.
+pub(crate) fn read_file_counted(
+    path: &Path,
+    at: Option<&Location>,
+    progress: &Progress,
+) -> Result<Vec<u8>> {
+    let len = check_regular(path, at)?;
+    progress.enter_phase(Stage::Load, Phase::Read, len as usize);
+    let file = std::fs::File::open(path).map_err(|e| failure(path, at, e))?;
+    let mut bytes = Vec::with_capacity(len as usize);
+    // In chunks until the end, wherever that is (the file may have changed size).
+    loop {
+        let n = (&file)
+            .take(READ_CHUNK)
+            .read_to_end(&mut bytes)
+            .map_err(|e| failure(path, at, e))?;
+        if n == 0 {
+            return Ok(bytes);
+        }
+        progress.add(n);
+    }
+}
+
+/// The error for a file that cannot be read.
+fn failure(path: &Path, at: Option<&Location>, e: std::io::Error) -> Error {
+    let loc = at.cloned().unwrap_or_else(|| Location::file(path));
+    let what = format!("cannot read {}: {e}", path.display());
+    Error::Io(loc, std::io::Error::new(e.kind(), what))
+}
+
+/// The size of the regular file at `path`, or the error for a missing file, a directory or
+/// a device, reported at `at` (else the file itself).
+fn check_regular(path: &Path, at: Option<&Location>) -> Result<u64> {
     let fail = |what: String, kind: std::io::ErrorKind| {
         let loc = at.cloned().unwrap_or_else(|| Location::file(path));
         Error::Io(loc, std::io::Error::new(kind, what))
@@ -32,7 +74,7 @@ pub(crate) fn read_file(path: &Path, at: Option<&Location>) -> Result<Vec<u8>> {
             std::io::ErrorKind::InvalidInput,
         ));
     }
-    std::fs::read(path).map_err(|e| fail(format!("cannot read {}: {e}", path.display()), e.kind()))
+    Ok(meta.len())
 }
 
 #[cfg(test)]
@@ -60,6 +102,21 @@ mod tests {
             .to_string();
         assert!(
             e.starts_with("/no/such.kdl: cannot read /no/such.kdl: "),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_counted_read_gives_the_same_bytes_and_counts_them() {
+        let path = Path::new("scenes/town.kdl");
+        let p = Progress::new();
+        let bytes = read_file_counted(path, None, &p).unwrap();
+        assert_eq!(bytes, read_file(path, None).unwrap());
+        assert_eq!(p.counts(), (bytes.len(), bytes.len()));
+        assert_eq!(p.phase(), Phase::Read);
+        let e = read_file_counted(Path::new("."), None, &p).unwrap_err();
+        assert!(
+            e.to_string().ends_with("it is a directory, not a file"),
             "{e}"
         );
     }

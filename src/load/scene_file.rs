@@ -18,6 +18,7 @@ use super::transform::{compose, is_transform, transform_box};
 use crate::error::{Error, Location, Result, Warning, Warnings};
 use crate::geom::MAX_COORD;
 use crate::geom::{Box3, M4, P3};
+use crate::progress::{Progress, Stage};
 use crate::scene::{CameraSpec, Object, Scene};
 
 /// The nodes allowed at the top level of a scene file.
@@ -36,9 +37,22 @@ pub fn load_scene_file_with(
     opts: &LoadOptions,
     warnings: &mut Warnings,
 ) -> Result<Scene> {
+    load_scene_file_counted(path, opts, warnings, &Progress::new())
+}
+
+/// [`load_scene_file_with`], reporting to `progress`: the scene file's nodes as the load
+/// stage as a whole, each mesh file in it by its phases (read, parse, cleanup).
+pub(crate) fn load_scene_file_counted(
+    path: &Path,
+    opts: &LoadOptions,
+    warnings: &mut Warnings,
+    progress: &Progress,
+) -> Result<Scene> {
+    progress.enter(Stage::Load, 0);
     let mut loader = Loader {
         opts: *opts,
         warnings,
+        progress,
         meshes: MeshCache::default(),
         prototypes: HashMap::new(),
         defining: Vec::new(),
@@ -91,6 +105,8 @@ struct Open {
 struct Loader<'w> {
     opts: LoadOptions,
     warnings: &'w mut Warnings,
+    /// Where the load is.
+    progress: &'w Progress,
     meshes: MeshCache,
     prototypes: HashMap<String, Prototype>,
     /// Prototypes whose bodies are being read (to explain self-reference), with the depth
@@ -307,6 +323,7 @@ impl Loader<'_> {
             xf,
             warnings: self.warnings,
             meshes: &mut self.meshes,
+            progress: self.progress,
         };
         geometry::build(n, faces, &mut cx)
     }

@@ -8,6 +8,7 @@ use super::mesh_file::{coord_problem, finish, stem_name, MeshFile, MeshGroup};
 use super::text::{decode, Word, Words};
 use crate::error::{Error, Location, Pos, Result};
 use crate::geom::P3;
+use crate::progress::{Cursor, Progress};
 
 /// Size of the binary header: 80 bytes of text and a little-endian u32 triangle count.
 const HEADER: u64 = 84;
@@ -26,11 +27,21 @@ const TRIANGLE: u64 = 50;
 /// with the triangle count (at the byte offset of the first incomplete triangle);
 /// [`Error::Invalid`] for NaN or huge coordinates and facets with fewer than 3 vertices.
 pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
+    parse_stl_counted(path, bytes, &Progress::new())
+}
+
+/// [`parse_stl`], adding the bytes parsed to `progress` as it goes.
+pub(crate) fn parse_stl_counted(
+    path: &Path,
+    bytes: &[u8],
+    progress: &Progress,
+) -> Result<MeshFile> {
     let len = bytes.len() as u64;
     let count = triangle_count(bytes);
+    let mut cursor = Cursor::new(progress);
     let group = match count {
-        Some(n) if len == HEADER + TRIANGLE * n => binary(path, bytes, n)?,
-        _ if starts_with_solid(bytes) && !bytes.contains(&0) => ascii(path, bytes)?,
+        Some(n) if len == HEADER + TRIANGLE * n => binary(path, bytes, n, &mut cursor)?,
+        _ if starts_with_solid(bytes) && !bytes.contains(&0) => ascii(path, bytes, &mut cursor)?,
         Some(n) => return Err(size_mismatch(path, len, n)),
         None if starts_with_solid(bytes) => {
             let nul = bytes.iter().position(|&b| b == 0).unwrap_or(0) as u64;
@@ -46,6 +57,7 @@ pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
             return Err(Error::parse(Location::byte(path, 0), msg));
         }
     };
+    cursor.finish(bytes.len());
     finish(path, vec![group])
 }
 
@@ -86,13 +98,14 @@ fn size_mismatch(path: &Path, len: u64, count: u64) -> Error {
 }
 
 /// Reads `count` binary triangles (the size has been checked).
-fn binary(path: &Path, bytes: &[u8], count: u64) -> Result<MeshGroup> {
+fn binary(path: &Path, bytes: &[u8], count: u64, cursor: &mut Cursor) -> Result<MeshGroup> {
     let mut welder = Welder::with_capacity(count as usize);
     let mut group = MeshGroup::new(stem_name(path));
     group.mesh.faces.reserve(count as usize);
     group.face_pos.reserve(count as usize);
     for t in 0..count {
         let off = HEADER + TRIANGLE * t;
+        cursor.at(off as usize);
         let mut face = Vec::with_capacity(3);
         for v in 0..3 {
             let p = binary_vertex(path, bytes, off, v)?;
@@ -132,7 +145,7 @@ fn binary_vertex(path: &Path, bytes: &[u8], off: u64, v: u64) -> Result<P3> {
 }
 
 /// Reads an ASCII STL: `solid`, facets, `endsolid` (several solids in a row are merged).
-fn ascii(path: &Path, bytes: &[u8]) -> Result<MeshGroup> {
+fn ascii(path: &Path, bytes: &[u8], cursor: &mut Cursor) -> Result<MeshGroup> {
     let text = decode(path, bytes, 1)?;
     let mut p = AsciiStl {
         path,
@@ -144,6 +157,7 @@ fn ascii(path: &Path, bytes: &[u8]) -> Result<MeshGroup> {
     p.expect("solid")?;
     p.words.next_line();
     loop {
+        cursor.at(p.words.consumed());
         let w = p.next("'facet' or 'endsolid'")?;
         if is(w, "facet") {
             p.facet(w)?;

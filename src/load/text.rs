@@ -120,6 +120,8 @@ impl<'a> Iterator for Lines<'a> {
 #[derive(Clone)]
 pub(crate) struct Words<'a> {
     lines: Lines<'a>,
+    /// Length of the whole text in bytes.
+    len: usize,
     line_text: &'a str,
     line: usize,
     pos: usize,
@@ -136,6 +138,7 @@ impl<'a> Words<'a> {
     pub(super) fn new(text: &'a str, first_line: usize) -> Self {
         Words {
             lines: Lines { rest: Some(text) },
+            len: text.len(),
             line_text: "",
             line: first_line.saturating_sub(1),
             pos: 0,
@@ -155,6 +158,12 @@ impl<'a> Words<'a> {
     pub(super) fn with_comment(mut self, c: u8) -> Self {
         self.comment = Some(c);
         self
+    }
+
+    /// Bytes of the text up to the end of the current physical line (a position to count
+    /// progress by).
+    pub(super) fn consumed(&self) -> usize {
+        self.len - self.lines.rest.map_or(0, str::len)
     }
 
     /// Moves to the next physical line; false at the end of the text.
@@ -269,6 +278,7 @@ mod tests {
             assert_eq!(*p, Pos::Line { line: el, col: ec });
         }
         assert_eq!(w.here(Path::new("f")).to_string(), "f:4:1");
+        assert_eq!(w.consumed(), "a  bc\r\n\n\téé x\n".len());
     }
 
     #[test]

@@ -1,10 +1,11 @@
 //! Fills the INBOX of every object lacking one: convex meshes by optimisation, other closed
 //! meshes by growing, groups from their parts, instances through their transform.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
 use crate::geom::{Box3, P3, V3};
+use crate::progress::{Phase, Progress, Stage};
 use crate::scene::{Content, Mesh, Object};
 
 use super::convex::{convex_inbox, is_convex};
@@ -15,24 +16,57 @@ use super::solid::Triangles;
 /// Computes an INBOX for every object of the tree that has none, keeping explicit ones.
 /// Prototypes shared by instances are prepared once and stay shared.
 pub fn compute_inboxes(root: &mut Object) {
+    compute_inboxes_counted(root, &Progress::new());
+}
+
+/// [`compute_inboxes`] as the prepare stage's phase [`Phase::Inboxes`], counting the faces
+/// of each mesh as its INBOX is found.
+pub(crate) fn compute_inboxes_counted(root: &mut Object, progress: &Progress) {
+    let faces = wanting(root, &mut HashSet::new());
+    progress.enter_phase(Stage::Prepare, Phase::Inboxes, faces);
     let mut done = HashMap::new();
-    fill(root, &mut done);
+    fill(root, &mut done, progress);
+}
+
+/// Faces of the meshes below `obj` that lack an INBOX, each prototype counted once (by the
+/// addresses in `seen`), as [`fill`] computes them.
+fn wanting(obj: &Object, seen: &mut HashSet<usize>) -> usize {
+    match &obj.content {
+        Content::Mesh(m) if obj.inbox.is_none() => m.faces.len(),
+        Content::Mesh(_) => 0,
+        Content::Subobjects(subs) => subs.iter().map(|s| wanting(s, seen)).sum(),
+        Content::Instance(i) => {
+            if seen.insert(Arc::as_ptr(&i.prototype) as usize) {
+                wanting(&i.prototype, seen)
+            } else {
+                0
+            }
+        }
+    }
 }
 
 /// Prepared prototypes, by the address of the original.
 type Prepared = HashMap<usize, Arc<Object>>;
 
-fn fill(obj: &mut Object, done: &mut Prepared) {
+fn fill(obj: &mut Object, done: &mut Prepared, progress: &Progress) {
     let computed = match &mut obj.content {
-        Content::Mesh(m) => obj.inbox.is_none().then(|| mesh_inbox(m)).flatten(),
+        Content::Mesh(m) => obj
+            .inbox
+            .is_none()
+            .then(|| {
+                let b = mesh_inbox(m);
+                progress.add(m.faces.len());
+                b
+            })
+            .flatten(),
         Content::Subobjects(subs) => {
             for s in subs.iter_mut() {
-                fill(s, done);
+                fill(s, done, progress);
             }
             largest(subs.iter().filter_map(|s| s.inbox))
         }
         Content::Instance(i) => {
-            i.prototype = prepared(&i.prototype, done);
+            i.prototype = prepared(&i.prototype, done, progress);
             i.prototype.inbox.and_then(|b| place_box(&b, &i.transform))
         }
     };
@@ -42,13 +76,13 @@ fn fill(obj: &mut Object, done: &mut Prepared) {
 }
 
 /// The prototype with its inboxes computed, made once per distinct prototype.
-fn prepared(proto: &Arc<Object>, done: &mut Prepared) -> Arc<Object> {
+fn prepared(proto: &Arc<Object>, done: &mut Prepared, progress: &Progress) -> Arc<Object> {
     let key = Arc::as_ptr(proto) as usize;
     if let Some(p) = done.get(&key) {
         return p.clone();
     }
     let mut copy = (**proto).clone();
-    fill(&mut copy, done);
+    fill(&mut copy, done, progress);
     let p = Arc::new(copy);
     done.insert(key, p.clone());
     p

@@ -19,6 +19,7 @@ pub use bvtree::{HierarchyKind, ObjectTree};
 pub use inbox::{compute_inboxes, mesh_inbox};
 pub use solidity::{mark_solids, solidity};
 
+use crate::progress::Progress;
 use crate::scene::Scene;
 
 /// What the prepare stage builds.
@@ -43,17 +44,30 @@ pub fn prepare(scene: &mut Scene) {
 /// leaf object gets no inboxes: an inbox prunes only other objects, so there is nothing for it
 /// to do ("model no more than a scene needs").
 pub fn prepare_with(scene: &mut Scene, opts: &PrepareOptions) {
-    mark_solids(&mut scene.root);
+    prepare_counted(scene, opts, None);
+}
+
+/// [`prepare_with`], reporting where it is to `progress` (stage [`crate::Stage::Prepare`]):
+/// the phases [`crate::Phase::Solidity`], [`crate::Phase::Inboxes`] and
+/// [`crate::Phase::Trees`], each counting the faces of the meshes it handles (a shared
+/// prototype's once). The prepared scene is the same with or without it.
+pub fn prepare_counted(scene: &mut Scene, opts: &PrepareOptions, progress: Option<&Progress>) {
+    let sink = Progress::new();
+    let progress = progress.unwrap_or(&sink);
+    solidity::mark_solids_counted(&mut scene.root, progress);
     let several = has_two_leaves(&scene.root);
     if several {
-        compute_inboxes(&mut scene.root);
+        inbox::compute_inboxes_counted(&mut scene.root, progress);
     }
-    match opts.hierarchy {
-        Some(HierarchyKind::Simplify) => {
-            trees::attach_trees(&mut scene.root, HierarchyKind::Simplify, several, false)
-        }
-        Some(HierarchyKind::Median) => {}
-        None => trees::attach_trees(&mut scene.root, HierarchyKind::Simplify, several, true),
+    // Trees for every large mesh, for shared prototypes' only, or none.
+    let shared_only = match opts.hierarchy {
+        Some(HierarchyKind::Simplify) => Some(false),
+        Some(HierarchyKind::Median) => None,
+        None => Some(true),
+    };
+    if let Some(shared_only) = shared_only {
+        let kind = HierarchyKind::Simplify;
+        trees::attach_trees_counted(&mut scene.root, kind, several, shared_only, progress);
     }
 }
 

@@ -20,7 +20,7 @@
 //!
 //! Anything else keeps two-sided faces: correct, only slower.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
 
@@ -35,10 +35,11 @@ use pieces::Crossings;
 mod plates;
 mod slab;
 
-use crate::geom::box_pairs::{filter_map_pairs, overlap, Bounds3};
+use crate::geom::box_pairs::{filter_map_pairs_counted, overlap, Bounds3};
 use crate::geom::box_tree::BoxTree;
 use crate::geom::tri_intersect::{plane_axes, segment_meets_triangle, triangles_intersect};
 use crate::geom::{newell, orient2d, orient3d, Box3, P3};
+use crate::progress::{Phase, Progress, Share, Span, Stage};
 use crate::scene::topology::{edge_pieces, edge_topology, Pieces, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Content, Face, Mesh, Object, Solidity};
@@ -84,13 +85,14 @@ impl Surface {
     }
 
     /// The face pairs of one piece whose triangles cross, testing only pairs with a face
-    /// passing `suspect`. `mesh` is the mesh this surface is of.
+    /// passing `suspect`. `mesh` is the mesh this surface is of; the search fills `span`.
     pub(crate) fn crossing(
         &self,
         mesh: &Mesh,
         suspect: impl Fn(u32) -> bool + Sync,
+        span: Span,
     ) -> Vec<[u32; 2]> {
-        self.crossing_until(mesh, suspect, None)
+        self.crossing_until(mesh, suspect, None, span)
     }
 
     /// [`Self::crossing`] with an early exit by `groups` of faces ([`examine_until`]).
@@ -99,6 +101,7 @@ impl Surface {
         mesh: &Mesh,
         suspect: impl Fn(u32) -> bool + Sync,
         groups: Option<&[u32]>,
+        span: Span,
     ) -> Vec<[u32; 2]> {
         let face_of = &self.face_of;
         let groups = groups.map(|g| Groups::new(face_of.iter().map(|&f| g[f as usize]).collect()));
@@ -109,6 +112,7 @@ impl Surface {
             &self.pieces.of_face,
             |t| suspect(face_of[t as usize]),
             groups.as_ref(),
+            span,
         )
         .into_iter()
         .map(|(i, j)| [face_of[i as usize], face_of[j as usize]])
@@ -152,17 +156,22 @@ pub(crate) fn examine(mesh: &Mesh) -> Examined {
 /// [`examine`], testing for crossings only the pairs of triangles where one's face passes
 /// `suspect` (the others known not to cross).
 pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -> Examined {
-    examine_until(mesh, suspect, None)
+    let sink = Progress::new();
+    examine_until(mesh, suspect, None, Share::new(&sink, 0).span(0.0, 1.0))
 }
 
 /// [`examine_where`], where the suspect faces fall in `groups` (by face, [`NO_GROUP`] for
 /// none): once a pair of a group is found crossing, its other pairs are not tested. Then the
 /// crossing list holds at least one pair of every group that crosses and none of any other,
 /// but not every pair, and the count in [`Solidity::SelfIntersecting`] is of the pairs found.
+/// The tests fill `span` in the shares of time they take on large meshes: the edges matched,
+/// the triangles made, then the pairs searched (most of it, unless the search is only of a
+/// few suspects in `groups`, which is quick).
 pub(crate) fn examine_until(
     mesh: &Mesh,
     suspect: impl Fn(u32) -> bool + Sync,
     groups: Option<&[u32]>,
+    span: Span,
 ) -> Examined {
     let mut e = Examined {
         solidity: Solidity::Solid,
@@ -170,16 +179,26 @@ pub(crate) fn examine_until(
         crossing: Vec::new(),
         surface: None,
     };
-    match edge_topology(&mesh.faces) {
+    // Where the edges matched and the triangles made end, as fractions of the span.
+    let (matched, made) = if groups.is_some() {
+        (0.35, 0.9)
+    } else {
+        (0.12, 0.3)
+    };
+    let topology = edge_topology(&mesh.faces);
+    span.reach(matched);
+    match topology {
         Topology::Open => e.solidity = Solidity::Open(CapFailure::NotTried),
         Topology::Inconsistent => e.solidity = Solidity::Inconsistent,
         Topology::Closed => {
             let surface = Surface::of(mesh);
+            span.reach(made);
             if !surface.flat.is_empty() {
                 e.solidity = Solidity::Degenerate;
                 e.degenerate = surface.flat.clone();
             } else {
-                e.crossing = surface.crossing_until(mesh, suspect, groups);
+                let searched = span.span(made, 0.98);
+                e.crossing = surface.crossing_until(mesh, suspect, groups, searched);
                 if !e.crossing.is_empty() {
                     e.solidity = Solidity::SelfIntersecting(e.crossing.len() as u64);
                 } else if !surface.outward(|_| true).iter().all(|&o| o) {
@@ -189,6 +208,7 @@ pub(crate) fn examine_until(
             e.surface = Some(surface);
         }
     }
+    span.finish();
     e
 }
 
@@ -196,18 +216,29 @@ pub(crate) fn examine_until(
 /// ([`super::caps`]), its [`Mesh::caps`]; where the whole is not a solid, the pieces that
 /// are ([`Mesh::proven`], [`pieces`]) with their caps.
 pub fn decide(mesh: &mut Mesh) {
+    let sink = Progress::new();
+    decide_counted(mesh, &Share::new(&sink, 0));
+}
+
+/// [`decide`], filling `share` as it goes. A closed mesh's test is nearly all of the work; an
+/// open mesh's is only its edges matched (a tenth), and its capping the rest.
+pub(crate) fn decide_counted(mesh: &mut Mesh, share: &Share) {
     let n = mesh.faces.len();
-    let whole = examine(mesh);
+    let test = if mesh.closed { 0.97 } else { 0.1 };
+    let whole = examine_until(mesh, |_| true, None, share.span(0.0, test));
+    let pieces = share.span(0.97, 1.0);
     let (s, proven) = match whole.solidity {
         // `examine` found the edges open (only that makes the whole `Open`).
-        Solidity::Open(_) => match super::caps::capping_open(mesh) {
+        Solidity::Open(_) => match super::caps::capping_open(mesh, share.span(test, 0.97)) {
             Ok(caps) => {
                 mesh.caps = caps.triangles;
                 (Solidity::Capped(caps.loops), None)
             }
             Err((why, failed)) => (
                 Solidity::Open(why),
-                failed.and_then(|f| pieces::proven_pieces(&f.mesh, &f.surface, n, f.crossings())),
+                failed.and_then(|f| {
+                    pieces::proven_pieces(&f.mesh, &f.surface, n, f.crossings(), pieces)
+                }),
             ),
         },
         s @ (Solidity::SelfIntersecting(_) | Solidity::InsideOut | Solidity::Degenerate) => {
@@ -220,7 +251,7 @@ pub fn decide(mesh: &mut Mesh) {
             let proof = whole
                 .surface
                 .as_ref()
-                .and_then(|surface| pieces::proven_pieces(mesh, surface, n, known));
+                .and_then(|surface| pieces::proven_pieces(mesh, surface, n, known, pieces));
             (s, proof)
         }
         s => (s, None),
@@ -230,33 +261,59 @@ pub fn decide(mesh: &mut Mesh) {
         mesh.caps = caps;
     }
     mesh.solidity = Some(s);
+    share.finish();
 }
 
 /// Fills [`Mesh::solidity`] of every mesh below `root` that has none; each shared prototype
 /// is decided once and stays shared.
 pub fn mark_solids(root: &mut Object) {
+    mark_solids_counted(root, &Progress::new());
+}
+
+/// [`mark_solids`] as the prepare stage's phase [`Phase::Solidity`]: each mesh decided
+/// fills its faces' share of the count.
+pub(crate) fn mark_solids_counted(root: &mut Object, progress: &Progress) {
+    let faces = undecided_faces(root, &mut HashSet::new());
+    progress.enter_phase(Stage::Prepare, Phase::Solidity, faces);
     let mut done = HashMap::new();
-    mark(root, &mut done);
+    mark(root, &mut done, progress);
+}
+
+/// Faces of the meshes below `obj` without a solidity, each prototype counted once (by the
+/// addresses in `seen`), as [`mark`] decides them.
+fn undecided_faces(obj: &Object, seen: &mut HashSet<usize>) -> usize {
+    match &obj.content {
+        Content::Mesh(m) if m.solidity.is_none() => m.faces.len(),
+        Content::Mesh(_) => 0,
+        Content::Subobjects(subs) => subs.iter().map(|s| undecided_faces(s, seen)).sum(),
+        Content::Instance(i) => {
+            if seen.insert(Arc::as_ptr(&i.prototype) as usize) {
+                undecided_faces(&i.prototype, seen)
+            } else {
+                0
+            }
+        }
+    }
 }
 
 /// Prototypes already marked, by the address of the original.
 type Marked = HashMap<usize, Arc<Object>>;
 
-fn mark(obj: &mut Object, done: &mut Marked) {
+fn mark(obj: &mut Object, done: &mut Marked, progress: &Progress) {
     match &mut obj.content {
         Content::Mesh(m) => {
             if m.solidity.is_none() {
-                decide(m);
+                decide_counted(m, &Share::new(progress, m.faces.len()));
             }
         }
-        Content::Subobjects(subs) => subs.iter_mut().for_each(|s| mark(s, done)),
+        Content::Subobjects(subs) => subs.iter_mut().for_each(|s| mark(s, done, progress)),
         Content::Instance(i) => {
             let key = Arc::as_ptr(&i.prototype) as usize;
             let p = match done.get(&key) {
                 Some(p) => p.clone(),
                 None => {
                     let mut copy = (*i.prototype).clone();
-                    mark(&mut copy, done);
+                    mark(&mut copy, done, progress);
                     let p = Arc::new(copy);
                     done.insert(key, p.clone());
                     p
@@ -362,6 +419,7 @@ fn crossing_pairs(
     piece_of: &[u32],
     suspect: impl Fn(u32) -> bool + Sync,
     groups: Option<&Groups>,
+    span: Span,
 ) -> Vec<(u32, u32)> {
     let boxes: Vec<Bounds3> = tris
         .iter()
@@ -380,37 +438,42 @@ fn crossing_pairs(
     };
     let plates = plates::find(mesh, face_of);
     let mut found = if plates.is_empty() {
-        grid_pairs(&boxes, &is, &crosses, groups)
+        grid_pairs(&boxes, &is, &crosses, groups, span)
     } else {
         // Plate triangles leave the grid (an absent box is ignored there).
         let mut rest = boxes.clone();
         for p in &plates {
             rest[p.tris.start as usize..p.tris.end as usize].fill([[f64::NAN; 3]; 2]);
         }
-        let mut found = grid_pairs(&rest, &is, &crosses, groups);
+        let mut found = grid_pairs(&rest, &is, &crosses, groups, span.span(0.0, 0.9));
         found.extend(plate_pairs(&plates, tris, &boxes, &is, &crosses));
         found.sort_unstable();
         found.dedup();
         found
     };
     found.shrink_to_fit();
+    span.finish();
     found
 }
 
-/// [`crossing_pairs`] of the triangles with a (non-NaN) box, through the grid.
+/// [`crossing_pairs`] of the triangles with a (non-NaN) box, through the grid, filling
+/// `span` as the boxes are searched.
 fn grid_pairs(
     boxes: &[Bounds3],
     is: &[bool],
     crosses: &(impl Fn(u32, u32) -> bool + Sync),
     groups: Option<&Groups>,
+    span: Span,
 ) -> Vec<(u32, u32)> {
     let few: Vec<u32> = (0..boxes.len() as u32)
         .filter(|&i| is[i as usize])
         .collect();
     if few.len() * 10 > boxes.len() {
-        return filter_map_pairs(boxes, |i, j| {
-            ((is[i as usize] || is[j as usize]) && crosses(i, j)).then_some((i, j))
-        });
+        return filter_map_pairs_counted(
+            boxes,
+            |i, j| ((is[i as usize] || is[j as usize]) && crosses(i, j)).then_some((i, j)),
+            span,
+        );
     }
     let wanted = |i: u32, j: u32| j != i && (!is[j as usize] || j > i) && crosses(i, j);
     let mut found: Vec<(u32, u32)> = if few.len() <= SCANNED_SUSPECTS {
@@ -432,6 +495,7 @@ fn grid_pairs(
             .collect();
         let suspects: Vec<Box3> = few.iter().map(|&i| as_box(&boxes[i as usize])).collect();
         let tree = BoxTree::new(&suspects);
+        let searched = span.span(0.1, 1.0).steps(boxes.len());
         // The whole search may stop once every group has crossed only when every suspect
         // is in a group (an ungrouped suspect's pairs must all be tested).
         let stops = groups.filter(|g| few.iter().all(|&i| g.grouped(i)));
@@ -439,6 +503,7 @@ fn grid_pairs(
             .into_par_iter()
             .filter(|&j| !boxes[j as usize][0][0].is_nan())
             .flat_map_iter(|j| {
+                searched.tick(j as usize);
                 let mut near = Vec::new();
                 if stops.is_some_and(Groups::all_crossed) {
                     return near;
@@ -784,9 +849,12 @@ pub(crate) mod tests {
             let quiet = |t: u32| of[t as usize] == 6;
             !(i + j).is_multiple_of(3) && !quiet(i) && !quiet(j)
         };
-        let all = grid_pairs(&boxes, &is, &crosses, None);
+        let sink = Progress::new();
+        let share = Share::new(&sink, 0);
+        let span = share.span(0.0, 1.0);
+        let all = grid_pairs(&boxes, &is, &crosses, None, span);
         let groups = Groups::new(of.clone());
-        let some = grid_pairs(&boxes, &is, &crosses, Some(&groups));
+        let some = grid_pairs(&boxes, &is, &crosses, Some(&groups), span);
         assert!(some.iter().all(|p| all.binary_search(p).is_ok()));
         assert!(some.len() < all.len(), "the exit skipped pairs");
         let touched = |pairs: &[(u32, u32)]| {
@@ -824,7 +892,8 @@ pub(crate) mod tests {
             }
             is[7] = true;
             let odd = |i: u32, j: u32| !(i + j).is_multiple_of(3);
-            let got = grid_pairs(&boxes, &is, &odd, None);
+            let sink = Progress::new();
+            let got = grid_pairs(&boxes, &is, &odd, None, Share::new(&sink, 0).span(0.0, 1.0));
             let mut want = Vec::new();
             for i in 0..n as u32 {
                 for j in i + 1..n as u32 {

@@ -3,10 +3,11 @@
 //! placements), and, when the scene has inboxes at all, an INBOX per large component of a
 //! closed mesh: the subobjects Franklin's pruning needs, which a flat mesh lacks.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
 use crate::geom::{Box3, P3};
+use crate::progress::{Phase, Progress, Stage};
 use crate::scene::{Content, Mesh, Object};
 
 use super::bvtree::{HierarchyKind, ObjectTree};
@@ -24,6 +25,18 @@ pub const INBOX_SHARE: f64 = 1.0 / 64.0;
 /// (with `shared_only`, only to meshes of prototypes placed more than once); with `inboxes`,
 /// closed meshes' large components get inboxes too.
 pub fn attach_trees(root: &mut Object, kind: HierarchyKind, inboxes: bool, shared_only: bool) {
+    attach_trees_counted(root, kind, inboxes, shared_only, &Progress::new());
+}
+
+/// [`attach_trees`] as the prepare stage's phase [`Phase::Trees`], counting the faces of
+/// each mesh as its tree is built.
+pub(crate) fn attach_trees_counted(
+    root: &mut Object,
+    kind: HierarchyKind,
+    inboxes: bool,
+    shared_only: bool,
+    progress: &Progress,
+) {
     let mut placements = HashMap::new();
     count_placements(root, &mut placements);
     let mut w = Attach {
@@ -32,7 +45,10 @@ pub fn attach_trees(root: &mut Object, kind: HierarchyKind, inboxes: bool, share
         shared_only,
         placements,
         done: HashMap::new(),
+        progress,
     };
+    let faces = w.planned(root, false, &mut HashSet::new());
+    progress.enter_phase(Stage::Prepare, Phase::Trees, faces);
     w.attach(root, false);
 }
 
@@ -52,26 +68,52 @@ fn count_placements(obj: &Object, out: &mut HashMap<usize, usize>) {
 }
 
 /// The walk attaching trees, with the prototypes already prepared (by address).
-struct Attach {
+struct Attach<'p> {
     kind: HierarchyKind,
     inboxes: bool,
     shared_only: bool,
     placements: HashMap<usize, usize>,
     done: HashMap<usize, Arc<Object>>,
+    progress: &'p Progress,
 }
 
-impl Attach {
+impl Attach<'_> {
+    /// Whether a leaf mesh of `faces` faces (`shared` or not) without a tree gets one.
+    fn wants(&self, faces: usize, shared: bool) -> bool {
+        faces >= MIN_FACES && (shared || !self.shared_only)
+    }
+
+    /// Faces of the meshes [`Attach::attach`] will build trees for below `obj`, each
+    /// prototype once (by the addresses in `seen`).
+    fn planned(&self, obj: &Object, shared: bool, seen: &mut HashSet<usize>) -> usize {
+        match &obj.content {
+            Content::Mesh(m) if obj.tree.is_none() && self.wants(m.faces.len(), shared) => {
+                m.faces.len()
+            }
+            Content::Mesh(_) => 0,
+            Content::Subobjects(subs) => subs.iter().map(|s| self.planned(s, shared, seen)).sum(),
+            Content::Instance(i) => {
+                let key = Arc::as_ptr(&i.prototype) as usize;
+                if !seen.insert(key) {
+                    return 0;
+                }
+                let many = self.placements.get(&key).is_some_and(|&n| n >= 2);
+                self.planned(&i.prototype, shared || many, seen)
+            }
+        }
+    }
+
     /// Attaches below `obj`; `shared` tells whether it lies in a prototype placed more than once.
     fn attach(&mut self, obj: &mut Object, shared: bool) {
         match &mut obj.content {
             Content::Mesh(m) => {
-                let wanted = shared || !self.shared_only;
-                if obj.tree.is_none() && m.faces.len() >= MIN_FACES && wanted {
+                if obj.tree.is_none() && self.wants(m.faces.len(), shared) {
                     let mut t = ObjectTree::build(m, self.kind);
                     if self.inboxes && m.closed {
                         component_inboxes(&mut t, m);
                     }
                     obj.tree = Some(Arc::new(t));
+                    self.progress.add(m.faces.len());
                 }
             }
             Content::Subobjects(subs) => {

@@ -16,6 +16,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Location, Pos, Result, Warning, Warnings};
 use crate::geom::{newell, PolyMesh, MAX_COORD, P3, V3};
+use crate::progress::{Progress, Share};
 
 use super::object::{Face, Mesh};
 use super::topology::is_closed_oriented;
@@ -47,9 +48,24 @@ impl Origin<'_> {
 
 /// Checks and repairs `raw`, returning the clean mesh; warnings are appended to `warnings`.
 pub fn cleanup(raw: &PolyMesh, origin: &Origin, warnings: &mut Warnings) -> Result<Mesh> {
+    let sink = Progress::new();
+    cleanup_counted(raw, origin, warnings, &Share::new(&sink, 0))
+}
+
+/// [`cleanup`], filling `share` as it goes: the vertices merged first, then the faces by
+/// chunks, then the unused vertices dropped and the orientation checked (the shares of
+/// time each pass takes on a large mesh).
+pub(crate) fn cleanup_counted(
+    raw: &PolyMesh,
+    origin: &Origin,
+    warnings: &mut Warnings,
+    share: &Share,
+) -> Result<Mesh> {
     check_coordinates(raw, origin)?;
     check_indices(raw, origin)?;
     let (vertices, remap) = merge_duplicate_vertices(&raw.vertices);
+    share.reach(0.15);
+    let faces_done = share.span(0.15, 0.5).steps(raw.faces.len());
     let merged = raw.vertices.len() - vertices.len();
     if merged > 0 {
         warnings.push(Warning {
@@ -64,6 +80,7 @@ pub fn cleanup(raw: &PolyMesh, origin: &Origin, warnings: &mut Warnings) -> Resu
             let at = || origin.at(c * CLEANED_CHUNK + k);
             clean_face(idx, &vertices, at, &mut part.0, &mut part.1);
         }
+        faces_done.add(chunk.len());
         part
     };
     // A big mesh in chunks of faces on all threads, joined in order: the same faces and
@@ -83,7 +100,9 @@ pub fn cleanup(raw: &PolyMesh, origin: &Origin, warnings: &mut Warnings) -> Resu
         warnings.extend(w);
     }
     let (vertices, faces) = drop_unused_vertices(vertices, faces);
+    share.reach(0.55);
     let closed = is_closed_oriented(&faces);
+    share.finish();
     Ok(Mesh {
         vertices,
         faces,

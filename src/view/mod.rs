@@ -30,6 +30,7 @@ pub use screen::{Facing, Piece, ScreenFaces};
 pub use tree::{ObjectNode, ViewTree};
 pub use turntable::{turntable, turntable_frame};
 
+use crate::progress::{Phase, Progress, Stage};
 use crate::scene::Scene;
 
 /// Everything visibility needs about one view of one scene.
@@ -70,8 +71,22 @@ impl View {
     /// Projects the faces a cull of `scene` kept: hidden subtrees are left out of the screen
     /// faces and the tree, and their faces' VTPs are empty.
     pub fn from_cull(scene: &Scene, camera: Camera, cull: &Cull) -> View {
-        let screen = ScreenFaces::from_cull(cull, &camera);
-        let tree = ViewTree::build(scene, &camera, &screen, &cull.hidden);
+        Self::from_cull_counted(scene, camera, cull, &Progress::new())
+    }
+
+    /// [`View::from_cull`] as the view stage's phases: [`Phase::Project`] counting the kept
+    /// leaves' faces projected, then [`Phase::Tree`] every face placed in the view tree.
+    pub(crate) fn from_cull_counted(
+        scene: &Scene,
+        camera: Camera,
+        cull: &Cull,
+        progress: &Progress,
+    ) -> View {
+        let kept = cull.leaves.iter().map(|l| l.mesh.faces.len()).sum();
+        progress.enter_phase(Stage::View, Phase::Project, kept);
+        let screen = ScreenFaces::from_cull_counted(cull, &camera, progress);
+        progress.enter_phase(Stage::View, Phase::Tree, screen.face_count());
+        let tree = ViewTree::build_counted(scene, &camera, &screen, &cull.hidden, progress);
         View {
             camera,
             screen,

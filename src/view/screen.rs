@@ -5,6 +5,7 @@ use std::ops::Range;
 
 use crate::geom::poly2::{is_convex_ccw, ring_area, Pt2};
 use crate::geom::{newell, orient2d, orient3d_refs, Rect, P3};
+use crate::progress::Progress;
 use crate::scene::{FaceId, Leaf, Scene};
 
 use super::camera::{Camera, Projection};
@@ -113,6 +114,16 @@ impl ScreenFaces {
 
     /// Projects the faces of the leaves a cull kept; faces of hidden subtrees get no pieces.
     pub fn from_cull(cull: &Cull, camera: &Camera) -> ScreenFaces {
+        Self::from_cull_counted(cull, camera, &Progress::new())
+    }
+
+    /// [`ScreenFaces::from_cull`], counting in `progress` the faces of the kept leaves as
+    /// they are projected.
+    pub(crate) fn from_cull_counted(
+        cull: &Cull,
+        camera: &Camera,
+        progress: &Progress,
+    ) -> ScreenFaces {
         let mut out = ScreenFaces {
             det_sign: camera.matrix.determinant().signum(),
             camera: Some(*camera),
@@ -134,7 +145,7 @@ impl ScreenFaces {
         for (li, leaf) in cull.leaves.iter().enumerate() {
             out.face_starts
                 .resize(leaf.first_face + 1, out.pieces.len() as u32);
-            out.add_leaf(li as u32, leaf, camera, cull.hidden_in_leaf(li));
+            out.add_leaf(li as u32, leaf, camera, cull.hidden_in_leaf(li), progress);
         }
         out.face_starts
             .resize(cull.face_count as usize + 1, out.pieces.len() as u32);
@@ -260,7 +271,14 @@ impl ScreenFaces {
 
     /// Projects the faces of a leaf, except its `hidden` ones (local indices, ascending: faces
     /// of components the cull found HIDDEN get no pieces).
-    fn add_leaf(&mut self, li: u32, leaf: &Leaf, camera: &Camera, hidden: &[u32]) {
+    fn add_leaf(
+        &mut self,
+        li: u32,
+        leaf: &Leaf,
+        camera: &Camera,
+        hidden: &[u32],
+        progress: &Progress,
+    ) {
         let world: Vec<_> = leaf
             .mesh
             .vertices
@@ -282,6 +300,7 @@ impl ScreenFaces {
         });
         let mut hidden = hidden.iter().peekable();
         for (k, f) in leaf.mesh.faces.iter().enumerate() {
+            progress.tick(k);
             if hidden.next_if_eq(&&(k as u32)).is_some() {
                 self.face_starts.push(self.pieces.len() as u32);
                 continue;
@@ -303,6 +322,7 @@ impl ScreenFaces {
             }
             self.face_starts.push(self.pieces.len() as u32);
         }
+        progress.tick_rest(leaf.mesh.faces.len());
     }
 
     fn add_piece(

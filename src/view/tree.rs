@@ -14,6 +14,7 @@ use crate::geom::hull2::convex_hull;
 use crate::geom::poly2::Pt2;
 use crate::geom::{Box3, Rect, M4};
 use crate::prepare::bvtree::{HierarchyKind, ObjectTree};
+use crate::progress::{Progress, Share, CHUNK};
 use crate::scene::{Content, FaceId, Object, Scene};
 
 use super::camera::{Camera, Projection};
@@ -128,12 +129,27 @@ impl ViewTree {
         sf: &ScreenFaces,
         hidden: &[HiddenObject],
     ) -> ViewTree {
+        Self::build_counted(scene, camera, sf, hidden, &Progress::new())
+    }
+
+    /// [`ViewTree::build`], counting in `progress` the faces of each mesh as their pieces
+    /// are placed in the tree (every face of the scene in the end).
+    pub(crate) fn build_counted(
+        scene: &Scene,
+        camera: &Camera,
+        sf: &ScreenFaces,
+        hidden: &[HiddenObject],
+        progress: &Progress,
+    ) -> ViewTree {
         let mut b = Builder {
             tree: ViewTree::default(),
             sf,
             camera,
             next_face: FaceId(0),
             hidden,
+            progress,
+            share: Share::new(progress, 0),
+            placed: 0,
         };
         b.object(&scene.root, &M4::identity(), "", None);
         b.tree
@@ -152,6 +168,12 @@ struct Builder<'a> {
     next_face: FaceId,
     /// Hidden objects not yet met, in global face order.
     hidden: &'a [HiddenObject<'a>],
+    /// Where the view stage is.
+    progress: &'a Progress,
+    /// The faces of the mesh being placed, filled as its pieces are.
+    share: Share<'a>,
+    /// Pieces placed since the share was last added to.
+    placed: usize,
 }
 
 impl Builder<'_> {
@@ -160,6 +182,7 @@ impl Builder<'_> {
         let first = self.next_face;
         if let Some(n) = self.hidden_here(obj) {
             self.next_face = self.next_face.offset(n);
+            self.progress.add(n as usize);
             let node = self.push(empty_node());
             if let Some(s) = slot {
                 self.tree.objects[s].node = node;
@@ -172,7 +195,8 @@ impl Builder<'_> {
             Content::Mesh(m) => {
                 let end = first.offset(m.faces.len() as u32);
                 self.next_face = end;
-                match obj.tree.as_deref() {
+                self.share = Share::new(self.progress, m.faces.len());
+                let node = match obj.tree.as_deref() {
                     Some(t) if t.kind == HierarchyKind::Simplify => self
                         .prepared(t, 0, first, xf)
                         .unwrap_or_else(|| self.push(empty_node())),
@@ -184,7 +208,10 @@ impl Builder<'_> {
                             .collect();
                         self.bvh(ids)
                     }
-                }
+                };
+                self.share.finish();
+                self.placed = 0;
+                node
             }
             Content::Subobjects(subs) => {
                 let kids: Vec<u32> = subs
@@ -368,6 +395,11 @@ impl Builder<'_> {
         self.tree
             .piece_bounds
             .extend(ids.iter().map(|&p| PieceBound::of(self.sf.piece(p))));
+        self.placed += ids.len();
+        if self.placed >= CHUNK {
+            self.share.add(self.placed);
+            self.placed = 0;
+        }
         self.tree.pieces.extend(ids);
         n.kind = NodeKind::Leaf(start..self.tree.pieces.len() as u32);
         self.push(n)

@@ -17,6 +17,7 @@
 //! another piece plays no part in P's argument).
 
 use crate::geom::P3;
+use crate::progress::Span;
 use crate::scene::{Mesh, ProvenPieces};
 
 use super::Surface;
@@ -33,12 +34,13 @@ pub(crate) enum Crossings<'a> {
 /// The proven pieces of `mesh`, a closed, consistently oriented mesh whose first `n` faces
 /// are the original mesh's (the rest: caps, triangles), tested on its `surface`; with the
 /// caps of the proven pieces. `crossing`: what is known of the crossing pairs (not tested
-/// again). None when no piece is proven.
+/// again). None when no piece is proven. A test of the pieces fills `span`.
 pub(crate) fn proven_pieces(
     mesh: &Mesh,
     surface: &Surface,
     n: usize,
     crossing: Crossings,
+    span: Span,
 ) -> Option<(ProvenPieces, Vec<[P3; 3]>)> {
     let piece = |f: u32| surface.piece(f);
     let mut good = vec![true; surface.pieces.count];
@@ -50,7 +52,7 @@ pub(crate) fn proven_pieces(
     known.iter().for_each(|&[f, _]| good[piece(f)] = false);
     if let Crossings::Some(_) = crossing {
         // Every pair of the pieces not yet failed (pairs never leave a piece).
-        let found = surface.crossing(mesh, |f| good[piece(f)]);
+        let found = surface.crossing(mesh, |f| good[piece(f)], span);
         found.iter().for_each(|&[f, _]| good[piece(f)] = false);
     }
     let good = surface.outward(|k| good[k]);
@@ -84,6 +86,7 @@ mod tests {
     use crate::prepare::caps::tests::{box_with_chimney, cube_without};
     use crate::prepare::solidity::decide;
     use crate::prepare::solidity::tests::crossing_piece;
+    use crate::progress::{Progress, Share};
     use crate::scene::{CapFailure, Face, Solidity};
 
     /// `b`'s faces after `a`'s, its vertices moved by `dx` along x.
@@ -141,8 +144,17 @@ mod tests {
         let m = beside(&cube_without(&[]), &crossing_piece(), 3.0);
         let e = super::super::examine(&m);
         let surface = e.surface.as_ref().expect("closed");
-        let fresh = proven_pieces(&m, surface, m.faces.len(), Crossings::Some(&[]));
-        let known = proven_pieces(&m, surface, m.faces.len(), Crossings::All(&e.crossing));
+        let sink = Progress::new();
+        let share = Share::new(&sink, 0);
+        let span = share.span(0.0, 1.0);
+        let fresh = proven_pieces(&m, surface, m.faces.len(), Crossings::Some(&[]), span);
+        let known = proven_pieces(
+            &m,
+            surface,
+            m.faces.len(),
+            Crossings::All(&e.crossing),
+            span,
+        );
         assert!(!e.crossing.is_empty());
         assert_eq!(fresh, known);
         // Some of the pairs: their piece fails, the rest is tested.
@@ -151,6 +163,7 @@ mod tests {
             surface,
             m.faces.len(),
             Crossings::Some(&e.crossing[..1]),
+            span,
         );
         assert_eq!(fresh, some);
     }

@@ -319,7 +319,18 @@ mod tests {
     fn pairs(m: &Mesh) -> Vec<(u32, u32)> {
         let (tris, face_of) = surface_triangles(m).unwrap();
         // One piece: every pair is tested, as `brute` tests them.
-        crossing_pairs(m, &tris, &face_of, &vec![0; m.faces.len()], |_| true, None)
+        let sink = crate::progress::Progress::new();
+        let share = crate::progress::Share::new(&sink, 0);
+        let span = share.span(0.0, 1.0);
+        crossing_pairs(
+            m,
+            &tris,
+            &face_of,
+            &vec![0; m.faces.len()],
+            |_| true,
+            None,
+            span,
+        )
     }
 
     fn plates_of(m: &Mesh) -> usize {
