@@ -47,22 +47,7 @@ impl Ranked {
 /// each, its remaining pieces (in order along it). Segments of `keep` always win and lose
 /// nothing themselves (visible lines over hidden ones).
 pub fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
-    let extent = segs
-        .iter()
-        .map(|r| &r.seg)
-        .chain(keep)
-        .flatten()
-        .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
-    let tol = ONCE_TOL * extent;
-    // All segments, `keep` first with the best rank.
-    let all: Vec<([Pt2; 2], (usize, usize, u32))> = keep
-        .iter()
-        .map(|s| (*s, (0, 0, 0)))
-        .chain(segs.iter().map(|r| {
-            let (k, e) = r.rank();
-            (r.seg, (1, k, e))
-        }))
-        .collect();
+    let (tol, all) = all_ranked(segs, keep);
     let xmin = |s: &[Pt2; 2]| s[0][0].min(s[1][0]);
     let xmax = |s: &[Pt2; 2]| s[0][0].max(s[1][0]);
     // `along` finds nothing for segments farther apart than `tol` (a point of one within
@@ -108,17 +93,44 @@ pub fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
     for (lo, iv) in found {
         cuts[lo].push(iv);
     }
-    let nkeep = keep.len();
-    (0..segs.len())
-        .map(|s| {
-            let seg = all[nkeep + s].0;
-            let mut c = std::mem::take(&mut cuts[nkeep + s]);
+    remaining(&all[keep.len()..], &mut cuts[keep.len()..], tol)
+}
+
+/// A segment and its rank: (0, 0, 0) for a kept one, else (1, kind, edge); lower wins.
+type RankedSeg = ([Pt2; 2], (usize, usize, u32));
+
+/// The coincidence tolerance for these segments, and all of them, those of `keep` first
+/// with the best rank.
+fn all_ranked(segs: &[Ranked], keep: &[[Pt2; 2]]) -> (f64, Vec<RankedSeg>) {
+    let extent = segs
+        .iter()
+        .map(|r| &r.seg)
+        .chain(keep)
+        .flatten()
+        .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    let all = keep
+        .iter()
+        .map(|s| (*s, (0, 0, 0)))
+        .chain(segs.iter().map(|r| {
+            let (k, e) = r.rank();
+            (r.seg, (1, k, e))
+        }))
+        .collect();
+    (ONCE_TOL * extent, all)
+}
+
+/// What is left of each segment once its cut intervals (any order) are taken away: pieces
+/// longer than `tol`, in order along it.
+fn remaining(segs: &[RankedSeg], cuts: &mut [Vec<Interval>], tol: f64) -> Vec<Vec<[Pt2; 2]>> {
+    segs.iter()
+        .zip(cuts)
+        .map(|(&(seg, _), c)| {
+            let mut c = std::mem::take(c);
             if c.is_empty() {
                 return vec![seg];
             }
             c.sort_by(|a, b| a[0].total_cmp(&b[0]));
-            let merged = merge(c);
-            complement(&merged)
+            complement(&merge(c))
                 .into_iter()
                 .filter(|iv| iv[1] > iv[0])
                 .map(|iv| [at(seg[0], seg[1], iv[0]), at(seg[0], seg[1], iv[1])])
@@ -216,21 +228,7 @@ mod tests {
     /// whose x range comes within `tol` paired with the earlier: the reference the grid of
     /// candidate pairs must reproduce.
     fn by_sweep(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
-        let extent = segs
-            .iter()
-            .map(|r| &r.seg)
-            .chain(keep)
-            .flatten()
-            .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
-        let tol = ONCE_TOL * extent;
-        let all: Vec<([Pt2; 2], (usize, usize, u32))> = keep
-            .iter()
-            .map(|s| (*s, (0, 0, 0)))
-            .chain(segs.iter().map(|r| {
-                let (k, e) = r.rank();
-                (r.seg, (1, k, e))
-            }))
-            .collect();
+        let (tol, all) = all_ranked(segs, keep);
         let xmin = |s: &[Pt2; 2]| s[0][0].min(s[1][0]);
         let xmax = |s: &[Pt2; 2]| s[0][0].max(s[1][0]);
         let mut order: Vec<usize> = (0..all.len()).collect();
@@ -249,22 +247,7 @@ mod tests {
                 }
             }
         }
-        (0..segs.len())
-            .map(|s| {
-                let seg = all[keep.len() + s].0;
-                let mut c = std::mem::take(&mut cuts[keep.len() + s]);
-                if c.is_empty() {
-                    return vec![seg];
-                }
-                c.sort_by(|a, b| a[0].total_cmp(&b[0]));
-                complement(&merge(c))
-                    .into_iter()
-                    .filter(|iv| iv[1] > iv[0])
-                    .map(|iv| [at(seg[0], seg[1], iv[0]), at(seg[0], seg[1], iv[1])])
-                    .filter(|p| (p[1][0] - p[0][0]).hypot(p[1][1] - p[0][1]) > tol)
-                    .collect()
-            })
-            .collect()
+        remaining(&all[keep.len()..], &mut cuts[keep.len()..], tol)
     }
 
     #[test]
