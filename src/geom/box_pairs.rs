@@ -35,8 +35,8 @@ pub fn filter_map_pairs<T: Send>(
     filter_map_pairs_counted(boxes, f, Share::new(&sink, 0).span(0.0, 1.0))
 }
 
-/// [`filter_map_pairs`], filling `span` as it goes: the grid made and sorted first, then
-/// the cells by chunks (most of the work), then the results sorted.
+/// [`filter_map_pairs`], filling `span` as it goes: the boxes entered in the grid and sorted
+/// first, then the cells by chunks (most of the work), then the results sorted.
 pub(crate) fn filter_map_pairs_counted<T: Send>(
     boxes: &[Bounds3],
     f: impl Fn(u32, u32) -> Option<T> + Sync,
@@ -53,7 +53,9 @@ pub(crate) fn filter_map_pairs_counted<T: Send>(
     // intersection is their componentwise max (cells are monotone in the coordinates), so
     // no pair needs a float-to-cell conversion.
     let mut lo_cell = vec![[0u64; 3]; boxes.len()];
-    for &i in &ids {
+    let entered = span.span(0.0, 0.1).steps(ids.len());
+    for (k, &i) in ids.iter().enumerate() {
+        entered.tick(k);
         let [lo, hi] = grid.cell_range(&boxes[i as usize]);
         lo_cell[i as usize] = lo;
         for x in lo[0]..=hi[0] {

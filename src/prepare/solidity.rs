@@ -68,9 +68,10 @@ pub(crate) struct Surface {
 }
 
 impl Surface {
-    /// The surface of `mesh` (closed and consistent).
-    fn of(mesh: &Mesh) -> Surface {
-        let (tris, face_of, flat) = triangulate(mesh);
+    /// The surface of `mesh` (closed and consistent), filling `span`: most of it as the
+    /// faces are triangulated, the rest as the pieces are found.
+    fn of(mesh: &Mesh, span: Span) -> Surface {
+        let (tris, face_of, flat) = triangulate(mesh, span.span(0.0, 0.6));
         Surface {
             tris,
             face_of,
@@ -191,7 +192,7 @@ pub(crate) fn examine_until(
         Topology::Open => e.solidity = Solidity::Open(CapFailure::NotTried),
         Topology::Inconsistent => e.solidity = Solidity::Inconsistent,
         Topology::Closed => {
-            let surface = Surface::of(mesh);
+            let surface = Surface::of(mesh, span.span(matched, made));
             span.reach(made);
             if !surface.flat.is_empty() {
                 e.solidity = Solidity::Degenerate;
@@ -327,12 +328,15 @@ fn mark(obj: &mut Object, done: &mut Marked, progress: &Progress) {
 /// The surface as triangles (exact ear clipping of every face; a warped face's triangles are
 /// the view's planar pieces), with each triangle's face, and the faces that give none (not
 /// simple, or a flat triangle; ascending).
-fn triangulate(mesh: &Mesh) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
+/// The chunks of faces fill `span` as they are done.
+fn triangulate(mesh: &Mesh, span: Span) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
+    let done = span.steps(mesh.faces.len());
     let chunk = |(c, faces): (usize, &[Face])| {
         let mut part = (Vec::with_capacity(faces.len()), Vec::new(), Vec::new());
         for (k, f) in faces.iter().enumerate() {
             triangulate_face(mesh, f, (c * TRIANGULATED_CHUNK + k) as u32, &mut part);
         }
+        done.add(faces.len());
         part
     };
     if mesh.faces.len() <= TRIANGULATED_CHUNK {

@@ -258,7 +258,9 @@ mod tests {
 
     /// The triangles and their faces of a mesh with no flat face.
     fn surface_triangles(m: &Mesh) -> Option<(Vec<Tri>, Vec<u32>)> {
-        let (tris, face_of, flat) = triangulate(m);
+        let sink = crate::progress::Progress::new();
+        let share = crate::progress::Share::new(&sink, 0);
+        let (tris, face_of, flat) = triangulate(m, share.span(0.0, 1.0));
         flat.is_empty().then_some((tris, face_of))
     }
     use super::*;
