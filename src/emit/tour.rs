@@ -84,14 +84,10 @@ struct Tour<'a> {
     near: Vec<Vec<usize>>,
     /// Least gain a move must bring (a rounding guard).
     eps: f64,
-    /// Whether reversals are logged in `log`, to be undone.
-    logging: bool,
-    /// Reversals made while logging.
-    log: Vec<(usize, usize)>,
+    /// Reversals made, when they are to be undone.
+    log: Option<Vec<(usize, usize)>>,
     /// Strokes in the local search's work queue (all false between searches).
     queued: Vec<bool>,
-    /// The local search's work queue (empty between searches).
-    queue: std::collections::VecDeque<usize>,
 }
 
 impl<'a> Tour<'a> {
@@ -113,10 +109,8 @@ impl<'a> Tour<'a> {
             place,
             near: neighbours(ends),
             eps: 1e-12 * b.longer_side().max(f64::MIN_POSITIVE),
-            logging: false,
-            log: Vec::new(),
+            log: None,
             queued: vec![false; n],
-            queue: std::collections::VecDeque::new(),
         }
     }
 
@@ -159,8 +153,8 @@ impl<'a> Tour<'a> {
     /// Reverses the cyclic run of positions from `i` forward to `j` (inclusive), flipping the
     /// strokes in it.
     fn reverse(&mut self, i: usize, j: usize) {
-        if self.logging {
-            self.log.push((i, j));
+        if let Some(log) = &mut self.log {
+            log.push((i, j));
         }
         let n = self.len();
         let len = (j + n - i) % n + 1;
@@ -339,17 +333,14 @@ impl<'a> Tour<'a> {
             if budget == 0 {
                 break;
             }
-            self.log.clear();
-            self.logging = true;
+            self.log = Some(Vec::new());
             let (worse, touched) = self.kick(&mut rng);
             let gain = self.local_search(&touched, &mut budget);
-            self.logging = false;
+            let log = self.log.take().unwrap_or_default();
             if gain - worse <= self.eps {
-                let log = std::mem::take(&mut self.log);
                 for &(i, j) in log.iter().rev() {
                     self.reverse(i, j);
                 }
-                self.log = log;
             }
         }
     }
@@ -359,7 +350,7 @@ impl<'a> Tour<'a> {
     fn local_search(&mut self, from: &[usize], budget: &mut usize) -> f64 {
         let strokes = self.ends.len();
         let mut queued = std::mem::take(&mut self.queued);
-        let mut queue = std::mem::take(&mut self.queue);
+        let mut queue = std::collections::VecDeque::with_capacity(from.len());
         for &v in from {
             if v < strokes && !std::mem::replace(&mut queued[v], true) {
                 queue.push_back(v);
@@ -371,7 +362,8 @@ impl<'a> Tour<'a> {
             if *budget == 0 {
                 break;
             }
-            // The strokes at the edges a move changes, to look at again.
+            // The strokes at the edges a move changes, to look at again (a 2-opt move has
+            // five: v is listed twice and queued once).
             let nodes: [usize; 6] = if let Some((g, i, j)) = self.best_two_opt(v) {
                 let at = |k: usize| self.at(k as isize);
                 let nodes = [at(i), at(i + 1), at(j), at(j + 1), v, v];
@@ -397,11 +389,10 @@ impl<'a> Tour<'a> {
             }
         }
         // A spent budget leaves strokes queued: clear them for the next search.
-        for v in queue.drain(..) {
+        for v in queue {
             queued[v] = false;
         }
         self.queued = queued;
-        self.queue = queue;
         gained
     }
 

@@ -1,7 +1,7 @@
 //! Fills the INBOX of every object lacking one: convex meshes by optimisation, other closed
 //! meshes by growing, groups from their parts, instances through their transform.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::sync::Arc;
 
 use crate::geom::{Box3, P3, V3};
@@ -22,27 +22,10 @@ pub fn compute_inboxes(root: &mut Object) {
 /// [`compute_inboxes`] as the prepare stage's phase [`Phase::Inboxes`], counting the faces
 /// of each mesh as its INBOX is found.
 pub(crate) fn compute_inboxes_counted(root: &mut Object, progress: &Progress) {
-    let faces = wanting(root, &mut HashSet::new());
+    let faces = root.distinct_faces_where(&|obj, _| obj.inbox.is_none());
     progress.enter_phase(Stage::Prepare, Phase::Inboxes, faces);
     let mut done = HashMap::new();
     fill(root, &mut done, progress);
-}
-
-/// Faces of the meshes below `obj` that lack an INBOX, each prototype counted once (by the
-/// addresses in `seen`), as [`fill`] computes them.
-fn wanting(obj: &Object, seen: &mut HashSet<usize>) -> usize {
-    match &obj.content {
-        Content::Mesh(m) if obj.inbox.is_none() => m.faces.len(),
-        Content::Mesh(_) => 0,
-        Content::Subobjects(subs) => subs.iter().map(|s| wanting(s, seen)).sum(),
-        Content::Instance(i) => {
-            if seen.insert(Arc::as_ptr(&i.prototype) as usize) {
-                wanting(&i.prototype, seen)
-            } else {
-                0
-            }
-        }
-    }
 }
 
 /// Prepared prototypes, by the address of the original.

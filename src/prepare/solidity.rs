@@ -20,7 +20,7 @@
 //!
 //! Anything else keeps two-sided faces: correct, only slower.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
 
@@ -274,27 +274,10 @@ pub fn mark_solids(root: &mut Object) {
 /// [`mark_solids`] as the prepare stage's phase [`Phase::Solidity`]: each mesh decided
 /// fills its faces' share of the count.
 pub(crate) fn mark_solids_counted(root: &mut Object, progress: &Progress) {
-    let faces = undecided_faces(root, &mut HashSet::new());
+    let faces = root.distinct_faces_where(&|_, m| m.solidity.is_none());
     progress.enter_phase(Stage::Prepare, Phase::Solidity, faces);
     let mut done = HashMap::new();
     mark(root, &mut done, progress);
-}
-
-/// Faces of the meshes below `obj` without a solidity, each prototype counted once (by the
-/// addresses in `seen`), as [`mark`] decides them.
-fn undecided_faces(obj: &Object, seen: &mut HashSet<usize>) -> usize {
-    match &obj.content {
-        Content::Mesh(m) if m.solidity.is_none() => m.faces.len(),
-        Content::Mesh(_) => 0,
-        Content::Subobjects(subs) => subs.iter().map(|s| undecided_faces(s, seen)).sum(),
-        Content::Instance(i) => {
-            if seen.insert(Arc::as_ptr(&i.prototype) as usize) {
-                undecided_faces(&i.prototype, seen)
-            } else {
-                0
-            }
-        }
-    }
 }
 
 /// Prototypes already marked, by the address of the original.

@@ -17,10 +17,18 @@ use std::time::{Duration, Instant};
 
 pub(crate) use cursor::Cursor;
 pub(crate) use share::{Share, Span};
+
 pub use stage::{Phase, Stage, Unit};
 
 /// Items a loop does between two adds to the shared counter ([`Progress::tick`]).
 pub const CHUNK: usize = 1024;
+
+/// True when item `i` (from 0) of a loop is the last of a [`CHUNK`]: where a chunked count
+/// adds the chunk.
+#[inline]
+fn ends_chunk(i: usize) -> bool {
+    (i + 1).is_multiple_of(CHUNK)
+}
 
 /// Where a run is: the current stage and phase and, for phases that count, units done of a
 /// total. Plain atomics, and a log of the phases entered (touched only on entering one).
@@ -152,7 +160,7 @@ impl Progress {
     /// the loop, [`Progress::tick_rest`] adds the items of the last, partial chunk.
     #[inline]
     pub fn tick(&self, i: usize) {
-        if (i + 1).is_multiple_of(CHUNK) {
+        if ends_chunk(i) {
             self.add(CHUNK);
         }
     }

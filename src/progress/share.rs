@@ -5,7 +5,7 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::{Progress, CHUNK};
+use super::{ends_chunk, Progress, CHUNK};
 
 /// `units` of a phase's count, filled by one piece of work.
 #[derive(Debug)]
@@ -127,7 +127,7 @@ impl Steps<'_> {
     /// [`Span::finish`] counts the rest.
     #[inline]
     pub(crate) fn tick(&self, i: usize) {
-        if (i + 1).is_multiple_of(CHUNK) {
+        if ends_chunk(i) {
             self.add(CHUNK);
         }
     }

@@ -220,6 +220,28 @@ impl Object {
         self.vertices
     }
 
+    /// Faces of the meshes below that pass `wanted` (given the mesh's object and the mesh),
+    /// each shared prototype counted once however many instances place it: the work a pass
+    /// over the distinct meshes does, for its progress count.
+    pub(crate) fn distinct_faces_where(&self, wanted: &impl Fn(&Object, &Mesh) -> bool) -> usize {
+        fn walk(
+            obj: &Object,
+            wanted: &impl Fn(&Object, &Mesh) -> bool,
+            seen: &mut std::collections::HashSet<usize>,
+        ) -> usize {
+            match &obj.content {
+                Content::Mesh(m) if wanted(obj, m) => m.faces.len(),
+                Content::Mesh(_) => 0,
+                Content::Subobjects(subs) => subs.iter().map(|s| walk(s, wanted, seen)).sum(),
+                Content::Instance(i) if seen.insert(Arc::as_ptr(&i.prototype) as usize) => {
+                    walk(&i.prototype, wanted, seen)
+                }
+                Content::Instance(_) => 0,
+            }
+        }
+        walk(self, wanted, &mut std::collections::HashSet::new())
+    }
+
     /// True when every leaf below is a closed, consistently oriented solid.
     pub fn is_closed(&self) -> bool {
         match &self.content {
