@@ -144,7 +144,7 @@ pub(crate) fn mesh_edges_counted(
             let kind = classify(adj, world, &facing, cos_crease);
             (opts.set == EdgeSet::All || kind != EdgeKind::Plain).then(|| {
                 let h = &adj[0];
-                let pts = &world.faces[h.face as usize].points;
+                let pts = world.points_of(h.face as usize);
                 let (i, j) = (h.at as usize, (h.at as usize + 1) % pts.len());
                 Edge {
                     leaf,
@@ -197,7 +197,7 @@ const PARALLEL_ABOVE: usize = 4096;
 fn half_edges(world: &WorldFaces, start: usize, end: usize) -> Vec<HalfEdge> {
     let mut half = Vec::new();
     for f in start..end {
-        let v = &world.faces[f].vertices;
+        let v = world.vertices_of(f);
         for i in 0..v.len() {
             let (p, q) = (v[i], v[(i + 1) % v.len()]);
             if p != q {

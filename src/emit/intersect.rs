@@ -8,12 +8,12 @@
 use rayon::prelude::*;
 
 use crate::geom::box_pairs::{filter_map_pairs_counted, overlap, Bounds3};
-use crate::geom::{orient3d_refs, P3, V3};
+use crate::geom::{newell, orient3d_refs, P3, V3};
 use crate::progress::{Progress, Share};
 use crate::scene::FaceId;
 
 use super::edges::{Edge, EdgeKind};
-use super::world::{WorldFace, WorldFaces, NO_PIECE};
+use super::world::{WorldFaces, NO_PIECE};
 
 /// Every intersection segment between pairs of faces that cross (both faces with vertices
 /// strictly on both sides of the other's plane); `keep(f)` filters faces worth testing.
@@ -23,6 +23,10 @@ pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sy
 
 /// [`intersection_edges`], filling in `progress` a share of the world's faces: the faces
 /// that can cross nothing set aside first, then the search of the pairs left.
+///
+/// What is kept per face while the pairs are searched is small (its id, the offsets of its
+/// plane's reference corners, whether it is flat, its box): at ten million faces this
+/// stage sets the peak memory of a render.
 pub(crate) fn intersection_edges_counted(
     world: &WorldFaces,
     keep: impl Fn(FaceId) -> bool + Sync,
@@ -30,42 +34,59 @@ pub(crate) fn intersection_edges_counted(
 ) -> Vec<Edge> {
     let share = Share::new(progress, world.faces.len());
     let faces = &world.faces;
-    let cand: Vec<usize> = (0..faces.len())
-        .filter(|&f| keep(FaceId(f as u32)) && faces[f].points.len() >= 3)
+    let cand: Vec<u32> = (0..faces.len() as u32)
+        .filter(|&f| keep(FaceId(f)) && faces[f as usize].len >= 3)
         .collect();
-    // Per face, once: its plane's reference points, and whether it is flat (exactly: every
+    // Per face, once: its plane's reference corners, and whether it is flat (exactly: every
     // corner on the plane of the reference points).
-    let (cand_refs, cand_flat): (Vec<[P3; 3]>, Vec<bool>) = cand
+    let (cand_refs, cand_flat): (Vec<[u32; 3]>, Vec<bool>) = cand
         .par_iter()
         .map(|&f| {
-            let p = &faces[f].points;
+            let p = world.points_of(f as usize);
             let r = plane_refs(p);
+            let rp = r.map(|k| p[k as usize]);
             (
                 r,
-                p.len() == 3 || p.iter().all(|q| orient3d_refs(&r, q) == 0.0),
+                p.len() == 3 || p.iter().all(|q| orient3d_refs(&rp, q) == 0.0),
             )
         })
         .unzip();
     // Faces that can cross nothing are not paired at all.
     let alone = alone(world, &cand, &cand_flat);
     let left: Vec<usize> = (0..cand.len()).filter(|&k| !alone[k]).collect();
-    let ids: Vec<usize> = left.iter().map(|&k| cand[k]).collect();
-    let refs: Vec<[P3; 3]> = left.iter().map(|&k| cand_refs[k]).collect();
+    drop(alone);
+    let ids: Vec<u32> = left.iter().map(|&k| cand[k]).collect();
+    let refs: Vec<[u32; 3]> = left.iter().map(|&k| cand_refs[k]).collect();
     let flat: Vec<bool> = left.iter().map(|&k| cand_flat[k]).collect();
-    let boxes: Vec<_> = ids.iter().map(|&f| faces[f].bbox).collect();
-    // Per face, its corners sorted when many (so that a pair's adjacency costs what the
-    // smaller face has, not the product).
-    let sorted: Vec<Option<Vec<u32>>> = ids
-        .iter()
-        .map(|&f| {
-            let v = &faces[f].vertices;
-            (v.len() > SORT_ABOVE).then(|| {
-                let mut s = v.clone();
-                s.sort_unstable();
-                s
-            })
+    drop((left, cand, cand_refs, cand_flat));
+    let boxes: Vec<_> = ids.iter().map(|&f| world.bbox_of(f as usize)).collect();
+    // The faces of many corners, by position, with their corners sorted (so that a pair's
+    // adjacency costs what the smaller face has, not the product).
+    let sorted: Vec<(u32, Vec<u32>)> = (0..ids.len() as u32)
+        .filter(|&i| faces[ids[i as usize] as usize].len as usize > SORT_ABOVE)
+        .map(|i| {
+            let mut s = world.vertices_of(ids[i as usize] as usize).to_vec();
+            s.sort_unstable();
+            (i, s)
         })
         .collect();
+    let sorted_of = |i: usize| -> Option<&[u32]> {
+        let big = faces[ids[i] as usize].len as usize > SORT_ABOVE;
+        big.then(|| {
+            let k = sorted.binary_search_by_key(&(i as u32), |e| e.0);
+            k.ok().map(|k| sorted[k].1.as_slice())
+        })
+        .flatten()
+    };
+    let side = |i: usize| {
+        let f = ids[i] as usize;
+        let pts = world.points_of(f);
+        Side {
+            pts,
+            normal: &faces[f].normal,
+            refs: refs[i].map(|k| pts[k as usize]),
+        }
+    };
     // Results come in ascending (position, position) pair order, so in (face, face) order:
     // fixed whatever the thread count.
     share.reach(0.2);
@@ -73,22 +94,21 @@ pub(crate) fn intersection_edges_counted(
         &boxes,
         |i, j| {
             let (i, j) = (i as usize, j as usize);
-            let (lo, hi) = (ids[i], ids[j]);
-            let (f, g) = (&faces[lo], &faces[hi]);
+            let (lo, hi) = (ids[i] as usize, ids[j] as usize);
             let piece = world.clean_piece[lo];
             // Flat faces of one piece proven free of self-intersection meet in nothing but
             // shared vertices and edges: no curve to find. (The proof is on the faces'
             // triangles; a face off its plane is not the union of its triangles.)
             let clean = piece != NO_PIECE && piece == world.clean_piece[hi] && flat[i] && flat[j];
-            let segs = if clean || adjacent(f, g, &sorted[i], &sorted[j]) {
+            let segs = if clean || adjacent(world, lo, hi, sorted_of(i), sorted_of(j)) {
                 Vec::new()
             } else {
-                cross_with(f, g, &refs[i], &refs[j])
+                cross_with(&side(i), &side(j))
             };
             (!segs.is_empty()).then(|| {
                 segs.into_iter()
                     .map(|seg| Edge {
-                        leaf: f.leaf,
+                        leaf: faces[lo].leaf,
                         ends: seg,
                         faces: vec![FaceId(lo as u32), FaceId(hi as u32)],
                         kind: EdgeKind::Intersection,
@@ -109,7 +129,7 @@ const MAX_PIECES: usize = 4096;
 /// proven free of self-intersection ([`WorldFaces::clean_piece`]) whose box meets the box
 /// of no face outside that piece's flat faces. Such a face meets only faces of its own
 /// piece, and those only in shared vertices and edges: it crosses nothing.
-fn alone(world: &WorldFaces, cand: &[usize], flat: &[bool]) -> Vec<bool> {
+fn alone(world: &WorldFaces, cand: &[u32], flat: &[bool]) -> Vec<bool> {
     let mut pieces: Vec<(u32, Bounds3)> = Vec::new();
     let mut loose: Option<Bounds3> = None;
     let join = |a: Option<Bounds3>, b: &Bounds3| match a {
@@ -120,7 +140,7 @@ fn alone(world: &WorldFaces, cand: &[usize], flat: &[bool]) -> Vec<bool> {
         ],
     };
     for (k, &f) in cand.iter().enumerate() {
-        let (p, b) = (world.clean_piece[f], &world.faces[f].bbox);
+        let (p, b) = (world.clean_piece[f as usize], &world.bbox_of(f as usize));
         if p == NO_PIECE || !flat[k] {
             loose = Some(join(loose, b));
             continue;
@@ -157,81 +177,116 @@ fn alone(world: &WorldFaces, cand: &[usize], flat: &[bool]) -> Vec<bool> {
         .collect();
     cand.iter()
         .enumerate()
-        .map(|(k, &f)| flat[k] && isolated.binary_search(&world.clean_piece[f]).is_ok())
+        .map(|(k, &f)| {
+            flat[k]
+                && isolated
+                    .binary_search(&world.clean_piece[f as usize])
+                    .is_ok()
+        })
         .collect()
 }
 
 /// Faces with more corners than this are searched through a sorted copy.
 const SORT_ABOVE: usize = 16;
 
-/// Faces of one leaf that share a vertex (neighbours meet, they do not cross); `sf` and
-/// `sg` are their sorted corners, where made.
-fn adjacent(f: &WorldFace, g: &WorldFace, sf: &Option<Vec<u32>>, sg: &Option<Vec<u32>>) -> bool {
-    if f.leaf != g.leaf {
+/// Faces `f` and `g` of one leaf that share a vertex (neighbours meet, they do not cross);
+/// `sf` and `sg` are their sorted corners, where made.
+fn adjacent(
+    world: &WorldFaces,
+    f: usize,
+    g: usize,
+    sf: Option<&[u32]>,
+    sg: Option<&[u32]>,
+) -> bool {
+    if world.faces[f].leaf != world.faces[g].leaf {
         return false;
     }
-    let (small, big, sorted) = if f.vertices.len() <= g.vertices.len() {
-        (f, g, sg)
+    let (vf, vg) = (world.vertices_of(f), world.vertices_of(g));
+    let (small, big, sorted) = if vf.len() <= vg.len() {
+        (vf, vg, sg)
     } else {
-        (g, f, sf)
+        (vg, vf, sf)
     };
     match sorted {
-        Some(s) => small.vertices.iter().any(|v| s.binary_search(v).is_ok()),
-        None => small.vertices.iter().any(|v| big.vertices.contains(v)),
+        Some(s) => small.iter().any(|v| s.binary_search(v).is_ok()),
+        None => small.iter().any(|v| big.contains(v)),
     }
 }
 
-/// Three well-spread points of a face's plane.
-fn plane_refs(p: &[P3]) -> [P3; 3] {
+/// Three well-spread corners of a face's plane, as offsets into its points.
+fn plane_refs(p: &[P3]) -> [u32; 3] {
     let a = p[0];
-    let b = *p
-        .iter()
-        .max_by(|x, y| (*x - a).norm_squared().total_cmp(&(*y - a).norm_squared()))
-        .unwrap_or(&a);
-    let c = *p
-        .iter()
-        .max_by(|x, y| {
-            let ax = (b - a).cross(&(*x - a)).norm_squared();
-            let ay = (b - a).cross(&(*y - a)).norm_squared();
+    let b = (0..p.len())
+        .max_by(|&x, &y| {
+            (p[x] - a)
+                .norm_squared()
+                .total_cmp(&(p[y] - a).norm_squared())
+        })
+        .unwrap_or(0);
+    let ab = p[b] - a;
+    let c = (0..p.len())
+        .max_by(|&x, &y| {
+            let ax = ab.cross(&(p[x] - a)).norm_squared();
+            let ay = ab.cross(&(p[y] - a)).norm_squared();
             ax.total_cmp(&ay)
         })
-        .unwrap_or(&a);
-    [a, b, c]
+        .unwrap_or(0);
+    [0, b as u32, c as u32]
 }
 
-/// Segments of the intersection of faces `f` and `g` (empty unless they cross).
-pub fn cross(f: &WorldFace, g: &WorldFace) -> Vec<[P3; 2]> {
-    cross_with(f, g, &plane_refs(&f.points), &plane_refs(&g.points))
+/// A face as [`cross_with`] reads it.
+struct Side<'a> {
+    /// Its corners.
+    pts: &'a [P3],
+    /// Its Newell normal.
+    normal: &'a V3,
+    /// Three well-spread points of its plane.
+    refs: [P3; 3],
 }
 
-/// [`cross`] with the faces' plane reference points given. The smaller face is classified
-/// first: a large face is scanned only for a pair whose other face does cross its plane.
-fn cross_with(f: &WorldFace, g: &WorldFace, rf: &[P3; 3], rg: &[P3; 3]) -> Vec<[P3; 2]> {
+impl<'a> Side<'a> {
+    fn new(pts: &'a [P3], normal: &'a V3) -> Self {
+        let refs = plane_refs(pts).map(|k| pts[k as usize]);
+        Side { pts, normal, refs }
+    }
+}
+
+/// Segments of the intersection of the faces with corners `f` and `g` (empty unless they
+/// cross).
+pub fn cross(f: &[P3], g: &[P3]) -> Vec<[P3; 2]> {
+    let (nf, ng) = (newell(f), newell(g));
+    cross_with(&Side::new(f, &nf), &Side::new(g, &ng))
+}
+
+/// [`cross`] of two faces with their normals and plane reference points. The smaller face
+/// is classified first: a large face is scanned only for a pair whose other face does
+/// cross its plane.
+fn cross_with(f: &Side, g: &Side) -> Vec<[P3; 2]> {
     let signs =
         |pts: &[P3], r: &[P3; 3]| -> Vec<f64> { pts.iter().map(|p| orient3d_refs(r, p)).collect() };
     let straddles = |s: &[f64]| s.iter().any(|&x| x < 0.0) && s.iter().any(|&x| x > 0.0);
-    let (sf, sg) = if f.points.len() <= g.points.len() {
-        let sf = signs(&f.points, rg);
+    let (sf, sg) = if f.pts.len() <= g.pts.len() {
+        let sf = signs(f.pts, &g.refs);
         if !straddles(&sf) {
             return Vec::new();
         }
-        (sf, signs(&g.points, rf))
+        (sf, signs(g.pts, &f.refs))
     } else {
-        let sg = signs(&g.points, rf);
+        let sg = signs(g.pts, &f.refs);
         if !straddles(&sg) {
             return Vec::new();
         }
-        (signs(&f.points, rg), sg)
+        (signs(f.pts, &g.refs), sg)
     };
     if !straddles(&sf) || !straddles(&sg) {
         return Vec::new();
     }
-    let dir = f.normal.cross(&g.normal);
+    let dir = f.normal.cross(g.normal);
     if dir.norm_squared() == 0.0 {
         return Vec::new();
     }
-    let a = spans(&f.points, &sf, &dir);
-    let b = spans(&g.points, &sg, &dir);
+    let a = spans(f.pts, &sf, &dir);
+    let b = spans(g.pts, &sg, &dir);
     let mut out = Vec::new();
     let (mut i, mut j) = (0, 0);
     while i < a.len() && j < b.len() {
@@ -285,48 +340,43 @@ fn spans(p: &[P3], s: &[f64], dir: &V3) -> Vec<[(f64, P3); 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::emit::world::WorldFace;
 
-    fn face(leaf: u32, base: u32, pts: &[[f64; 3]]) -> WorldFace {
-        let points: Vec<P3> = pts.iter().map(|p| P3::new(p[0], p[1], p[2])).collect();
-        let mut bbox = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
-        for p in &points {
-            for k in 0..3 {
-                bbox[0][k] = bbox[0][k].min(p[k]);
-                bbox[1][k] = bbox[1][k].max(p[k]);
-            }
-        }
-        WorldFace {
-            leaf,
-            vertices: (base..base + pts.len() as u32).collect(),
-            normal: crate::scene::cleanup::FaceShape::of(&points).normal,
-            bbox,
-            points,
-        }
+    fn pts(p: &[[f64; 3]]) -> Vec<P3> {
+        p.iter().map(|p| P3::new(p[0], p[1], p[2])).collect()
     }
+
+    /// World faces of (leaf, first vertex index, corners), with their normals and boxes.
+    fn world(faces: &[(u32, u32, &[[f64; 3]])]) -> WorldFaces<'static> {
+        let mut w = WorldFaces::default();
+        for &(leaf, base, corners) in faces {
+            let points = pts(corners);
+            w.faces.push(WorldFace {
+                leaf,
+                len: points.len() as u32,
+                first: w.vertices.len(),
+                at: w.points.len(),
+                normal: crate::scene::cleanup::FaceShape::of(&points).normal,
+            });
+            w.vertices.extend(base..base + points.len() as u32);
+            w.points.extend(points);
+            w.clean_piece.push(NO_PIECE);
+        }
+        w
+    }
+
+    const SQUARE: [[f64; 3]; 4] = [[0., 0., 0.], [2., 0., 0.], [2., 2., 0.], [0., 2., 0.]];
 
     #[test]
     fn two_crossing_squares() {
         // Horizontal square z = 0 over [0,2]^2; vertical square x = 1, y in [0.5,3], z in [-1,1].
-        let f = face(
-            0,
-            0,
-            &[[0., 0., 0.], [2., 0., 0.], [2., 2., 0.], [0., 2., 0.]],
-        );
-        let g = face(
-            1,
-            0,
-            &[[1., 0.5, -1.], [1., 3., -1.], [1., 3., 1.], [1., 0.5, 1.]],
-        );
-        let segs = cross(&f, &g);
+        let upright = [[1., 0.5, -1.], [1., 3., -1.], [1., 3., 1.], [1., 0.5, 1.]];
+        let segs = cross(&pts(&SQUARE), &pts(&upright));
         assert_eq!(segs.len(), 1);
         let mut e = [segs[0][0], segs[0][1]];
         e.sort_by(|p, q| p.y.total_cmp(&q.y));
         assert_eq!(e, [P3::new(1., 0.5, 0.), P3::new(1., 2., 0.)]);
-        let mut w = WorldFaces {
-            faces: vec![f, g],
-            paths: Vec::new(),
-            clean_piece: vec![NO_PIECE; 2],
-        };
+        let mut w = world(&[(0, 0, &SQUARE), (1, 0, &upright)]);
         let all = intersection_edges(&w, |_| true);
         assert_eq!(all.len(), 1);
         assert_eq!(all[0].faces, vec![FaceId(0), FaceId(1)]);
@@ -339,25 +389,45 @@ mod tests {
         // A face off its plane is not the union of the triangles the claim was proven on:
         // it is tested whatever the claim.
         w.clean_piece = vec![7, 7];
-        w.faces[0].points[2].z = 1e-3;
+        w.points[2].z = 1e-3;
         assert_eq!(intersection_edges(&w, |_| true).len(), 1);
+    }
+
+    #[test]
+    fn faces_of_many_corners_share_a_vertex_through_their_sorted_copy() {
+        // Two n-gons (n above SORT_ABOVE) of one leaf crossing at right angles: neighbours
+        // when they share a vertex index (no curve), crossing faces when they do not.
+        let n = SORT_ABOVE as u32 + 4;
+        let ring = |f: &dyn Fn(f64, f64) -> [f64; 3]| -> Vec<[f64; 3]> {
+            (0..n)
+                .map(|k| {
+                    let t = std::f64::consts::TAU * k as f64 / n as f64;
+                    f(t.cos(), t.sin())
+                })
+                .collect()
+        };
+        let flat = ring(&|c, s| [c, s, 0.0]);
+        let upright = ring(&|c, s| [c, 0.0, s]);
+        let apart = world(&[(0, 0, &flat), (0, n, &upright)]);
+        assert_eq!(intersection_edges(&apart, |_| true).len(), 1);
+        let sharing = world(&[(0, 0, &flat), (0, n - 1, &upright)]);
+        assert!(intersection_edges(&sharing, |_| true).is_empty());
+        // Of different leaves, a shared index means nothing.
+        let leaves = world(&[(0, 0, &flat), (1, n - 1, &upright)]);
+        assert_eq!(intersection_edges(&leaves, |_| true).len(), 1);
     }
 
     #[test]
     fn faces_alone_on_a_clean_piece_are_not_paired() {
         let sq = |z: f64| [[0., 0., z], [1., 0., z], [1., 1., z], [0., 1., z]];
         let far = |x: f64| [[x, 0., 0.], [x + 1., 0., 0.], [x, 1., 0.]];
-        let faces = vec![
-            face(0, 0, &sq(0.)),
-            face(0, 4, &sq(0.5)),
-            face(1, 0, &far(5.)),
-            face(2, 0, &far(5.5)),
-        ];
-        let mut w = WorldFaces {
-            faces,
-            paths: Vec::new(),
-            clean_piece: vec![0, 0, 1, NO_PIECE],
-        };
+        let mut w = world(&[
+            (0, 0, &sq(0.)),
+            (0, 4, &sq(0.5)),
+            (1, 0, &far(5.)),
+            (2, 0, &far(5.5)),
+        ]);
+        w.clean_piece = vec![0, 0, 1, NO_PIECE];
         let all = [0, 1, 2, 3];
         let flat = [true; 4];
         // Piece 0 is apart from everything; piece 1 overlaps the loose face 3.
@@ -376,16 +446,20 @@ mod tests {
 
     #[test]
     fn touching_faces_do_not_cross() {
-        let f = face(
-            0,
-            0,
-            &[[0., 0., 0.], [2., 0., 0.], [2., 2., 0.], [0., 2., 0.]],
-        );
-        let g = face(
-            1,
-            0,
-            &[[1., 0., 0.], [1., 2., 0.], [1., 2., 1.], [1., 0., 1.]],
-        );
-        assert!(cross(&f, &g).is_empty());
+        let g = [[1., 0., 0.], [1., 2., 0.], [1., 2., 1.], [1., 0., 1.]];
+        assert!(cross(&pts(&SQUARE), &pts(&g)).is_empty());
+    }
+
+    #[test]
+    fn plane_refs_spread_over_the_face() {
+        // The farthest corner from the first, then the one farthest from that line.
+        let p = pts(&[
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [3., 0., 0.],
+            [1., 1., 0.],
+            [2., 0.5, 0.],
+        ]);
+        assert_eq!(plane_refs(&p), [0, 2, 3]);
     }
 }

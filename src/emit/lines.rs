@@ -84,7 +84,7 @@ pub(crate) fn draw_counted(
     progress: &Progress,
 ) -> Drawing {
     progress.enter_phase(Stage::Lines, Phase::World, scene.face_count());
-    let world = WorldFaces::build_counted(scene, progress);
+    let world = WorldFaces::build_counted(scene, Some(&view.screen), progress);
     progress.enter_phase(Stage::Lines, Phase::Edges, world.faces.len());
     let mut edges = mesh_edges_counted(&world, view, &opts.edges, progress);
     progress.enter_phase(Stage::Lines, Phase::Intersections, world.faces.len());
@@ -140,19 +140,25 @@ pub fn visible_intervals(a: Pt2, b: Pt2, faces: &[FaceId], vis: &Visibility) -> 
     union(&lists)
 }
 
-/// The VTP of every face as an indexed [`Region`], made when first asked for: the edges of
-/// one face are clipped against its region many times.
+/// The VTP of every face an edge lies on as an indexed [`Region`], made when first asked
+/// for: the edges of one face are clipped against its region many times. Only the faces of
+/// the edges get a slot (a terrain's few feature lines touch few of its faces).
 struct Regions<'v> {
     vis: &'v Visibility,
+    /// The faces of the edges, ascending, once each.
+    faces: Vec<FaceId>,
+    /// Their regions, beside `faces`.
     made: Vec<OnceLock<Region<'v>>>,
 }
 
 impl<'v> Regions<'v> {
-    fn new(vis: &'v Visibility, faces: usize) -> Self {
-        Regions {
-            vis,
-            made: (0..faces).map(|_| OnceLock::new()).collect(),
-        }
+    fn new(vis: &'v Visibility, edges: &[Edge]) -> Self {
+        let mut faces: Vec<FaceId> = edges.iter().flat_map(|e| e.faces.iter().copied()).collect();
+        faces.par_sort_unstable();
+        faces.dedup();
+        faces.shrink_to_fit();
+        let made = (0..faces.len()).map(|_| OnceLock::new()).collect();
+        Regions { vis, faces, made }
     }
 
     /// [`visible_intervals`] with the regions indexed once.
@@ -160,9 +166,14 @@ impl<'v> Regions<'v> {
         let lists: Vec<Vec<Interval>> = faces
             .iter()
             .map(|&f| {
-                let region =
-                    self.made[f.index()].get_or_init(|| Region::new(&self.vis.face(f).visible));
-                intervals_in_region(a, b, region)
+                let vtp = &self.vis.face(f).visible;
+                match self.faces.binary_search(&f) {
+                    Ok(k) => {
+                        intervals_in_region(a, b, self.made[k].get_or_init(|| Region::new(vtp)))
+                    }
+                    // Not a face of the edges given to `new`: indexed for this use alone.
+                    Err(_) => intervals_in_region(a, b, &Region::new(vtp)),
+                }
             })
             .collect();
         union(&lists)
@@ -208,7 +219,7 @@ fn split_edges_counted(
 ) -> Drawing {
     let share = Share::new(progress, edges.len());
     let clipped = share.span(0.0, 0.7).steps(edges.len());
-    let regions = Regions::new(vis, view.screen.face_count());
+    let regions = Regions::new(vis, edges);
     let pieces: Vec<Pieces> = edges
         .par_iter()
         .enumerate()

@@ -7,31 +7,46 @@ use rayon::prelude::*;
 use crate::geom::{newell, Box3, P3, V3};
 use crate::progress::Progress;
 use crate::scene::topology::{edge_pieces, Pieces};
-use crate::scene::{Face, Mesh, Scene};
+use crate::scene::{FaceId, Leaf, Mesh, Scene};
+use crate::view::ScreenFaces;
 
 /// Above this many faces a leaf's world faces are made on all threads.
 const PARALLEL_ABOVE: usize = 4096;
 
-/// One face in world space.
+/// One face in world space: its corners are a run of the world's point space (see
+/// [`WorldFaces::points_of`]) and of [`WorldFaces::vertices`], so that a scene's faces cost
+/// no allocation each.
 #[derive(Debug, Clone)]
 pub struct WorldFace {
     /// Index of the leaf object in [`Scene::leaves`] order.
     pub leaf: u32,
-    /// The face's vertex indices in its leaf mesh.
-    pub vertices: Vec<u32>,
-    /// World points, in mesh order (not reversed for mirroring transforms).
-    pub points: Vec<P3>,
-    /// Newell normal of `points` (twice the vector area; zero for a degenerate face).
+    /// Number of corners.
+    pub len: u32,
+    /// First corner in [`WorldFaces::vertices`].
+    pub first: usize,
+    /// First point in the point space: [`WorldFaces::shared`] then [`WorldFaces::points`].
+    pub at: usize,
+    /// Newell normal of the points (twice the vector area; zero for a degenerate face).
     pub normal: V3,
-    /// World bounding box: min then max.
-    pub bbox: [[f64; 3]; 2],
 }
 
 /// Every face of a scene in world space, by global face id.
+///
+/// A face's world points are the screen faces' own where those are the same points in the
+/// same order, bit for bit (one planar piece, not clipped, not mirrored: almost every face),
+/// so that the drawing does not hold the scene's corners twice; the rest are copied here.
 #[derive(Debug, Clone, Default)]
-pub struct WorldFaces {
+pub struct WorldFaces<'s> {
     /// Faces by global id.
     pub faces: Vec<WorldFace>,
+    /// The first part of the point space: world points shared with the screen faces
+    /// ([`ScreenFaces::world`]), or none.
+    pub shared: &'s [P3],
+    /// The second part of the point space: the corners of the faces whose points are not
+    /// shared, face after face, in mesh order (not reversed for mirroring transforms).
+    pub points: Vec<P3>,
+    /// The corners' vertex indices in their leaf mesh, face after face.
+    pub vertices: Vec<u32>,
     /// Object path of every leaf, in [`Scene::leaves`] order.
     pub paths: Vec<String>,
     /// By face: a number shared by exactly the faces of one edge-connected piece of a leaf
@@ -43,55 +58,146 @@ pub struct WorldFaces {
 /// [`WorldFaces::clean_piece`] of a face on no piece proven free of self-intersection.
 pub const NO_PIECE: u32 = u32::MAX;
 
-impl WorldFaces {
+impl<'s> WorldFaces<'s> {
     /// The world polygons of every face of `scene`, in global face order.
-    pub fn build(scene: &Scene) -> WorldFaces {
-        Self::build_counted(scene, &Progress::new())
+    pub fn build(scene: &Scene) -> WorldFaces<'static> {
+        WorldFaces::build_counted(scene, None, &Progress::new())
     }
 
-    /// [`WorldFaces::build`], counting in `progress` the faces as they are made.
-    pub(crate) fn build_counted(scene: &Scene, progress: &Progress) -> WorldFaces {
-        let mut faces = Vec::with_capacity(scene.face_count());
-        let mut clean_piece = Vec::with_capacity(scene.face_count());
+    /// [`WorldFaces::build`], sharing the points of `screen` where they are the same, and
+    /// counting in `progress` the faces as they are made.
+    pub(crate) fn build_counted(
+        scene: &Scene,
+        screen: Option<&'s ScreenFaces>,
+        progress: &Progress,
+    ) -> WorldFaces<'s> {
+        let corners = scene
+            .leaves()
+            .iter()
+            .flat_map(|l| &l.mesh.faces)
+            .map(|f| f.vertices.len())
+            .sum();
+        let mut w = WorldFaces {
+            faces: Vec::with_capacity(scene.face_count()),
+            shared: screen.map_or(&[], |sf| &sf.world[..]),
+            vertices: Vec::with_capacity(corners),
+            ..Default::default()
+        };
+        w.clean_piece.reserve_exact(scene.face_count());
         let mut next_piece = 0;
         // Each mesh's pieces once, however many instances place it.
         let mut pieces_of: HashMap<*const Mesh, Pieces> = HashMap::new();
         let leaves = scene.leaves();
         for (li, leaf) in leaves.iter().enumerate() {
-            clean_pieces(leaf.mesh, &mut pieces_of, &mut clean_piece, &mut next_piece);
-            let world: Vec<P3> = (0..leaf.mesh.vertices.len() as u32)
-                .map(|k| leaf.world_vertex(k))
-                .collect();
-            let face = |f: &Face| {
-                let points: Vec<P3> = f.vertices.iter().map(|&k| world[k as usize]).collect();
-                WorldFace {
-                    leaf: li as u32,
-                    vertices: f.vertices.clone(),
-                    normal: newell(&points),
-                    bbox: bbox(&points),
-                    points,
+            clean_pieces(
+                leaf.mesh,
+                &mut pieces_of,
+                &mut w.clean_piece,
+                &mut next_piece,
+            );
+            w.add_leaf(li as u32, leaf, screen, progress);
+        }
+        w.points.shrink_to_fit();
+        w.paths = leaves.into_iter().map(|l| l.path).collect();
+        w
+    }
+
+    /// Appends the faces of leaf `li`: where each face's points are (shared or copied),
+    /// then each face's normal, a big mesh's on all threads, in face order either way.
+    fn add_leaf(
+        &mut self,
+        li: u32,
+        leaf: &Leaf,
+        screen: Option<&ScreenFaces>,
+        progress: &Progress,
+    ) {
+        let world: Vec<P3> = (0..leaf.mesh.vertices.len() as u32)
+            .map(|k| leaf.world_vertex(k))
+            .collect();
+        let mut runs = Vec::with_capacity(leaf.mesh.faces.len());
+        for (k, f) in leaf.mesh.faces.iter().enumerate() {
+            let first = self.vertices.len();
+            self.vertices.extend_from_slice(&f.vertices);
+            let pts = || f.vertices.iter().map(|&v| world[v as usize]);
+            let id = FaceId((leaf.first_face + k) as u32);
+            let at = match screen.and_then(|sf| same_run(sf, id, pts())) {
+                Some(at) => at,
+                None => {
+                    let at = self.shared.len() + self.points.len();
+                    self.points.extend(pts());
+                    at
                 }
             };
-            // In face order either way; a big mesh's faces on all threads.
-            let n = leaf.mesh.faces.len();
-            if n > PARALLEL_ABOVE {
-                faces.par_extend(leaf.mesh.faces.par_iter().enumerate().map(|(i, f)| {
-                    progress.tick(i);
-                    face(f)
-                }));
-                progress.tick_rest(n);
-            } else {
-                faces.extend(leaf.mesh.faces.iter().map(face));
-                progress.add(n);
-            }
+            runs.push((first, at, f.vertices.len() as u32));
         }
-        let paths = leaves.into_iter().map(|l| l.path).collect();
-        WorldFaces {
-            faces,
-            paths,
-            clean_piece,
+        let face = |&(first, at, len): &(usize, usize, u32)| WorldFace {
+            leaf: li,
+            len,
+            first,
+            at,
+            normal: newell(self.run(at, len)),
+        };
+        let n = runs.len();
+        let made: Vec<WorldFace> = if n > PARALLEL_ABOVE {
+            let made = runs
+                .par_iter()
+                .enumerate()
+                .map(|(i, r)| {
+                    progress.tick(i);
+                    face(r)
+                })
+                .collect();
+            progress.tick_rest(n);
+            made
+        } else {
+            progress.add(n);
+            runs.iter().map(face).collect()
+        };
+        self.faces.extend(made);
+    }
+
+    /// The run of `len` points from `at` in the point space.
+    fn run(&self, at: usize, len: u32) -> &[P3] {
+        let len = len as usize;
+        match at.checked_sub(self.shared.len()) {
+            Some(own) => &self.points[own..own + len],
+            None => &self.shared[at..at + len],
         }
     }
+
+    /// The world points of face `f`, in mesh order.
+    pub fn points_of(&self, f: usize) -> &[P3] {
+        let face = &self.faces[f];
+        self.run(face.at, face.len)
+    }
+
+    /// The vertex indices of face `f` in its leaf mesh.
+    pub fn vertices_of(&self, f: usize) -> &[u32] {
+        let face = &self.faces[f];
+        &self.vertices[face.first..face.first + face.len as usize]
+    }
+
+    /// The world bounding box of face `f`: min then max.
+    pub fn bbox_of(&self, f: usize) -> [[f64; 3]; 2] {
+        bbox(self.points_of(f))
+    }
+}
+
+/// Where face `id`'s world points `pts` already are among the screen faces' world points:
+/// the start of its one piece's run when that run is the same points in the same order,
+/// bit for bit.
+fn same_run(sf: &ScreenFaces, id: FaceId, pts: impl ExactSizeIterator<Item = P3>) -> Option<usize> {
+    if id.index() >= sf.face_count() {
+        return None;
+    }
+    let mut pieces = sf.pieces_of(id);
+    let (Some(p), None) = (pieces.next(), pieces.next()) else {
+        return None;
+    };
+    let run = sf.world_pts(p);
+    let bits = |q: &P3| q.coords.map(f64::to_bits);
+    let same = run.len() == pts.len() && run.iter().zip(pts).all(|(a, b)| bits(a) == bits(&b));
+    same.then_some(sf.piece(p).start as usize)
 }
 
 /// Appends a mesh's faces' [`WorldFaces::clean_piece`] numbers to `out`, numbering its
@@ -145,7 +251,7 @@ mod tests {
         let w = WorldFaces::build(&scene);
         assert_eq!(w.faces.len(), 1);
         assert_eq!(w.faces[0].normal, V3::new(0., 0., 2.));
-        assert_eq!(w.faces[0].bbox, [[0., 0., 0.], [1., 1., 0.]]);
+        assert_eq!(w.bbox_of(0), [[0., 0., 0.], [1., 1., 0.]]);
         // Not prepared: no piece is known to be free of self-intersection.
         assert_eq!(w.clean_piece, vec![NO_PIECE]);
     }
