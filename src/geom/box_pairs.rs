@@ -48,20 +48,23 @@ pub(crate) fn filter_map_pairs_counted<T: Send>(
     let Some(grid) = Grid::fit(boxes, &ids) else {
         return Vec::new();
     };
-    let mut entries: Vec<(u64, u32)> = Vec::with_capacity(ids.len() * 2);
+    // Entries (cell key, box) packed in one word, key above box: sorting the words sorts
+    // by key then box, as sorting the pairs would, in half the memory.
+    let shift = grid.id_bits;
+    let mut entries: Vec<u64> = Vec::with_capacity(ids.len() * 2);
     // The cell of each box's least corner: the cell of the least corner of two boxes'
     // intersection is their componentwise max (cells are monotone in the coordinates), so
     // no pair needs a float-to-cell conversion.
-    let mut lo_cell = vec![[0u64; 3]; boxes.len()];
+    let mut lo_cell = vec![[0u16; 3]; boxes.len()];
     let entered = span.span(0.0, 0.1).steps(ids.len());
     for (k, &i) in ids.iter().enumerate() {
         entered.tick(k);
         let [lo, hi] = grid.cell_range(&boxes[i as usize]);
-        lo_cell[i as usize] = lo;
+        lo_cell[i as usize] = lo.map(|c| c as u16);
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
                 for z in lo[2]..=hi[2] {
-                    entries.push((grid.key([x, y, z]), i));
+                    entries.push(grid.key([x, y, z]) << shift | u64::from(i));
                 }
             }
         }
@@ -72,20 +75,23 @@ pub(crate) fn filter_map_pairs_counted<T: Send>(
     } else {
         entries.sort_unstable();
     }
-    let runs = runs(&entries);
+    let runs = runs(&entries, shift);
     span.reach(0.2);
     let cells = span.span(0.2, 0.95).steps(runs.len());
     let (f, grid, lo_cell, entries, cells) = (&f, &grid, &lo_cell, &entries, &cells);
+    let id = |e: u64| (e & ((1 << shift) - 1)) as u32;
     // The pairs first met in one cell (a run of equal keys).
-    let in_cell = |r: &std::ops::Range<usize>| {
+    let in_cell = move |r: &std::ops::Range<usize>| {
         let cell = &entries[r.clone()];
-        let key = cell[0].0;
+        let key = cell[0] >> shift;
         (0..cell.len()).flat_map(move |a| {
             (a + 1..cell.len()).filter_map(move |b| {
-                let (i, j) = (cell[a].1, cell[b].1);
+                let (i, j) = (id(cell[a]), id(cell[b]));
                 let (bi, bj) = (&boxes[i as usize], &boxes[j as usize]);
                 let (ci, cj) = (&lo_cell[i as usize], &lo_cell[j as usize]);
-                if !overlap(bi, bj) || grid.key(std::array::from_fn(|k| ci[k].max(cj[k]))) != key {
+                if !overlap(bi, bj)
+                    || grid.key(std::array::from_fn(|k| u64::from(ci[k].max(cj[k])))) != key
+                {
                     return None;
                 }
                 let p = (i.min(j), i.max(j));
@@ -122,12 +128,13 @@ fn valid(b: &Bounds3) -> bool {
     (0..3).all(|k| b[0][k] <= b[1][k] && b[0][k].is_finite() && b[1][k].is_finite())
 }
 
-/// Index ranges of equal keys in sorted entries.
-fn runs(entries: &[(u64, u32)]) -> Vec<std::ops::Range<usize>> {
+/// Index ranges of equal keys (the bits above `shift`) in sorted entries, of two entries
+/// or more.
+fn runs(entries: &[u64], shift: u32) -> Vec<std::ops::Range<usize>> {
     let mut out = Vec::new();
     let mut start = 0;
     for i in 1..=entries.len() {
-        if i == entries.len() || entries[i].0 != entries[start].0 {
+        if i == entries.len() || entries[i] >> shift != entries[start] >> shift {
             if i - start > 1 {
                 out.push(start..i);
             }
@@ -137,17 +144,25 @@ fn runs(entries: &[(u64, u32)]) -> Vec<std::ops::Range<usize>> {
     out
 }
 
+/// Bits needed to write `n`.
+fn bits(n: u64) -> u32 {
+    u64::BITS - n.leading_zeros()
+}
+
 /// A uniform grid over the boxes' bounds.
 struct Grid {
     origin: [f64; 3],
     inv_cell: f64,
     dims: [u64; 3],
+    /// Bits of a box index in an entry (below the cell key).
+    id_bits: u32,
 }
 
 impl Grid {
     /// A grid whose cell is twice the mean box size (most boxes then enter one to four
     /// cells), coarsened until the boxes enter about
-    /// `MAX_CELLS_PER_BOX` cells each on average.
+    /// `MAX_CELLS_PER_BOX` cells each on average, and until a cell's coordinates fit 16 bits
+    /// and its key and a box index fit one 64-bit entry (a coarser grid finds the same pairs).
     fn fit(boxes: &[Bounds3], ids: &[u32]) -> Option<Grid> {
         let first = boxes[*ids.first()? as usize];
         let mut lo = first[0];
@@ -174,7 +189,15 @@ impl Grid {
                 origin: lo,
                 inv_cell: 1.0 / cell,
                 dims: std::array::from_fn(|k| ((hi[k] - lo[k]) / cell).floor() as u64 + 1),
+                id_bits: bits(boxes.len() as u64 - 1),
             };
+            let keys = g.dims.iter().try_fold(1u64, |n, &d| n.checked_mul(d));
+            let packs = g.dims.iter().all(|&d| d <= 1 << 16)
+                && keys.is_some_and(|n| bits(n - 1) + g.id_bits <= 64);
+            if !packs && cell < span {
+                cell *= 2.0;
+                continue;
+            }
             let cells: f64 = ids
                 .iter()
                 .map(|&i| {
@@ -189,6 +212,7 @@ impl Grid {
         }
     }
 
+    /// The cell holding point `p` (clamped to the grid).
     fn cell(&self, p: &[f64; 3]) -> [u64; 3] {
         std::array::from_fn(|k| {
             let c = ((p[k] - self.origin[k]) * self.inv_cell).floor();
