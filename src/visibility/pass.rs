@@ -2,6 +2,7 @@
 //! culled (HIDDEN by inboxes) have no pieces, so the pass never touches their faces.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 use rayon::prelude::*;
 
@@ -137,40 +138,33 @@ pub fn solve_counted(view: &View, opts: PassOptions, done: Option<&AtomicUsize>)
     let root = view_used.tree.root();
     let sf = &view.screen;
     // Only projected leaves have pieces: the pass's work is theirs alone. A few pieces are
-    // solved on this thread: waking the pool would cost more than the work.
-    let solve = |scratch: &mut Scratch, f| {
-        let r = solve_face(&view_used, root, f, scratch);
+    // solved on this thread: waking the pool would cost more than the work. Each worker
+    // sums its counters and adds them in when it is done (sums of integers: the same
+    // totals in any order), so no counters are kept per piece.
+    let total = Mutex::new(Counters::default());
+    let solve = |w: &mut Worker, f| {
+        let r = solve_face(&view_used, root, f, &mut w.scratch, &mut w.counters);
         if let Some(d) = done {
             d.fetch_add(1, Ordering::Relaxed);
         }
         r
     };
-    let results: Vec<(FaceVisibility, Counters)> = if sf.pieces.len() < SEQUENTIAL_BELOW {
-        let mut scratch = Scratch::default();
-        sf.piece_ids().map(|p| solve(&mut scratch, p)).collect()
+    let results: Vec<FaceVisibility> = if sf.pieces.len() < SEQUENTIAL_BELOW {
+        let mut w = Worker::new(&total);
+        sf.piece_ids().map(|p| solve(&mut w, p)).collect()
     } else {
         (0..sf.pieces.len() as u32)
             .into_par_iter()
-            .map_init(Scratch::default, |s, p| solve(s, PieceId(p)))
+            .map_init(|| Worker::new(&total), |w, p| solve(w, PieceId(p)))
             .collect()
     };
-    for (_, c) in &results {
-        counters += *c;
-    }
+    counters += total.into_inner().unwrap_or_else(|e| e.into_inner());
     let ids: Vec<FaceId> = sf
         .leaves
         .iter()
         .flat_map(|l| FaceId::each(&l.faces()))
         .collect();
-    let merge = |&id: &FaceId| {
-        let r = sf.piece_span(id..id.offset(1));
-        merge_pieces(&results[r.clone()], sf, r)
-    };
-    let faces = if ids.len() < SEQUENTIAL_BELOW {
-        ids.iter().map(merge).collect()
-    } else {
-        ids.par_iter().map(merge).collect()
-    };
+    let faces = by_face(results, &ids, sf);
     Visibility {
         ids,
         faces,
@@ -179,25 +173,85 @@ pub fn solve_counted(view: &View, opts: PassOptions, done: Option<&AtomicUsize>)
     }
 }
 
+/// A worker of the pass: its buffers, and the counters of the pieces it solved, added to
+/// `into` when it is dropped.
+struct Worker<'a> {
+    scratch: Scratch,
+    counters: Counters,
+    into: &'a Mutex<Counters>,
+}
+
+impl<'a> Worker<'a> {
+    fn new(into: &'a Mutex<Counters>) -> Self {
+        Worker {
+            scratch: Scratch::default(),
+            counters: Counters::default(),
+            into,
+        }
+    }
+}
+
+impl Drop for Worker<'_> {
+    fn drop(&mut self) {
+        let mut total = self.into.lock().unwrap_or_else(|e| e.into_inner());
+        *total += self.counters;
+    }
+}
+
+/// The pieces' results (in piece order) as one result per face of `ids`: moved where a
+/// face is one piece (the usual case: then the whole vector is kept as it is), merged where
+/// it has several.
+fn by_face(
+    mut results: Vec<FaceVisibility>,
+    ids: &[FaceId],
+    sf: &ScreenFaces,
+) -> Vec<FaceVisibility> {
+    let span = |id: &FaceId| sf.piece_span(*id..id.offset(1));
+    if ids.len() == results.len() && ids.iter().all(|id| span(id).len() == 1) {
+        return results;
+    }
+    // Each face's pieces as a slice of their own, split off in order.
+    let mut rest: &mut [FaceVisibility] = &mut results;
+    let mut at = 0;
+    let mut slices = Vec::with_capacity(ids.len());
+    for id in ids {
+        let r = span(id);
+        let (skip, tail) = std::mem::take(&mut rest).split_at_mut(r.start - at);
+        debug_assert!(skip.is_empty(), "pieces in face order");
+        let (mine, tail) = tail.split_at_mut(r.len());
+        slices.push((mine, r.clone()));
+        rest = tail;
+        at = r.end;
+    }
+    let merge =
+        |(pieces, r): (&mut [FaceVisibility], std::ops::Range<usize>)| merge_pieces(pieces, sf, r);
+    if ids.len() < SEQUENTIAL_BELOW {
+        slices.into_iter().map(merge).collect()
+    } else {
+        slices.into_par_iter().map(merge).collect()
+    }
+}
+
 /// One face's visibility from its pieces' (a planar face is one piece; the pieces of a warped
-/// face have disjoint interiors, so their union is exact and their areas add).
+/// face have disjoint interiors, so their union is exact and their areas add). The pieces'
+/// regions are taken, not copied.
 fn merge_pieces(
-    pieces: &[(FaceVisibility, Counters)],
+    pieces: &mut [FaceVisibility],
     sf: &ScreenFaces,
     r: std::ops::Range<usize>,
 ) -> FaceVisibility {
-    if pieces.len() == 1 {
-        return pieces[0].0.clone();
+    if let [one] = pieces {
+        return std::mem::replace(one, HIDDEN.clone());
     }
-    let projected_area = pieces.iter().map(|p| p.0.projected_area).sum();
-    let parts: Vec<MultiPolygon> = pieces
-        .iter()
-        .filter(|p| !p.0.visible.is_empty())
-        .map(|p| p.0.visible.clone())
+    let projected_area = pieces.iter().map(|p| p.projected_area).sum();
+    let mut parts: Vec<MultiPolygon> = pieces
+        .iter_mut()
+        .filter(|p| !p.visible.is_empty())
+        .map(|p| std::mem::take(&mut p.visible))
         .collect();
     let visible = match parts.len() {
         0 => Vec::new(),
-        1 => parts[0].clone(),
+        1 => parts.pop().unwrap_or_default(),
         _ => {
             // The parts come out of earlier boolean calls on their own grids: a point may sit
             // an ulp outside its piece's rectangle, so take the rectangle of the parts
@@ -227,8 +281,8 @@ fn solve_face(
     root: u32,
     f: PieceId,
     scratch: &mut Scratch,
-) -> (FaceVisibility, Counters) {
-    let mut c = Counters::default();
+    c: &mut Counters,
+) -> FaceVisibility {
     let sf = view.screen.piece(f);
     let projected_area = if matches!(sf.facing, Facing::Front | Facing::Back) {
         ccw_area(view, f)
@@ -243,21 +297,21 @@ fn solve_face(
     match sf.facing {
         Facing::EdgeOn | Facing::Clipped => {
             c.faces_edge_on += 1;
-            return (empty(projected_area), c);
+            return empty(projected_area);
         }
         _ if sf.culled => {
             c.faces_culled += 1;
-            return (empty(projected_area), c);
+            return empty(projected_area);
         }
         _ => {}
     }
     let ring = view.screen.ring_ccw(f);
-    let visible = match visfac(view, root, f, scratch, &mut c) {
+    let visible = match visfac(view, root, f, scratch, c) {
         Vtp::Whole => vec![vec![ring]],
         Vtp::Empty => Vec::new(),
         Vtp::Part(m) => m,
     };
-    (FaceVisibility::new(visible, projected_area), c)
+    FaceVisibility::new(visible, projected_area)
 }
 
 /// `ring_area(ring_ccw(f))` without building the ring (same arithmetic, same bits).
