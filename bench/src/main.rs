@@ -14,6 +14,8 @@ struct Cli {
 }
 
 fn main() -> ExitCode {
+    // The same allocator policy as the `kepler` command: its numbers are the command's.
+    kepler_cli::memory::map_big_blocks();
     match kepler_bench::run(Cli::parse().args) {
         Ok(code) => code,
         Err(e) => {

@@ -7,6 +7,7 @@ mod components;
 mod flatten;
 mod hierarchy_arg;
 mod info;
+pub mod memory;
 mod output;
 mod plot_args;
 pub mod progress;
