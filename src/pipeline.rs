@@ -9,12 +9,12 @@ use crate::emit::json::to_json_counted;
 use crate::emit::lines::{draw_counted, Drawing, LineOptions};
 use crate::emit::marks::face_marks;
 use crate::emit::picture::{Picture, PlotStats};
-use crate::emit::plot::picture;
+use crate::emit::plot::picture_counted;
 use crate::emit::png::to_png;
 use crate::emit::svg::to_svg;
 use crate::error::{Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
-use crate::progress::Phase;
+use crate::progress::{Lane, Phase};
 pub use crate::progress::{Progress, Stage};
 use crate::scene::Scene;
 use crate::view::{substitute, Camera, Cull, LodOptions, LodStats, View};
@@ -135,16 +135,22 @@ impl Rendered<'_> {
 
     /// The picture both SVG and PNG draw (texture markings included).
     pub fn picture(&self, opts: &PictureOptions) -> Result<Picture> {
+        self.picture_counted(opts, &Lane::open(&Progress::new()))
+    }
+
+    /// [`Rendered::picture`], its phases entered and counted in `lane`.
+    fn picture_counted(&self, opts: &PictureOptions, lane: &Lane) -> Result<Picture> {
         let empty = Drawing::default();
         let drawing = self.drawing.as_ref().unwrap_or(&empty);
         let marks = face_marks(&self.scene, &self.view, &self.visibility);
-        picture(
+        picture_counted(
             &self.scene,
             &self.view,
             &self.visibility,
             drawing,
             &marks,
             opts,
+            lane,
         )
     }
 }
@@ -167,6 +173,13 @@ pub fn render<'s>(scene: &'s Scene, camera: &Camera, opts: &RenderOptions) -> Re
 /// [`render`], reporting its stages, their phases and their counts to `progress` as it
 /// goes ([`Progress::phases`] lists them afterwards). The result is the same with or
 /// without it.
+///
+/// The emit stage writes the JSON and builds the picture side by side, and the progress
+/// shows one phase at a time: the JSON's ([`Phase::Json`], faces) first, then the picture's
+/// ([`Phase::Dedup`] and [`Phase::Join`] by segments, [`Phase::Order`] by strokes) from the
+/// moment the JSON is done, the phase the picture is in then counted from there with what it
+/// has left (so its rate and time left are those of the work still to do). A picture that is
+/// done before the JSON does not show; without JSON, its phases show from the start.
 pub fn render_with<'s>(
     scene: &'s Scene,
     camera: &Camera,
@@ -241,20 +254,35 @@ pub fn render_with<'s>(
         warnings,
     };
     let mut plot = None;
-    // The JSON is counted by faces written; the pictures alone are not counted.
+    // The JSON is counted by faces written, the picture in its phases (dedup, join, order).
+    // Made side by side, they share the bar one after the other: the JSON's phase first, the
+    // picture's in a lane behind it, shown from the JSON's end on (the phase the picture is
+    // in then with what it has left); a picture done before the JSON never shows.
     if out.json {
         progress.enter_phase(Stage::Emit, Phase::Json, r.visibility.solved_count());
     } else {
         progress.enter(Stage::Emit, 0);
     }
+    let lane = if out.json {
+        Lane::behind(progress)
+    } else {
+        Lane::open(progress)
+    };
     stats.timed(Stage::Emit, || -> Result<()> {
         // The JSON and the picture read the same solved view: made side by side.
         let (json, pic) = rayon::join(
             || {
-                out.json
-                    .then(|| r.to_json_counted(out.json_lines, progress))
+                let json = out
+                    .json
+                    .then(|| r.to_json_counted(out.json_lines, progress));
+                lane.release();
+                json
             },
-            || pictures.then(|| r.picture(&out.picture)).transpose(),
+            || {
+                pictures
+                    .then(|| r.picture_counted(&out.picture, &lane))
+                    .transpose()
+            },
         );
         r.json = json;
         if let Some(pic) = pic? {

@@ -1,5 +1,6 @@
 //! Progress all the way: every phase of a load, prepare and render counts its units up to
 //! its total, and a watched run gives the same scene and the same bytes as an unwatched one.
+//! The picture's phases too, alone and beside the JSON.
 
 use std::collections::BTreeSet;
 use std::f64::consts::{PI, TAU};
@@ -8,8 +9,8 @@ use std::path::{Path, PathBuf};
 
 use kepler_hsr::prepare::{prepare_counted, prepare_with, PrepareOptions};
 use kepler_hsr::{
-    load_scene_counted, load_scene_with, render, render_with, Camera, CameraRequest, LoadOptions,
-    Outputs, Phase, PhaseCount, Progress, RenderOptions, Stage,
+    load_scene_counted, load_scene_with, render, render_with, Camera, CameraRequest, EdgeOptions,
+    EdgeSet, LineOptions, LoadOptions, Outputs, Phase, PhaseCount, Progress, RenderOptions, Stage,
 };
 
 /// A fresh directory for this test's files.
@@ -195,6 +196,94 @@ fn every_phase_counts_to_its_total_and_changes_nothing() {
             .count()
             > 0
     );
+}
+
+/// Render options for every edge with hidden lines dashed, into `outputs`.
+fn hidden_lines(outputs: Outputs) -> RenderOptions {
+    let edges = EdgeOptions {
+        set: EdgeSet::All,
+        ..EdgeOptions::default()
+    };
+    RenderOptions {
+        lines: LineOptions {
+            edges,
+            hidden: true,
+        },
+        outputs,
+        ..RenderOptions::default()
+    }
+}
+
+#[test]
+fn the_picture_counts_its_segments_and_strokes() {
+    let path = scene_file();
+    let mut scene = load_scene_with(&path, &LoadOptions::default(), &mut Vec::new()).unwrap();
+    prepare_with(&mut scene, &PrepareOptions::default());
+    let camera = Camera::for_scene(&scene, &CameraRequest::default()).unwrap();
+    let ropts = hidden_lines(Outputs {
+        svg: true,
+        png: true,
+        ..Outputs::default()
+    });
+    let watched = Progress::new();
+    let r = render_with(&scene, &camera, &ropts, Some(&watched)).unwrap();
+    let bare = render(&scene, &camera, &ropts).unwrap();
+    assert_eq!(r.svg, bare.svg);
+    assert_eq!(r.png, bare.png);
+
+    let log = watched.phases();
+    assert_full(&log);
+    let emit: Vec<(Stage, Phase, usize, usize)> = counts(&log)
+        .into_iter()
+        .filter(|c| c.0 == Stage::Emit)
+        .collect();
+    // Alone, the picture shows every phase: the segments on the page, the same segments
+    // less those dropped whole as repeats, and every stroke of every layer.
+    let plot = r.stats.plot.as_ref().unwrap();
+    let segments = plot.duplicates.segments;
+    let strokes: usize = plot.layers.iter().map(|l| l.strokes).sum();
+    let phase = |p: Phase| emit.iter().find(|c| c.1 == p).map(|c| c.3);
+    assert_eq!(phase(Phase::Whole), Some(0), "{emit:?}");
+    assert_eq!(phase(Phase::Dedup), Some(segments));
+    assert!(phase(Phase::Join).is_some_and(|n| n > 0 && n <= segments));
+    assert_eq!(phase(Phase::Order), Some(strokes));
+    assert!(plot
+        .layers
+        .iter()
+        .any(|l| l.name == "hidden" && l.strokes > 100));
+}
+
+#[test]
+fn the_picture_beside_the_json_shows_after_it() {
+    let path = scene_file();
+    let mut scene = load_scene_with(&path, &LoadOptions::default(), &mut Vec::new()).unwrap();
+    prepare_with(&mut scene, &PrepareOptions::default());
+    let camera = Camera::for_scene(&scene, &CameraRequest::default()).unwrap();
+    let ropts = hidden_lines(Outputs {
+        json: true,
+        svg: true,
+        ..Outputs::default()
+    });
+    let bare = render(&scene, &camera, &ropts).unwrap();
+    // Which of the picture's phases show depends on when the JSON ends: whatever shows
+    // comes after the JSON and counts to its total.
+    for _ in 0..3 {
+        let watched = Progress::new();
+        let r = render_with(&scene, &camera, &ropts, Some(&watched)).unwrap();
+        assert_eq!((&r.json, &r.svg), (&bare.json, &bare.svg));
+        let log = watched.phases();
+        assert_full(&log);
+        let emit: Vec<Phase> = log
+            .iter()
+            .filter(|c| c.stage == Stage::Emit)
+            .map(|c| c.phase)
+            .collect();
+        assert_eq!(emit.first(), Some(&Phase::Json), "{emit:?}");
+        assert!(emit[1..]
+            .iter()
+            .all(|p| [Phase::Dedup, Phase::Join, Phase::Order].contains(p)));
+        assert!(emit.windows(2).all(|w| w[0] < w[1]), "in order: {emit:?}");
+    }
 }
 
 #[test]

@@ -10,6 +10,7 @@
 
 use crate::geom::poly2::{dist, Pt2};
 use crate::geom::Rect;
+use crate::progress::{Progress, Share, Span};
 
 /// Counts of what [`dedup`] removed.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -27,6 +28,17 @@ pub struct DedupStats {
 /// The parts of `segs` (in priority order) not covered by an earlier segment's kept parts,
 /// each with the index of the segment it comes from, in input order.
 pub fn dedup(segs: &[[Pt2; 2]], eps: f64) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
+    let sink = Progress::new();
+    dedup_counted(segs, eps, Share::new(&sink, 0).span(0.0, 1.0))
+}
+
+/// [`dedup`], filling `span` as the segments are looked at, in chunks.
+pub(crate) fn dedup_counted(
+    segs: &[[Pt2; 2]],
+    eps: f64,
+    span: Span,
+) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
+    let looked = span.steps(segs.len());
     let mut index = SegmentIndex::new(segs, eps);
     let mut kept: Vec<(usize, [Pt2; 2])> = Vec::with_capacity(segs.len());
     let mut stats = DedupStats {
@@ -35,6 +47,7 @@ pub fn dedup(segs: &[[Pt2; 2]], eps: f64) -> (Vec<(usize, [Pt2; 2])>, DedupStats
     };
     let mut covers: Vec<Cover> = Vec::new();
     for (i, &[a, b]) in segs.iter().enumerate() {
+        looked.tick(i);
         let len = dist(a, b);
         if len <= eps {
             stats.dropped += 1;
@@ -73,6 +86,7 @@ pub fn dedup(segs: &[[Pt2; 2]], eps: f64) -> (Vec<(usize, [Pt2; 2])>, DedupStats
             index.insert(k.1);
         }
     }
+    span.finish();
     (kept, stats)
 }
 
@@ -269,6 +283,22 @@ impl CellGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_counted_dedup_fills_its_share_and_keeps_the_same() {
+        use crate::progress::{Phase, Stage};
+        let segs: Vec<[Pt2; 2]> = (0..3000)
+            .map(|k| {
+                let x = f64::from(k % 1500);
+                [[x, 0.0], [x + 2.0, 0.0]]
+            })
+            .collect();
+        let p = Progress::new();
+        p.enter_phase(Stage::Emit, Phase::Dedup, segs.len());
+        let counted = dedup_counted(&segs, 1e-9, Share::new(&p, segs.len()).span(0.0, 1.0));
+        assert_eq!(p.counts(), (3000, 3000));
+        assert_eq!(counted, dedup(&segs, 1e-9));
+    }
 
     fn total(pieces: &[(usize, [Pt2; 2])]) -> f64 {
         pieces.iter().map(|(_, [a, b])| dist(*a, *b)).sum()

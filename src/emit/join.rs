@@ -12,6 +12,7 @@
 use std::collections::HashMap;
 
 use crate::geom::poly2::{dist, Pt2};
+use crate::progress::{Progress, Share, Span};
 
 /// Hash key of a point: -0 and 0 are the same point.
 fn key(p: Pt2) -> (u64, u64) {
@@ -26,13 +27,33 @@ pub fn join(
     tolerance: f64,
     bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
 ) -> Vec<Vec<Pt2>> {
+    let sink = Progress::new();
+    join_counted(
+        lines,
+        tolerance,
+        bridge,
+        Share::new(&sink, 0).span(0.0, 1.0),
+    )
+}
+
+/// [`join`], filling `span`: its first half when the lines are joined at equal ends, the
+/// rest as the near pairs are tried, in chunks.
+pub(crate) fn join_counted(
+    lines: Vec<Vec<Pt2>>,
+    tolerance: f64,
+    bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
+    span: Span,
+) -> Vec<Vec<Pt2>> {
     let lines: Vec<Vec<Pt2>> = lines.into_iter().filter(|l| l.len() >= 2).collect();
     let trails = euler_trails(&lines);
-    if tolerance > 0.0 {
-        join_near(trails, tolerance, bridge)
+    span.reach(0.5);
+    let joined = if tolerance > 0.0 {
+        join_near(trails, tolerance, bridge, span.span(0.5, 1.0))
     } else {
         trails
-    }
+    };
+    span.finish();
+    joined
 }
 
 /// An edge of the end-point graph: a polyline, or a virtual edge to the pairing point.
@@ -172,11 +193,12 @@ fn split_at_virtual(
 }
 
 /// Joins stroke ends closer than `tol` where `bridge` allows, closest pairs first; a stroke
-/// is never joined to itself.
+/// is never joined to itself. Fills `span` as the pairs are tried.
 fn join_near(
     lines: Vec<Vec<Pt2>>,
     tol: f64,
     bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
+    span: Span,
 ) -> Vec<Vec<Pt2>> {
     let n = lines.len();
     // End slot 2i is line i's start, 2i + 1 its end.
@@ -220,7 +242,9 @@ fn join_near(
         }
         i
     }
-    for (_, s, t) in pairs {
+    let tried = span.steps(pairs.len());
+    for (k, (_, s, t)) in pairs.into_iter().enumerate() {
+        tried.tick(k);
         if link[s] != usize::MAX || link[t] != usize::MAX {
             continue;
         }
@@ -277,6 +301,25 @@ fn join_near(
 mod tests {
     use super::*;
     use crate::geom::poly2::polyline_length;
+
+    #[test]
+    fn a_counted_join_fills_its_share_and_joins_the_same() {
+        use crate::progress::{Phase, Stage};
+        // A row of unit pieces with small gaps: joined within the tolerance.
+        let lines: Vec<Vec<Pt2>> = (0..2500)
+            .map(|k| {
+                let x = 1.01 * f64::from(k);
+                vec![[x, 0.0], [x + 1.0, 0.0]]
+            })
+            .collect();
+        let p = Progress::new();
+        p.enter_phase(Stage::Emit, Phase::Join, lines.len());
+        let span = Share::new(&p, lines.len());
+        let counted = join_counted(lines.clone(), 0.05, &mut |_, _| true, span.span(0.0, 1.0));
+        assert_eq!(p.counts(), (2500, 2500));
+        assert_eq!(counted, join(lines, 0.05, &mut |_, _| true));
+        assert_eq!(counted.len(), 1);
+    }
 
     fn odd_points(lines: &[Vec<Pt2>]) -> usize {
         let mut deg: HashMap<(u64, u64), usize> = HashMap::new();

@@ -9,9 +9,11 @@
 //! search and kept only when the travel falls. The open path is closed into a cycle through a depot at distance 0 from
 //! everything, so a reversal can always take the shorter side. Deterministic: fixed
 //! neighbour lists, a FIFO work queue, ties to the lower index, a seeded generator for the
-//! kicks, and fixed budgets of moves and kicks.
+//! kicks, and fixed budgets of moves and kicks. Counting the work done for a progress bar
+//! (`plan_counted`) reads nothing the search decides by.
 
 use crate::geom::poly2::{dist, Pt2};
+use crate::progress::{Progress, Share, Span, Steps};
 
 use crate::geom::rng::XorShift;
 
@@ -35,6 +37,20 @@ const MAX_KICKED_STROKES: usize = 500;
 /// Longest run a kick moves.
 const KICK_RUN: usize = 30;
 
+/// Kicks between two adds to a progress count (a kick with its local search is long).
+const KICK_CHUNK: usize = 16;
+
+/// How far into [`plan_counted`]'s span the greedy order ends. This and the two below are
+/// estimates, the passes' shares of the planning time on the dashed hidden layers of ogre,
+/// bunny and nefertiti; the kicks fill the rest.
+const SPAN_GREEDY: f64 = 0.05;
+
+/// How far into [`plan_counted`]'s span the neighbour lists end.
+const SPAN_NEIGHBOURS: f64 = 0.5;
+
+/// How far into [`plan_counted`]'s span the first local search ends.
+const SPAN_SEARCH: f64 = 0.7;
+
 /// Pen-up travel of strokes drawn in order: Σ |end(i) − start(i+1)|.
 pub fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
     lines
@@ -48,6 +64,21 @@ pub fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
 
 /// The drawing order of strokes given by their (start, end) points: (stroke, reversed).
 pub fn plan(ends: &[[Pt2; 2]]) -> Vec<(usize, bool)> {
+    let sink = Progress::new();
+    plan_counted(ends, Share::new(&sink, 0).span(0.0, 1.0))
+}
+
+/// [`plan`], filling `span` as it goes: by the passes' estimated shares
+/// ([`SPAN_NEIGHBOURS`] and the others), and within them by the end slots searched, the
+/// strokes the first local search starts from and the kicks made, in chunks.
+pub(crate) fn plan_counted(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> {
+    let order = plan_steps(ends, span);
+    span.finish();
+    order
+}
+
+/// The passes of [`plan_counted`].
+fn plan_steps(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> {
     let n = ends.len();
     if n < 3 {
         return greedy(ends, 0);
@@ -59,8 +90,10 @@ pub fn plan(ends: &[[Pt2; 2]]) -> Vec<(usize, bool)> {
             d(i).total_cmp(&d(j)).then(i.cmp(&j))
         })
         .unwrap_or(0);
-    let mut t = Tour::new(ends, &greedy(ends, first));
-    t.improve();
+    let start = greedy(ends, first);
+    span.reach(SPAN_GREEDY);
+    let mut t = Tour::new_counted(ends, &start, span.span(SPAN_GREEDY, SPAN_NEIGHBOURS));
+    t.improve(span.span(SPAN_NEIGHBOURS, 1.0));
     t.order()
 }
 
@@ -91,7 +124,15 @@ struct Tour<'a> {
 }
 
 impl<'a> Tour<'a> {
+    /// The tour of strokes `ends` in `order`, not counted.
+    #[cfg(test)]
     fn new(ends: &'a [[Pt2; 2]], order: &[(usize, bool)]) -> Tour<'a> {
+        let sink = Progress::new();
+        Tour::new_counted(ends, order, Share::new(&sink, 0).span(0.0, 1.0))
+    }
+
+    /// The tour of strokes `ends` in `order`, filling `span` as its neighbour lists are made.
+    fn new_counted(ends: &'a [[Pt2; 2]], order: &[(usize, bool)], span: Span) -> Tour<'a> {
         let n = ends.len();
         let mut seq: Vec<usize> = order.iter().map(|o| o.0).collect();
         seq.push(n);
@@ -107,7 +148,7 @@ impl<'a> Tour<'a> {
             ends,
             seq,
             place,
-            near: neighbours(ends),
+            near: neighbours(ends, span),
             eps: 1e-12 * b.longer_side().max(f64::MIN_POSITIVE),
             log: None,
             queued: vec![false; n],
@@ -319,23 +360,30 @@ impl<'a> Tour<'a> {
 
     /// Local search until no move gains, then kicks: a local double bridge (two neighbouring
     /// runs of strokes swapped) followed by local search around it, kept only when the whole
-    /// brings the travel down, undone otherwise (iterated local search).
-    fn improve(&mut self) {
+    /// brings the travel down, undone otherwise (iterated local search). Fills `span`: the
+    /// first search its part up to [`SPAN_SEARCH`], the kicks the rest.
+    fn improve(&mut self, span: Span) {
         let strokes = self.ends.len();
         let mut budget = MOVES_PER_STROKE * strokes;
         let all: Vec<usize> = self.seq[..strokes].to_vec();
-        self.local_search(&all, &mut budget);
+        let search = (SPAN_SEARCH - SPAN_NEIGHBOURS) / (1.0 - SPAN_NEIGHBOURS);
+        let first = span.span(0.0, search).steps(strokes);
+        self.local_search(&all, &mut budget, Some(&first));
+        span.reach(search);
         if self.len() < 8 {
             return;
         }
         let mut rng = XorShift::new(0x5DEE_CE66_D1CE_5EED);
-        for _ in 0..KICKS_PER_STROKE * strokes.min(MAX_KICKED_STROKES) {
+        let kicks = KICKS_PER_STROKE * strokes.min(MAX_KICKED_STROKES);
+        let kicked = span.span(search, 1.0).steps(kicks);
+        for k in 0..kicks {
             if budget == 0 {
                 break;
             }
+            kicked.tick_in(k, KICK_CHUNK);
             self.log = Some(Vec::new());
             let (worse, touched) = self.kick(&mut rng);
-            let gain = self.local_search(&touched, &mut budget);
+            let gain = self.local_search(&touched, &mut budget, None);
             let log = self.log.take().unwrap_or_default();
             if gain - worse <= self.eps {
                 for &(i, j) in log.iter().rev() {
@@ -346,8 +394,9 @@ impl<'a> Tour<'a> {
     }
 
     /// Local search from the strokes in `queue` until no move gains (or the budget is
-    /// spent): the total gain.
-    fn local_search(&mut self, from: &[usize], budget: &mut usize) -> f64 {
+    /// spent): the total gain. Counts each stroke looked at in `counted`, when given (the
+    /// first search: as many steps as strokes, though strokes a move touches come again).
+    fn local_search(&mut self, from: &[usize], budget: &mut usize, counted: Option<&Steps>) -> f64 {
         let strokes = self.ends.len();
         let mut queued = std::mem::take(&mut self.queued);
         let mut queue = std::collections::VecDeque::with_capacity(from.len());
@@ -357,8 +406,13 @@ impl<'a> Tour<'a> {
             }
         }
         let mut gained = 0.0;
+        let mut looked = 0;
         while let Some(v) = queue.pop_front() {
             queued[v] = false;
+            if let Some(steps) = counted {
+                steps.tick(looked);
+                looked += 1;
+            }
             if *budget == 0 {
                 break;
             }
@@ -436,8 +490,9 @@ impl<'a> Tour<'a> {
 }
 
 /// For each end slot, the slots of the nearest ends of other strokes (up to [`NEIGHBOURS`]),
-/// nearest first; from a uniform grid, searched ring by ring.
-fn neighbours(ends: &[[Pt2; 2]]) -> Vec<Vec<usize>> {
+/// nearest first; from a uniform grid, searched ring by ring. Fills `span` as the slots are
+/// searched.
+fn neighbours(ends: &[[Pt2; 2]], span: Span) -> Vec<Vec<usize>> {
     let pts: Vec<Pt2> = ends.iter().flatten().copied().collect();
     let b = crate::geom::Rect::of_points(pts.iter());
     let side = b.longer_side();
@@ -454,7 +509,9 @@ fn neighbours(ends: &[[Pt2; 2]]) -> Vec<Vec<usize>> {
     }
     let mut out = Vec::with_capacity(pts.len());
     let mut found: Vec<(f64, usize)> = Vec::new();
+    let searched = span.steps(pts.len());
     for (s, p) in pts.iter().enumerate() {
+        searched.tick(s);
         let (cx, cy) = (coord(p[0], b.xmin), coord(p[1], b.ymin));
         found.clear();
         for r in 0..g {
@@ -488,6 +545,7 @@ fn neighbours(ends: &[[Pt2; 2]]) -> Vec<Vec<usize>> {
         found.truncate(NEIGHBOURS);
         out.push(found.iter().map(|f| f.1).collect());
     }
+    span.finish();
     out
 }
 
@@ -571,6 +629,27 @@ mod tests {
         all.sort_unstable();
         assert_eq!(all, (0..13).collect::<Vec<_>>());
         assert!(cycle_cost(&t).is_finite() && before.is_finite());
+    }
+
+    #[test]
+    fn a_counted_plan_fills_its_share_and_plans_the_same() {
+        use crate::progress::{Phase, Stage};
+        let ends = random_strokes(3000, 6);
+        let p = Progress::new();
+        p.enter_phase(Stage::Emit, Phase::Order, 3000);
+        let share = Share::new(&p, 3000);
+        // The search and its kicks fill their span by their own counts (2,000 kicks, a
+        // whole number of chunks), before any finishing.
+        let mut t = Tour::new(&ends, &greedy(&ends, 0));
+        t.improve(share.span(0.0, 0.5));
+        assert_eq!(
+            p.counts().0,
+            1500,
+            "the first search and every kick counted"
+        );
+        let counted = plan_counted(&ends, share.span(0.5, 1.0));
+        assert_eq!(p.counts(), (3000, 3000));
+        assert_eq!(counted, plan(&ends), "counting changes nothing");
     }
 
     fn cycle_cost(t: &Tour) -> f64 {

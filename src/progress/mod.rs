@@ -6,8 +6,11 @@
 //! - `cursor`: a sequential pass through a file, counted by its position in bytes.
 //! - `share`: a piece of work that fills a fixed share of a phase's count (one mesh's faces
 //!   of all the meshes a phase handles), by steps or by fractions.
+//! - `lane`: work run beside other work of its stage (the picture beside the JSON), whose
+//!   phases reach the bar once the work ahead is done.
 
 mod cursor;
+mod lane;
 mod share;
 pub mod stage;
 
@@ -16,7 +19,8 @@ use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
 pub(crate) use cursor::Cursor;
-pub(crate) use share::{Share, Span};
+pub(crate) use lane::Lane;
+pub(crate) use share::{Share, Span, Steps};
 
 pub use stage::{Phase, Stage, Unit};
 
@@ -28,6 +32,19 @@ pub const CHUNK: usize = 1024;
 #[inline]
 fn ends_chunk(i: usize) -> bool {
     (i + 1).is_multiple_of(CHUNK)
+}
+
+/// Where a phase's units done are added: the [`Progress`] itself, or a [`Lane`] that holds
+/// them until its phase is shown.
+pub(crate) trait Tally: Sync + std::fmt::Debug {
+    /// Adds `n` units done to the current phase.
+    fn add(&self, n: usize);
+}
+
+impl Tally for Progress {
+    fn add(&self, n: usize) {
+        Progress::add(self, n);
+    }
 }
 
 /// Where a run is: the current stage and phase and, for phases that count, units done of a

@@ -5,12 +5,12 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::{ends_chunk, Progress, CHUNK};
+use super::{ends_chunk, Tally, CHUNK};
 
 /// `units` of a phase's count, filled by one piece of work.
 #[derive(Debug)]
 pub(crate) struct Share<'p> {
-    progress: &'p Progress,
+    progress: &'p dyn Tally,
     units: usize,
     /// Units counted so far (may run past `units`; only `units` reach the progress).
     given: AtomicUsize,
@@ -18,7 +18,7 @@ pub(crate) struct Share<'p> {
 
 impl<'p> Share<'p> {
     /// A share of `units` of `progress`'s current phase, nothing counted yet.
-    pub(crate) fn new(progress: &'p Progress, units: usize) -> Share<'p> {
+    pub(crate) fn new(progress: &'p dyn Tally, units: usize) -> Share<'p> {
         Share {
             progress,
             units,
@@ -131,12 +131,21 @@ impl Steps<'_> {
             self.add(CHUNK);
         }
     }
+
+    /// Counts step `i` (from 0) done, adding once per `chunk` steps: for loops of few,
+    /// long steps, where [`CHUNK`] would move the bar too seldom.
+    #[inline]
+    pub(crate) fn tick_in(&self, i: usize, chunk: usize) {
+        if (i + 1).is_multiple_of(chunk) {
+            self.add(chunk);
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::progress::{Phase, Stage};
+    use crate::progress::{Phase, Progress, Stage};
 
     #[test]
     fn a_share_never_counts_past_its_units() {
@@ -169,5 +178,17 @@ mod tests {
         assert_eq!(p.counts().0, 500);
         s.span(0.5, 1.0).steps(0).add(0);
         assert_eq!(p.counts().0, 1000, "no steps: the span is done at once");
+    }
+
+    #[test]
+    fn small_chunks_move_the_count_sooner() {
+        let p = Progress::new();
+        p.enter_phase(Stage::Emit, Phase::Order, 100);
+        let s = Share::new(&p, 100);
+        let steps = s.span(0.0, 1.0).steps(40);
+        for i in 0..19 {
+            steps.tick_in(i, 8);
+        }
+        assert_eq!(p.counts().0, 40, "two chunks of 8 of 40 steps");
     }
 }

@@ -81,6 +81,12 @@ pub enum Phase {
     Clip,
     /// Emit: the JSON visible-polygon set (faces written).
     Json,
+    /// Emit: the picture's lines on the page, each piece drawn once (segments looked at).
+    Dedup,
+    /// Emit: the picture's lines joined into strokes, hidden ones dashed (segments joined).
+    Join,
+    /// Emit: each layer's pen order, the tour of its strokes (strokes).
+    Order,
 }
 
 impl Phase {
@@ -101,6 +107,9 @@ impl Phase {
             Phase::Intersections => "intersections",
             Phase::Clip => "clip",
             Phase::Json => "json",
+            Phase::Dedup => "dedup",
+            Phase::Join => "join",
+            Phase::Order => "order",
         }
     }
 
@@ -110,12 +119,14 @@ impl Phase {
             Phase::Whole => Unit::Items,
             Phase::Read | Phase::Parse => Unit::Bytes,
             Phase::Clip => Unit::Edges,
+            Phase::Dedup | Phase::Join => Unit::Segments,
+            Phase::Order => Unit::Strokes,
             _ => Unit::Faces,
         }
     }
 
     /// Every phase, in the order of the stages that have them.
-    pub(crate) const ALL: [Phase; 14] = [
+    pub(crate) const ALL: [Phase; 17] = [
         Phase::Whole,
         Phase::Read,
         Phase::Parse,
@@ -130,6 +141,9 @@ impl Phase {
         Phase::Intersections,
         Phase::Clip,
         Phase::Json,
+        Phase::Dedup,
+        Phase::Join,
+        Phase::Order,
     ];
 }
 
@@ -144,6 +158,10 @@ pub enum Unit {
     Faces,
     /// Edges of the line drawing.
     Edges,
+    /// Straight pieces of the picture's lines on the page.
+    Segments,
+    /// Strokes of the picture: what a plotter draws with its pen down.
+    Strokes,
 }
 
 impl Unit {
@@ -154,6 +172,8 @@ impl Unit {
             Unit::Bytes => "bytes",
             Unit::Faces => "faces",
             Unit::Edges => "edges",
+            Unit::Segments => "segments",
+            Unit::Strokes => "strokes",
         }
     }
 }
@@ -170,6 +190,7 @@ mod tests {
         }
         assert_eq!(Phase::Parse.unit(), Unit::Bytes);
         assert_eq!(Phase::Clip.unit().name(), "edges");
+        assert_eq!(Phase::Order.unit().name(), "strokes");
         assert_eq!(Stage::ALL.map(Stage::name)[5], "visibility");
     }
 }
