@@ -256,6 +256,74 @@ mod tests {
         assert_eq!(w.clean_piece, vec![NO_PIECE]);
     }
 
+    /// The faces' points and normals with the screen's points shared, against the faces made
+    /// alone: the same bits, whichever faces share (a mirrored instance, a warped face and a
+    /// perspective view through the scene's middle each keep some faces from sharing).
+    #[test]
+    fn shared_points_are_the_faces_own_bit_for_bit() {
+        use crate::geom::{M4, V3};
+        use crate::view::{Camera, View};
+        use std::sync::Arc;
+        let crate::scene::Content::Subobjects(mut kids) =
+            crate::scene::testing::warped_scene().root.content
+        else {
+            panic!("a group");
+        };
+        let proto = Arc::new(crate::scene::testing::cuboid(
+            "p",
+            [0., 0., 0.],
+            [1., 2., 3.],
+        ));
+        let mirror = M4::new_nonuniform_scaling(&V3::new(-1., 1., 1.));
+        kids.push(Object::instance("mirrored", proto.clone(), mirror));
+        kids.push(Object::instance(
+            "plain",
+            proto,
+            M4::new_translation(&V3::new(3., 0., 0.)),
+        ));
+        let scene = Scene::new(Object::group("", kids), "t".into());
+        let alone = WorldFaces::build(&scene);
+        let near = Camera::perspective(
+            P3::new(0., 0., 1.5),
+            P3::new(0., 0., -5.),
+            V3::y(),
+            90.,
+            0.1,
+        );
+        for camera in [Camera::three_quarter(), near.unwrap()] {
+            let view = View::new(&scene, camera);
+            let w = WorldFaces::build_counted(&scene, Some(&view.screen), &Progress::new());
+            let bits = |p: &[P3]| -> Vec<[u64; 3]> {
+                p.iter()
+                    .map(|q| q.coords.map(f64::to_bits).into())
+                    .collect()
+            };
+            let mut sharing = 0;
+            for f in 0..alone.faces.len() {
+                assert_eq!(bits(w.points_of(f)), bits(alone.points_of(f)), "face {f}");
+                assert_eq!(w.vertices_of(f), alone.vertices_of(f));
+                assert_eq!(w.faces[f].normal, alone.faces[f].normal);
+                assert_eq!(w.bbox_of(f), alone.bbox_of(f));
+                sharing += usize::from(w.faces[f].at < w.shared.len());
+            }
+            // Only the faces that do not share are copied.
+            let own: usize = (0..w.faces.len())
+                .filter(|&f| w.faces[f].at >= w.shared.len())
+                .map(|f| w.faces[f].len as usize)
+                .sum();
+            assert_eq!(w.points.len(), own);
+            // The mirrored box (reversed on screen) and the warped quad (two pieces) never
+            // share; in the three-quarter view all 24 other faces do, in the perspective
+            // view those the near plane cuts do not.
+            if camera.eye.is_none() {
+                assert_eq!((alone.faces.len(), sharing), (31, 24));
+            } else {
+                assert!(sharing > 0 && sharing < 24, "{sharing}");
+            }
+        }
+        assert!(alone.shared.is_empty());
+    }
+
     /// Two tetrahedra in one mesh, the second moved by `shift` (on every axis).
     fn two_tetrahedra(shift: f64) -> Scene {
         let tet = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]];
