@@ -10,7 +10,8 @@ use std::path::{Path, PathBuf};
 use kepler_hsr::prepare::{prepare_counted, prepare_with, PrepareOptions};
 use kepler_hsr::{
     load_scene_counted, load_scene_with, render, render_with, Camera, CameraRequest, EdgeOptions,
-    EdgeSet, LineOptions, LoadOptions, Outputs, Phase, PhaseCount, Progress, RenderOptions, Stage,
+    EdgeSet, LineOptions, LoadOptions, Outputs, Phase, PhaseCount, Progress, RenderOptions, Scene,
+    Stage,
 };
 
 /// A fresh directory for this test's files.
@@ -214,12 +215,18 @@ fn hidden_lines(outputs: Outputs) -> RenderOptions {
     }
 }
 
-#[test]
-fn the_picture_counts_its_segments_and_strokes() {
+/// The test scene loaded and prepared, with its default camera.
+fn prepared_scene() -> (Scene, Camera) {
     let path = scene_file();
     let mut scene = load_scene_with(&path, &LoadOptions::default(), &mut Vec::new()).unwrap();
     prepare_with(&mut scene, &PrepareOptions::default());
     let camera = Camera::for_scene(&scene, &CameraRequest::default()).unwrap();
+    (scene, camera)
+}
+
+#[test]
+fn the_picture_counts_its_segments_and_strokes() {
+    let (scene, camera) = prepared_scene();
     let ropts = hidden_lines(Outputs {
         svg: true,
         png: true,
@@ -255,10 +262,7 @@ fn the_picture_counts_its_segments_and_strokes() {
 
 #[test]
 fn the_picture_beside_the_json_shows_after_it() {
-    let path = scene_file();
-    let mut scene = load_scene_with(&path, &LoadOptions::default(), &mut Vec::new()).unwrap();
-    prepare_with(&mut scene, &PrepareOptions::default());
-    let camera = Camera::for_scene(&scene, &CameraRequest::default()).unwrap();
+    let (scene, camera) = prepared_scene();
     let ropts = hidden_lines(Outputs {
         json: true,
         svg: true,
