@@ -7,7 +7,7 @@
 
 use rayon::prelude::*;
 
-use crate::geom::box_pairs::{filter_map_pairs_counted, overlap, Bounds3};
+use crate::geom::box_pairs::{filter_map_pairs_of, overlap, Bounds3};
 use crate::geom::{newell, orient3d_refs, P3, V3};
 use crate::progress::{Progress, Share};
 use crate::scene::FaceId;
@@ -25,8 +25,8 @@ pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sy
 /// that can cross nothing set aside first, then the search of the pairs left.
 ///
 /// What is kept per face while the pairs are searched is small (its id, the offsets of its
-/// plane's reference corners, whether it is flat, its box): at ten million faces this
-/// stage sets the peak memory of a render.
+/// plane's reference corners, whether it is flat; its box is remade when needed): at ten
+/// million faces this stage sets the peak memory of a render.
 pub(crate) fn intersection_edges_counted(
     world: &WorldFaces,
     keep: impl Fn(FaceId) -> bool + Sync,
@@ -59,7 +59,6 @@ pub(crate) fn intersection_edges_counted(
     let refs: Vec<[u32; 3]> = left.iter().map(|&k| cand_refs[k]).collect();
     let flat: Vec<bool> = left.iter().map(|&k| cand_flat[k]).collect();
     drop((left, cand, cand_refs, cand_flat));
-    let boxes: Vec<_> = ids.iter().map(|&f| world.bbox_of(f as usize)).collect();
     // The faces of many corners, by position, with their corners sorted (so that a pair's
     // adjacency costs what the smaller face has, not the product).
     let sorted: Vec<(u32, Vec<u32>)> = (0..ids.len() as u32)
@@ -90,8 +89,10 @@ pub(crate) fn intersection_edges_counted(
     // Results come in ascending (position, position) pair order, so in (face, face) order:
     // fixed whatever the thread count.
     share.reach(0.2);
-    let found = filter_map_pairs_counted(
-        &boxes,
+    // The boxes are remade from the corners when the grid asks (48 bytes a face not held).
+    let found = filter_map_pairs_of(
+        ids.len(),
+        |i| world.bbox_of(ids[i as usize] as usize),
         |i, j| {
             let (i, j) = (i as usize, j as usize);
             let (lo, hi) = (ids[i] as usize, ids[j] as usize);

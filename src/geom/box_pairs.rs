@@ -42,10 +42,20 @@ pub(crate) fn filter_map_pairs_counted<T: Send>(
     f: impl Fn(u32, u32) -> Option<T> + Sync,
     span: Span,
 ) -> Vec<T> {
-    let ids: Vec<u32> = (0..boxes.len() as u32)
-        .filter(|&i| valid(&boxes[i as usize]))
-        .collect();
-    let Some(grid) = Grid::fit(boxes, &ids) else {
+    filter_map_pairs_of(boxes.len(), |i| boxes[i as usize], f, span)
+}
+
+/// [`filter_map_pairs_counted`] of the `n` boxes `box_of(0..n)`, made when needed instead of
+/// kept: for callers whose boxes cost less to remake than to hold (a face's box from its
+/// corners, at ten million faces). `box_of` must give the same box every time.
+pub(crate) fn filter_map_pairs_of<T: Send>(
+    n: usize,
+    box_of: impl Fn(u32) -> Bounds3 + Sync,
+    f: impl Fn(u32, u32) -> Option<T> + Sync,
+    span: Span,
+) -> Vec<T> {
+    let ids: Vec<u32> = (0..n as u32).filter(|&i| valid(&box_of(i))).collect();
+    let Some(grid) = Grid::fit(&box_of, n, &ids) else {
         return Vec::new();
     };
     // Entries (cell key, box) packed in one word, key above box: sorting the words sorts
@@ -55,11 +65,11 @@ pub(crate) fn filter_map_pairs_counted<T: Send>(
     // The cell of each box's least corner: the cell of the least corner of two boxes'
     // intersection is their componentwise max (cells are monotone in the coordinates), so
     // no pair needs a float-to-cell conversion.
-    let mut lo_cell = vec![[0u16; 3]; boxes.len()];
+    let mut lo_cell = vec![[0u16; 3]; n];
     let entered = span.span(0.0, 0.1).steps(ids.len());
     for (k, &i) in ids.iter().enumerate() {
         entered.tick(k);
-        let [lo, hi] = grid.cell_range(&boxes[i as usize]);
+        let [lo, hi] = grid.cell_range(&box_of(i));
         lo_cell[i as usize] = lo.map(|c| c as u16);
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
@@ -78,7 +88,8 @@ pub(crate) fn filter_map_pairs_counted<T: Send>(
     let runs = runs(&entries, shift);
     span.reach(0.2);
     let cells = span.span(0.2, 0.95).steps(runs.len());
-    let (f, grid, lo_cell, entries, cells) = (&f, &grid, &lo_cell, &entries, &cells);
+    let (f, box_of, grid, lo_cell, entries, cells) =
+        (&f, &box_of, &grid, &lo_cell, &entries, &cells);
     let id = |e: u64| (e & ((1 << shift) - 1)) as u32;
     // The pairs first met in one cell (a run of equal keys).
     let in_cell = move |r: &std::ops::Range<usize>| {
@@ -87,7 +98,7 @@ pub(crate) fn filter_map_pairs_counted<T: Send>(
         (0..cell.len()).flat_map(move |a| {
             (a + 1..cell.len()).filter_map(move |b| {
                 let (i, j) = (id(cell[a]), id(cell[b]));
-                let (bi, bj) = (&boxes[i as usize], &boxes[j as usize]);
+                let (bi, bj) = (&box_of(i), &box_of(j));
                 let (ci, cj) = (&lo_cell[i as usize], &lo_cell[j as usize]);
                 if !overlap(bi, bj)
                     || grid.key(std::array::from_fn(|k| u64::from(ci[k].max(cj[k])))) != key
@@ -163,13 +174,13 @@ impl Grid {
     /// cells), coarsened until the boxes enter about
     /// `MAX_CELLS_PER_BOX` cells each on average, and until a cell's coordinates fit 16 bits
     /// and its key and a box index fit one 64-bit entry (a coarser grid finds the same pairs).
-    fn fit(boxes: &[Bounds3], ids: &[u32]) -> Option<Grid> {
-        let first = boxes[*ids.first()? as usize];
+    fn fit(box_of: &impl Fn(u32) -> Bounds3, n: usize, ids: &[u32]) -> Option<Grid> {
+        let first = box_of(*ids.first()?);
         let mut lo = first[0];
         let mut hi = first[1];
         let mut mean = 0.0;
         for &i in ids {
-            let b = &boxes[i as usize];
+            let b = &box_of(i);
             for k in 0..3 {
                 lo[k] = lo[k].min(b[0][k]);
                 hi[k] = hi[k].max(b[1][k]);
@@ -189,7 +200,7 @@ impl Grid {
                 origin: lo,
                 inv_cell: 1.0 / cell,
                 dims: std::array::from_fn(|k| ((hi[k] - lo[k]) / cell).floor() as u64 + 1),
-                id_bits: bits(boxes.len() as u64 - 1),
+                id_bits: bits(n as u64 - 1),
             };
             let keys = g.dims.iter().try_fold(1u64, |n, &d| n.checked_mul(d));
             let packs = g.dims.iter().all(|&d| d <= 1 << 16)
@@ -201,7 +212,7 @@ impl Grid {
             let cells: f64 = ids
                 .iter()
                 .map(|&i| {
-                    let [a, b] = g.cell_range(&boxes[i as usize]);
+                    let [a, b] = g.cell_range(&box_of(i));
                     (0..3).map(|k| (b[k] - a[k] + 1) as f64).product::<f64>()
                 })
                 .sum();
