@@ -158,6 +158,9 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         let t = Instant::now();
         let prep = a.hierarchy.prepare();
         kepler_hsr::prepare::prepare_counted(&mut scene, &prep, Some(&progress));
+        if scene.face_count() >= crate::memory::TRIM_ABOVE_FACES {
+            crate::memory::trim();
+        }
         Ok((scene, load, t.elapsed()))
     })?;
     if !a.quiet {
