@@ -96,12 +96,14 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
         let cell = &entries[r.clone()];
         let key = cell[0] >> shift;
         (0..cell.len()).flat_map(move |a| {
+            let i = id(cell[a]);
+            let (bi, ci) = (box_of(i), lo_cell[i as usize]);
             (a + 1..cell.len()).filter_map(move |b| {
-                let (i, j) = (id(cell[a]), id(cell[b]));
-                let (bi, bj) = (&box_of(i), &box_of(j));
-                let (ci, cj) = (&lo_cell[i as usize], &lo_cell[j as usize]);
-                if !overlap(bi, bj)
-                    || grid.key(std::array::from_fn(|k| u64::from(ci[k].max(cj[k])))) != key
+                let j = id(cell[b]);
+                let cj = &lo_cell[j as usize];
+                // The cell test first: it needs no box (boxes may be remade on each call).
+                if grid.key(std::array::from_fn(|k| u64::from(ci[k].max(cj[k])))) != key
+                    || !overlap(&bi, &box_of(j))
                 {
                     return None;
                 }
