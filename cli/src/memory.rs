@@ -7,8 +7,10 @@
 //! render frees arrays of many megabytes at every stage, so after the first stages nearly
 //! everything comes from the heap, and the heap's high-water mark, not the live data, sets
 //! the peak: on a 600k-face terrain 430 MB resident for 326 MB live at most. A fixed
-//! threshold of 4 MiB gives 360 MB there, and 10M faces the same share; blocks under it
-//! (almost every allocation) are served as before.
+//! threshold of 4 MiB gives 360 MB there; blocks under it (almost every allocation) are
+//! served as before. At 10M faces the arrays are far above 32 MiB and were mapped anyway
+//! (6.30 → 6.26 GB): there the holes are the small blocks load and prepare free, which
+//! [`trim`] hands back.
 
 /// Blocks of at least this many bytes are mapped on their own.
 pub const BIG_BLOCK: usize = 4 << 20;
