@@ -150,8 +150,9 @@ pub(crate) fn mesh_edges_counted(
             .unwrap_or(world.faces.len());
         let at = |f: usize| FACING_SHARE + (1.0 - FACING_SHARE) * f as f64 / all;
         let span = share.span(at(start), at(end));
-        let half = half_edges(world, start, end);
+        // The leaf's first corner: half-edges name their corners from it.
         let base = world.faces[start].first;
+        let half = half_edges(world, start, end, base);
         let edge = |g: Range<u32>| {
             let adj = &half[g.start as usize..g.end as usize];
             let kind = classify(adj, world, base, &facing, cos_crease);
@@ -207,9 +208,8 @@ const FACING_SHARE: f64 = 0.1;
 const PARALLEL_ABOVE: usize = 4096;
 
 /// Every traversal of an edge by the faces `start..end` (one leaf), grouped by edge, each
-/// group in face order.
-fn half_edges(world: &WorldFaces, start: usize, end: usize) -> Vec<HalfEdge> {
-    let base = world.faces.get(start).map_or(0, |f| f.first);
+/// group in face order; `base` is the leaf's first corner in [`WorldFaces::vertices`].
+fn half_edges(world: &WorldFaces, start: usize, end: usize, base: usize) -> Vec<HalfEdge> {
     let corners = world.faces[start..end].iter().map(|f| f.len as usize).sum();
     let mut half = Vec::with_capacity(corners);
     for f in start..end {

@@ -70,12 +70,8 @@ pub(crate) fn intersection_edges_counted(
         })
         .collect();
     let sorted_of = |i: usize| -> Option<&[u32]> {
-        let big = faces[ids[i] as usize].len as usize > SORT_ABOVE;
-        big.then(|| {
-            let k = sorted.binary_search_by_key(&(i as u32), |e| e.0);
-            k.ok().map(|k| sorted[k].1.as_slice())
-        })
-        .flatten()
+        let k = sorted.binary_search_by_key(&(i as u32), |e| e.0).ok()?;
+        Some(sorted[k].1.as_slice())
     };
     let side = |i: usize| {
         let f = ids[i] as usize;

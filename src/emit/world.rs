@@ -71,8 +71,8 @@ impl<'s> WorldFaces<'s> {
         screen: Option<&'s ScreenFaces>,
         progress: &Progress,
     ) -> WorldFaces<'s> {
-        let corners = scene
-            .leaves()
+        let leaves = scene.leaves();
+        let corners = leaves
             .iter()
             .flat_map(|l| &l.mesh.faces)
             .map(|f| f.vertices.len())
@@ -87,7 +87,6 @@ impl<'s> WorldFaces<'s> {
         let mut next_piece = 0;
         // Each mesh's pieces once, however many instances place it.
         let mut pieces_of: HashMap<*const Mesh, Pieces> = HashMap::new();
-        let leaves = scene.leaves();
         for (li, leaf) in leaves.iter().enumerate() {
             clean_pieces(
                 leaf.mesh,
@@ -158,15 +157,10 @@ impl<'s> WorldFaces<'s> {
         }
     }
 
-    /// The run of `len` points from `at` in the point space.
-    fn run(&self, at: usize, len: u32) -> &[P3] {
-        run(self.shared, &self.points, at, len)
-    }
-
     /// The world points of face `f`, in mesh order.
     pub fn points_of(&self, f: usize) -> &[P3] {
         let face = &self.faces[f];
-        self.run(face.at, face.len)
+        run(self.shared, &self.points, face.at, face.len)
     }
 
     /// The vertex indices of face `f` in its leaf mesh.
