@@ -83,6 +83,10 @@ pub enum Error {
     /// `scene.kdl:12:5 -> part.kdl:3:1 -> mesh.obj:88:1: ...`.
     #[error("{0} -> {1}")]
     Via(Location, Box<Error>),
+    /// An output the caller handed over as a writer could not be written (the caller knows
+    /// its name).
+    #[error("{0}")]
+    Write(std::io::Error),
 }
 
 impl Error {
@@ -110,7 +114,7 @@ impl Error {
         match self {
             Error::Io(l, _) | Error::Parse(l, _) | Error::Invalid(l, _) => Some(l),
             Error::Via(_, inner) => inner.location(),
-            Error::Usage(_) => None,
+            Error::Usage(_) | Error::Write(_) => None,
         }
     }
 }

@@ -43,7 +43,7 @@ pub use emit::{Drawing, EdgeKind, EdgeOptions, EdgeSet, LineOptions};
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
 pub use load::{load_scene, load_scene_counted, load_scene_with, LoadOptions};
 pub use pipeline::{
-    render, render_with, Outputs, PictureOptions, RenderOptions, RenderStats, Rendered,
+    render, render_to, render_with, Outputs, PictureOptions, RenderOptions, RenderStats, Rendered,
 };
 pub use prepare::prepare;
 pub use progress::{Phase, PhaseCount, Progress, Stage, Unit};

@@ -3,16 +3,17 @@
 //! and progress. Every command, the benchmarks and the tests render through [`render`].
 
 use std::borrow::Cow;
+use std::io::Write;
 use std::time::{Duration, Instant};
 
-use crate::emit::json::to_json_counted;
+use crate::emit::json::{to_json_counted, write_json_counted};
 use crate::emit::lines::{draw_counted, Drawing, LineOptions};
 use crate::emit::marks::face_marks;
 use crate::emit::picture::{Picture, PlotStats};
 use crate::emit::plot::picture_counted;
 use crate::emit::png::to_png;
 use crate::emit::svg::to_svg;
-use crate::error::{Location, Result, Warning};
+use crate::error::{Error, Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
 use crate::progress::{Lane, Phase};
 pub use crate::progress::{Progress, Stage};
@@ -108,7 +109,7 @@ pub struct Rendered<'s> {
     pub visibility: Visibility,
     /// The line drawing, when an output needs it.
     pub drawing: Option<Drawing>,
-    /// The JSON set, when asked for.
+    /// The JSON set, when asked for (and not written out by [`render_to`]).
     pub json: Option<String>,
     /// The SVG drawing, when asked for.
     pub svg: Option<String>,
@@ -131,6 +132,23 @@ impl Rendered<'_> {
     fn to_json_counted(&self, lines: bool, progress: &Progress) -> String {
         let lines = self.drawing.as_ref().filter(|_| lines).map(Drawing::lines);
         to_json_counted(&self.view, &self.visibility, lines.as_ref(), progress)
+    }
+
+    /// [`Rendered::to_json`] written to `w` as it is made, never held whole.
+    pub fn write_json(&self, lines: bool, w: &mut dyn Write) -> Result<()> {
+        self.write_json_counted(lines, w, &Progress::new())
+    }
+
+    /// [`Rendered::write_json`], counting the faces written in `progress`.
+    fn write_json_counted(
+        &self,
+        lines: bool,
+        w: &mut dyn Write,
+        progress: &Progress,
+    ) -> Result<()> {
+        let lines = self.drawing.as_ref().filter(|_| lines).map(Drawing::lines);
+        write_json_counted(&self.view, &self.visibility, lines.as_ref(), w, progress)
+            .map_err(Error::Write)
     }
 
     /// The picture both SVG and PNG draw (texture markings included).
@@ -185,6 +203,31 @@ pub fn render_with<'s>(
     camera: &Camera,
     opts: &RenderOptions,
     progress: Option<&Progress>,
+) -> Result<Rendered<'s>> {
+    render_json_to(scene, camera, opts, progress, None)
+}
+
+/// [`render_with`], the JSON (when `opts.outputs.json`) written to `json` as it is made
+/// instead of kept in [`Rendered::json`]: the text of a big scene (over a gigabyte at ten
+/// million faces) is never held whole. The bytes are those [`render_with`] keeps. A write
+/// that fails ends the render with [`Error::Write`].
+pub fn render_to<'s>(
+    scene: &'s Scene,
+    camera: &Camera,
+    opts: &RenderOptions,
+    progress: Option<&Progress>,
+    json: &mut (dyn Write + Send),
+) -> Result<Rendered<'s>> {
+    render_json_to(scene, camera, opts, progress, Some(json))
+}
+
+/// [`render_with`] and [`render_to`]: the JSON kept (`json` None) or written to `json`.
+fn render_json_to<'s>(
+    scene: &'s Scene,
+    camera: &Camera,
+    opts: &RenderOptions,
+    progress: Option<&Progress>,
+    json: Option<&mut (dyn Write + Send)>,
 ) -> Result<Rendered<'s>> {
     let sink = Progress::new();
     let progress = progress.unwrap_or(&sink);
@@ -270,13 +313,17 @@ pub fn render_with<'s>(
     };
     stats.timed(Stage::Emit, || -> Result<()> {
         // The JSON and the picture read the same solved view: made side by side.
-        let (json, pic) = rayon::join(
+        let (kept, pic) = rayon::join(
             || {
-                let json = out
-                    .json
-                    .then(|| r.to_json_counted(out.json_lines, progress));
+                let kept = match (out.json, json) {
+                    (false, _) => Ok(None),
+                    (true, None) => Ok(Some(r.to_json_counted(out.json_lines, progress))),
+                    (true, Some(w)) => r
+                        .write_json_counted(out.json_lines, w, progress)
+                        .map(|()| None),
+                };
                 lane.release();
-                json
+                kept
             },
             || {
                 pictures
@@ -284,7 +331,7 @@ pub fn render_with<'s>(
                     .transpose()
             },
         );
-        r.json = json;
+        r.json = kept?;
         if let Some(pic) = pic? {
             if out.svg {
                 r.svg = Some(to_svg(&pic));
@@ -299,4 +346,33 @@ pub fn render_with<'s>(
     stats.plot = plot;
     r.stats = stats;
     Ok(r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn render_to_writes_the_bytes_render_with_keeps() {
+        let scene = crate::load_scene("scenes/town.kdl".as_ref(), &mut Vec::new()).unwrap();
+        let opts = RenderOptions {
+            outputs: Outputs {
+                json: true,
+                svg: true,
+                ..Outputs::default()
+            },
+            ..RenderOptions::default()
+        };
+        let camera = Camera::three_quarter();
+        let kept = render_with(&scene, &camera, &opts, None).unwrap();
+        let mut w: Vec<u8> = Vec::new();
+        let written = render_to(&scene, &camera, &opts, None, &mut w).unwrap();
+        assert_eq!(written.json, None);
+        assert_eq!(Some(String::from_utf8(w).unwrap()), kept.json);
+        assert_eq!(written.svg, kept.svg);
+        // A writer that takes nothing ends the render with the write's error.
+        let mut full: &mut [u8] = &mut [];
+        let e = render_to(&scene, &camera, &opts, None, &mut full).unwrap_err();
+        assert!(matches!(e, Error::Write(_)), "{e}");
+    }
 }

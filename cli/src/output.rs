@@ -1,27 +1,85 @@
 //! Output files written atomically: a failed or interrupted run never leaves a truncated file
-//! in place of a good one. Every file the commands write goes through [`write`].
+//! in place of a good one. Every file the commands write goes through [`Staged`] ([`write`]
+//! for bytes made whole).
 
 use std::ffi::OsString;
+use std::fs::File;
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Result};
 
-/// Writes `bytes` to `path`, naming it in the error. A regular file (or a new one) is written
-/// to a temporary file beside it (same directory, so the same file system), which then
-/// replaces it by a rename; a path that exists and is not a regular file (`/dev/stdout`, a
-/// pipe) is written directly, as it cannot be replaced.
-pub(crate) fn write(path: &PathBuf, bytes: impl AsRef<[u8]>) -> Result<()> {
-    let named = |e: std::io::Error| anyhow!("{}: {e}", path.display());
-    let special = std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir());
-    if special {
-        return std::fs::write(path, bytes).map_err(named);
+/// Writes `bytes` to `path`, naming it in the error, through a [`Staged`] file.
+pub(crate) fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
+    let mut f = Staged::create(path)?;
+    f.write_all(bytes.as_ref()).map_err(|e| f.named(e))?;
+    f.commit()
+}
+
+/// An output file being written. A regular file (or a new one) is written to a temporary
+/// file beside it (same directory, so the same file system), which replaces it by a rename
+/// on [`Staged::commit`] and is removed when dropped uncommitted; a path that exists and is
+/// not a regular file (`/dev/stdout`, a pipe) is written directly, as it cannot be replaced.
+pub(crate) struct Staged {
+    path: PathBuf,
+    /// The temporary file, until committed (None for a device).
+    tmp: Option<PathBuf>,
+    file: BufWriter<File>,
+}
+
+impl Staged {
+    /// Opens the output `path` (its temporary beside it), naming it in the error.
+    pub(crate) fn create(path: &Path) -> Result<Staged> {
+        let special = std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir());
+        let tmp = (!special).then(|| temporary_beside(path)).transpose()?;
+        let at = tmp.as_deref().unwrap_or(path);
+        let file = File::create(at).map_err(|e| anyhow!("{}: {e}", path.display()))?;
+        Ok(Staged {
+            path: path.to_path_buf(),
+            tmp,
+            file: BufWriter::with_capacity(1 << 16, file),
+        })
     }
-    let tmp = temporary_beside(path)?;
-    let done = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
-    done.map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        named(e)
-    })
+
+    /// `e` as an error of this output, named by its path.
+    pub(crate) fn named(&self, e: impl std::fmt::Display) -> anyhow::Error {
+        anyhow!("{}: {e}", self.path.display())
+    }
+
+    /// Finishes the file: everything written out, then put in place of the old one.
+    pub(crate) fn commit(mut self) -> Result<()> {
+        self.file.flush().map_err(|e| self.named(e))?;
+        if let Some(tmp) = self.tmp.take() {
+            if let Err(e) = std::fs::rename(&tmp, &self.path) {
+                let _ = std::fs::remove_file(&tmp);
+                return Err(self.named(e));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Write for Staged {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.file.write(buf)
+    }
+
+    fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
+        self.file.write_all(buf)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.file.flush()
+    }
+}
+
+impl Drop for Staged {
+    /// An uncommitted file leaves nothing behind.
+    fn drop(&mut self) {
+        if let Some(tmp) = self.tmp.take() {
+            let _ = std::fs::remove_file(tmp);
+        }
+    }
 }
 
 /// A hidden temporary name beside `path`, unique to this process: `.NAME.kepler-PID.tmp`.

@@ -11,11 +11,12 @@ use kepler_hsr::geom::V3;
 use kepler_hsr::scene::{CameraSpec, Scene};
 use kepler_hsr::view::{turntable, turntable_frame};
 use kepler_hsr::{
-    render_with, Camera, EdgeOptions, EdgeSet, LineOptions, Outputs, Progress, RenderOptions,
-    Rendered, Stage,
+    render_to, render_with, Camera, EdgeOptions, EdgeSet, LineOptions, Outputs, Progress,
+    RenderOptions, Rendered, Stage,
 };
 
 use super::camera_args::parse_vec3;
+use super::output::Staged;
 use super::plot_args::PlotArgs;
 use super::progress::follow;
 use super::views::{numbered, read_views};
@@ -172,24 +173,37 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         let mut opts = opts.clone();
         opts.outputs.picture.frame = frame;
         let progress = Progress::new();
-        let r = follow(&progress, start, PROGRESS_AFTER, || {
-            render_with(&scene, camera, &opts, Some(&progress))
+        let name = |path: &PathBuf| match many {
+            true => numbered(path, k + 1, cameras.len()),
+            false => path.clone(),
+        };
+        // The JSON goes to its file as it is made (a big scene's is never held whole).
+        let mut json = a
+            .json
+            .as_ref()
+            .map(|p| Staged::create(&name(p)))
+            .transpose()?;
+        let r = follow(&progress, start, PROGRESS_AFTER, || match json.as_mut() {
+            Some(f) => render_to(&scene, camera, &opts, Some(&progress), f),
+            None => render_with(&scene, camera, &opts, Some(&progress)),
+        })
+        .map_err(|e| match (e, &json) {
+            (kepler_hsr::Error::Write(e), Some(f)) => f.named(e),
+            (e, _) => e.into(),
         })?;
         if !a.quiet {
             print_warnings(&r.warnings);
         }
         let t = Instant::now();
+        if let Some(f) = json {
+            f.commit()?;
+        }
         for (path, bytes) in [
-            (&a.json, r.json.as_ref().map(String::as_bytes)),
             (&a.svg, r.svg.as_ref().map(String::as_bytes)),
             (&a.png, r.png.as_deref()),
         ] {
             if let (Some(path), Some(bytes)) = (path, bytes) {
-                if many {
-                    write(&numbered(path, k + 1, cameras.len()), bytes)?;
-                } else {
-                    write(path, bytes)?;
-                }
+                write(&name(path), bytes)?;
             }
         }
         let written = t.elapsed();

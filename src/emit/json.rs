@@ -5,6 +5,7 @@
 //! also carries `near` (the near plane, the least w' kept by clipping) and `eye`.
 
 use std::fmt::Write as _;
+use std::io;
 
 use crate::geom::poly2::Pt2;
 use crate::progress::Progress;
@@ -69,30 +70,98 @@ pub(crate) fn to_json_counted(
     lines: Option<&Lines>,
     progress: &Progress,
 ) -> String {
-    let mut s = String::with_capacity(256 + vis.solved_count() * 128);
-    s.push_str("{\"format\":\"kepler-visible/1\",\n\"camera\":{\"projection\":");
-    s.push_str(match view.camera.projection {
-        Projection::Orthographic => "\"orthographic\"",
-        Projection::Perspective => "\"perspective\"",
-    });
-    s.push_str(",\"matrix\":[");
-    for r in 0..4 {
-        if r > 0 {
-            s.push(',');
-        }
-        let row: Vec<f64> = (0..4).map(|c| view.camera.matrix[(r, c)]).collect();
-        list(&mut s, &row, |s, x| s.push_str(&num(*x)));
+    let mut out = Sink {
+        s: String::with_capacity(256 + vis.solved_count() * 128),
+        to: None,
+        spill_at: usize::MAX,
+    };
+    match json_into(&mut out, view, vis, lines, progress) {
+        Ok(()) => out.s,
+        Err(_) => unreachable!("a string takes every write"),
     }
-    s.push(']');
-    if view.camera.projection == Projection::Perspective {
-        // The near plane (least w') and the eye: the clipping reproduces from the file alone.
-        let _ = write!(s, ",\"near\":{}", num(view.camera.near));
-        if let Some(e) = view.camera.eye {
-            s.push_str(",\"eye\":");
-            list(&mut s, &[e.x, e.y, e.z], |s, x| s.push_str(&num(*x)));
+}
+
+/// [`to_json`] written to `w` as it is made, in pieces of about [`SPILL_AT`] bytes: the
+/// document is never held whole (ten million faces make over a gigabyte of text). The bytes
+/// are those of [`to_json`].
+pub fn write_json(
+    view: &View,
+    vis: &Visibility,
+    lines: Option<&Lines>,
+    w: &mut dyn io::Write,
+) -> io::Result<()> {
+    write_json_counted(view, vis, lines, w, &Progress::new())
+}
+
+/// [`write_json`], counting in `progress` the solved faces as they are written.
+pub(crate) fn write_json_counted(
+    view: &View,
+    vis: &Visibility,
+    lines: Option<&Lines>,
+    w: &mut dyn io::Write,
+    progress: &Progress,
+) -> io::Result<()> {
+    write_json_spilling(view, vis, lines, w, progress, SPILL_AT)
+}
+
+/// [`write_json_counted`], writing whenever `spill_at` bytes are gathered.
+fn write_json_spilling(
+    view: &View,
+    vis: &Visibility,
+    lines: Option<&Lines>,
+    w: &mut dyn io::Write,
+    progress: &Progress,
+    spill_at: usize,
+) -> io::Result<()> {
+    let mut out = Sink {
+        s: String::with_capacity(spill_at.min(SPILL_AT) + (SPILL_AT >> 4)),
+        to: Some(w),
+        spill_at,
+    };
+    json_into(&mut out, view, vis, lines, progress)?;
+    out.spill_all()
+}
+
+/// How much text [`write_json`] gathers before it writes.
+pub const SPILL_AT: usize = 1 << 20;
+
+/// Where the text goes: all kept in `s`, or `s` written to `to` whenever it is long.
+struct Sink<'w> {
+    s: String,
+    to: Option<&'w mut dyn io::Write>,
+    /// How much text is gathered before it is written.
+    spill_at: usize,
+}
+
+impl Sink<'_> {
+    /// Writes out the text gathered so far once it is `spill_at` long (kept when in memory).
+    fn spill(&mut self) -> io::Result<()> {
+        if self.s.len() >= self.spill_at {
+            self.spill_all()?;
         }
+        Ok(())
     }
-    s.push_str("},\n\"faces\":[");
+
+    /// Writes out all the text gathered so far (kept when in memory).
+    fn spill_all(&mut self) -> io::Result<()> {
+        if let Some(w) = self.to.as_mut() {
+            w.write_all(self.s.as_bytes())?;
+            self.s.clear();
+        }
+        Ok(())
+    }
+}
+
+/// The document, into `out` piece by piece.
+fn json_into(
+    out: &mut Sink,
+    view: &View,
+    vis: &Visibility,
+    lines: Option<&Lines>,
+    progress: &Progress,
+) -> io::Result<()> {
+    head(&mut out.s, view);
+    out.s.push_str("},\n\"faces\":[");
     // Each leaf's path as a JSON string, once.
     let paths: Vec<String> = view
         .screen
@@ -106,6 +175,7 @@ pub(crate) fn to_json_counted(
         if f.visible.is_empty() {
             continue;
         }
+        let s = &mut out.s;
         s.push_str(if first { "\n" } else { ",\n" });
         first = false;
         let leaf = view.screen.leaf_index_of_face(id);
@@ -114,24 +184,63 @@ pub(crate) fn to_json_counted(
             "{{\"id\":{id},\"object\":{},\"area\":",
             paths[leaf as usize]
         );
-        write_num(&mut s, f.area);
+        write_num(s, f.area);
         s.push_str(",\"visible\":");
-        list(&mut s, &f.visible, |s, poly| {
-            list(s, poly, |s, r| ring(s, r))
-        });
+        list(s, &f.visible, |s, poly| list(s, poly, |s, r| ring(s, r)));
         s.push('}');
+        out.spill()?;
     }
     progress.tick_rest(vis.solved_count());
-    s.push_str("\n]");
+    out.s.push_str("\n]");
     if let Some(l) = lines {
-        s.push_str(",\n\"lines\":{\"visible\":");
-        list(&mut s, &l.visible, |s, r| ring(s, r));
-        s.push_str(",\n\"hidden\":");
-        list(&mut s, &l.hidden, |s, r| ring(s, r));
-        s.push('}');
+        out.s.push_str(",\n\"lines\":{\"visible\":");
+        rings(out, &l.visible)?;
+        out.s.push_str(",\n\"hidden\":");
+        rings(out, &l.hidden)?;
+        out.s.push('}');
     }
-    s.push_str("}\n");
-    s
+    out.s.push_str("}\n");
+    Ok(())
+}
+
+/// The format tag and the camera, up to the camera's closing brace.
+fn head(s: &mut String, view: &View) {
+    s.push_str("{\"format\":\"kepler-visible/1\",\n\"camera\":{\"projection\":");
+    s.push_str(match view.camera.projection {
+        Projection::Orthographic => "\"orthographic\"",
+        Projection::Perspective => "\"perspective\"",
+    });
+    s.push_str(",\"matrix\":[");
+    for r in 0..4 {
+        if r > 0 {
+            s.push(',');
+        }
+        let row: Vec<f64> = (0..4).map(|c| view.camera.matrix[(r, c)]).collect();
+        list(s, &row, |s, x| s.push_str(&num(*x)));
+    }
+    s.push(']');
+    if view.camera.projection == Projection::Perspective {
+        // The near plane (least w') and the eye: the clipping reproduces from the file alone.
+        let _ = write!(s, ",\"near\":{}", num(view.camera.near));
+        if let Some(e) = view.camera.eye {
+            s.push_str(",\"eye\":");
+            list(s, &[e.x, e.y, e.z], |s, x| s.push_str(&num(*x)));
+        }
+    }
+}
+
+/// A list of polylines, spilled polyline by polyline (as [`list`] of [`ring`]s).
+fn rings(out: &mut Sink, items: &[Vec<Pt2>]) -> io::Result<()> {
+    out.s.push('[');
+    for (i, r) in items.iter().enumerate() {
+        if i > 0 {
+            out.s.push(',');
+        }
+        ring(&mut out.s, r);
+        out.spill()?;
+    }
+    out.s.push(']');
+    Ok(())
 }
 
 /// A JSON string literal.
@@ -153,5 +262,76 @@ mod tests {
             assert_eq!(num(x).parse::<f64>().unwrap(), x);
         }
         assert_eq!(json_string("a\"b"), "\"a\\\"b\"");
+    }
+
+    /// The three scenes rendered with hidden lines (so that the JSON has `lines`).
+    fn rendered() -> Vec<crate::Rendered<'static>> {
+        ["polyhedra", "town", "assembly"]
+            .into_iter()
+            .map(|name| {
+                let path = format!("scenes/{name}.kdl");
+                let scene = crate::load_scene(path.as_ref(), &mut Vec::new()).unwrap();
+                let scene: &'static crate::Scene = Box::leak(Box::new(scene));
+                let opts = crate::RenderOptions {
+                    lines: crate::LineOptions {
+                        hidden: true,
+                        ..Default::default()
+                    },
+                    outputs: crate::Outputs {
+                        drawing: true,
+                        ..Default::default()
+                    },
+                    ..Default::default()
+                };
+                crate::render(scene, &crate::Camera::three_quarter(), &opts).unwrap()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn written_in_pieces_the_bytes_are_the_kept_ones() {
+        for r in rendered() {
+            let lines = r.drawing.as_ref().map(|d| d.lines());
+            let kept = to_json(&r.view, &r.visibility, lines.as_ref());
+            assert!(kept.contains("\"lines\"") && kept.len() > 1000);
+            // Spilled after every face and polyline, after every few, and once at the end.
+            for spill_at in [1, 700, usize::MAX] {
+                let mut w = Vec::new();
+                let p = Progress::new();
+                write_json_spilling(&r.view, &r.visibility, lines.as_ref(), &mut w, &p, spill_at)
+                    .unwrap();
+                assert_eq!(String::from_utf8(w).unwrap(), kept, "spilled at {spill_at}");
+            }
+        }
+    }
+
+    /// A writer that fails once `room` bytes are taken.
+    struct Full {
+        room: usize,
+    }
+
+    impl io::Write for Full {
+        fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+            if buf.len() > self.room {
+                return Err(io::Error::new(io::ErrorKind::StorageFull, "full"));
+            }
+            self.room -= buf.len();
+            Ok(buf.len())
+        }
+
+        fn flush(&mut self) -> io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn a_failed_write_is_reported() {
+        let r = &rendered()[0];
+        let p = Progress::new();
+        for (room, spill_at) in [(0, 1), (500, 1), (500, SPILL_AT)] {
+            let mut w = Full { room };
+            let e = write_json_spilling(&r.view, &r.visibility, None, &mut w, &p, spill_at);
+            assert_eq!(e.unwrap_err().kind(), io::ErrorKind::StorageFull);
+        }
     }
 }
