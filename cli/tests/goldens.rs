@@ -36,10 +36,8 @@ fn every_scene_matches_its_golden() {
             String::from_utf8_lossy(&out.stdout),
             String::from_utf8_lossy(&out.stderr)
         );
-        let written = std::env::temp_dir().join(format!(
-            "kepler-golden-{}-{name}.json",
-            std::process::id()
-        ));
+        let written =
+            std::env::temp_dir().join(format!("kepler-golden-{}-{name}.json", std::process::id()));
         let out = Command::new(env!("CARGO_BIN_EXE_kepler"))
             .arg("render")
             .arg(&scene)
@@ -51,7 +49,10 @@ fn every_scene_matches_its_golden() {
         assert!(out.status.success(), "{name}: {out:?}");
         let same = std::fs::read(&written).unwrap() == std::fs::read(&golden).unwrap();
         let _ = std::fs::remove_file(&written);
-        assert!(same, "{name}: `kepler render --json` differs from its golden");
+        assert!(
+            same,
+            "{name}: `kepler render --json` differs from its golden"
+        );
         checked += 1;
     }
     assert!(checked >= 3, "only {checked} scenes");

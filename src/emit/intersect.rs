@@ -8,7 +8,7 @@
 use rayon::prelude::*;
 
 use crate::geom::box_pairs::{filter_map_pairs_of, overlap, Bounds3};
-use crate::geom::{newell, orient3d_refs, P3, V3};
+use crate::geom::{newell, orient3d_refs, Corners, P3, V3};
 use crate::progress::{Progress, Share};
 use crate::scene::FaceId;
 
@@ -211,7 +211,7 @@ fn adjacent(
 }
 
 /// Three well-spread corners of a face's plane, as offsets into its points.
-fn plane_refs(p: &[P3]) -> [u32; 3] {
+fn plane_refs(p: Corners) -> [u32; 3] {
     let a = p[0];
     let b = (0..p.len())
         .max_by(|&x, &y| {
@@ -234,7 +234,7 @@ fn plane_refs(p: &[P3]) -> [u32; 3] {
 /// A face as [`cross_with`] reads it.
 struct Side<'a> {
     /// Its corners.
-    pts: &'a [P3],
+    pts: Corners<'a>,
     /// Its Newell normal.
     normal: &'a V3,
     /// Three well-spread points of its plane.
@@ -242,7 +242,7 @@ struct Side<'a> {
 }
 
 impl<'a> Side<'a> {
-    fn new(pts: &'a [P3], normal: &'a V3) -> Self {
+    fn new(pts: Corners<'a>, normal: &'a V3) -> Self {
         let refs = plane_refs(pts).map(|k| pts[k as usize]);
         Side { pts, normal, refs }
     }
@@ -252,6 +252,11 @@ impl<'a> Side<'a> {
 /// cross).
 pub fn cross(f: &[P3], g: &[P3]) -> Vec<[P3; 2]> {
     let (nf, ng) = (newell(f), newell(g));
+    let all: Vec<u32> = (0..f.len().max(g.len()) as u32).collect();
+    let (f, g) = (
+        Corners::new(&all[..f.len()], f),
+        Corners::new(&all[..g.len()], g),
+    );
     cross_with(&Side::new(f, &nf), &Side::new(g, &ng))
 }
 
@@ -259,8 +264,9 @@ pub fn cross(f: &[P3], g: &[P3]) -> Vec<[P3; 2]> {
 /// is classified first: a large face is scanned only for a pair whose other face does
 /// cross its plane.
 fn cross_with(f: &Side, g: &Side) -> Vec<[P3; 2]> {
-    let signs =
-        |pts: &[P3], r: &[P3; 3]| -> Vec<f64> { pts.iter().map(|p| orient3d_refs(r, p)).collect() };
+    let signs = |pts: Corners, r: &[P3; 3]| -> Vec<f64> {
+        pts.iter().map(|p| orient3d_refs(r, p)).collect()
+    };
     let straddles = |s: &[f64]| s.iter().any(|&x| x < 0.0) && s.iter().any(|&x| x > 0.0);
     let (sf, sg) = if f.pts.len() <= g.pts.len() {
         let sf = signs(f.pts, &g.refs);
@@ -311,7 +317,7 @@ fn cross_with(f: &Side, g: &Side) -> Vec<[P3; 2]> {
 
 /// The spans of a polygon along the line where its signs `s` change, as (parameter, point)
 /// pairs sorted along `dir`.
-fn spans(p: &[P3], s: &[f64], dir: &V3) -> Vec<[(f64, P3); 2]> {
+fn spans(p: Corners, s: &[f64], dir: &V3) -> Vec<[(f64, P3); 2]> {
     let n = p.len();
     let mut hits: Vec<(f64, P3)> = Vec::new();
     for i in 0..n {
@@ -343,21 +349,34 @@ mod tests {
         p.iter().map(|p| P3::new(p[0], p[1], p[2])).collect()
     }
 
-    /// World faces of (leaf, first vertex index, corners), with their normals and boxes.
+    /// World faces of (leaf, first vertex index, corners), with their normals: corner k is
+    /// vertex `base + k` of the leaf (faces of a leaf that name one vertex give it one point).
     fn world(faces: &[(u32, u32, &[[f64; 3]])]) -> WorldFaces<'static> {
         let mut w = WorldFaces::default();
+        let leaves = faces.iter().map(|f| f.0 as usize + 1).max().unwrap_or(0);
+        let mut tables: Vec<Vec<P3>> = vec![Vec::new(); leaves];
         for &(leaf, base, corners) in faces {
             let points = pts(corners);
             w.faces.push(WorldFace {
                 leaf,
                 len: points.len() as u32,
                 first: w.vertices.len(),
-                at: w.points.len(),
                 normal: crate::scene::cleanup::FaceShape::of(&points).normal,
             });
             w.vertices.extend(base..base + points.len() as u32);
-            w.points.extend(points);
+            let table = &mut tables[leaf as usize];
+            for (k, p) in points.into_iter().enumerate() {
+                let v = base as usize + k;
+                if table.len() <= v {
+                    table.resize(v + 1, P3::origin());
+                }
+                table[v] = p;
+            }
             w.clean_piece.push(NO_PIECE);
+        }
+        for t in tables {
+            w.leaf_first.push(w.points.len());
+            w.points.extend(t);
         }
         w
     }
@@ -457,6 +476,7 @@ mod tests {
             [1., 1., 0.],
             [2., 0.5, 0.],
         ]);
-        assert_eq!(plane_refs(&p), [0, 2, 3]);
+        let all: Vec<u32> = (0..p.len() as u32).collect();
+        assert_eq!(plane_refs(Corners::new(&all, &p)), [0, 2, 3]);
     }
 }

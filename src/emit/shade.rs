@@ -1,7 +1,7 @@
 //! Flat shading: a light direction for a view, and each face's brightness under it (Lambert,
 //! the face's normal turned toward the viewer), for fills and hatching.
 
-use crate::geom::{newell, V3};
+use crate::geom::V3;
 use crate::scene::FaceId;
 use crate::view::{Camera, View};
 
@@ -38,7 +38,7 @@ pub fn face_shade(view: &View, f: FaceId, light: &V3) -> f64 {
     let n: V3 = view
         .screen
         .pieces_of(f)
-        .map(|p| newell(view.screen.world_pts(p)))
+        .map(|p| view.screen.world_pts(p).newell())
         .sum();
     let n = if n.dot(&w) < 0.0 { -n } else { n };
     n.try_normalize(0.0).map_or(0.0, |n| n.dot(light).max(0.0))

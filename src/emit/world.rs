@@ -4,18 +4,18 @@ use std::collections::HashMap;
 
 use rayon::prelude::*;
 
-use crate::geom::{newell, Box3, P3, V3};
+use crate::geom::{Box3, Corners, P3, V3};
 use crate::progress::Progress;
 use crate::scene::topology::{edge_pieces, Pieces};
-use crate::scene::{FaceId, Leaf, Mesh, Scene};
+use crate::scene::{Leaf, Mesh, Scene};
 use crate::view::ScreenFaces;
 
 /// Above this many faces a leaf's world faces are made on all threads.
 const PARALLEL_ABOVE: usize = 4096;
 
-/// One face in world space: its corners are a run of the world's point space (see
-/// [`WorldFaces::points_of`]) and of [`WorldFaces::vertices`], so that a scene's faces cost
-/// no allocation each.
+/// One face in world space: its corners are a run of [`WorldFaces::vertices`], each the
+/// index of a point of its leaf in the world's point space (see [`WorldFaces::points_of`]),
+/// so that a scene's faces cost no allocation each.
 #[derive(Debug, Clone)]
 pub struct WorldFace {
     /// Index of the leaf object in [`Scene::leaves`] order.
@@ -24,17 +24,15 @@ pub struct WorldFace {
     pub len: u32,
     /// First corner in [`WorldFaces::vertices`].
     pub first: usize,
-    /// First point in the point space: [`WorldFaces::shared`] then [`WorldFaces::points`].
-    pub at: usize,
     /// Newell normal of the points (twice the vector area; zero for a degenerate face).
     pub normal: V3,
 }
 
 /// Every face of a scene in world space, by global face id.
 ///
-/// A face's world points are the screen faces' own where those are the same points in the
-/// same order, bit for bit (one planar piece, not clipped, not mirrored: almost every face),
-/// so that the drawing does not hold the scene's corners twice; the rest are copied here.
+/// A leaf's world points (its vertices placed by its transform, once a vertex) are the screen
+/// faces' own when the view projected the leaf (the same points, made by the same
+/// transform), so that the drawing does not hold them twice; the other leaves' are made here.
 #[derive(Debug, Clone, Default)]
 pub struct WorldFaces<'s> {
     /// Faces by global id.
@@ -42,9 +40,11 @@ pub struct WorldFaces<'s> {
     /// The first part of the point space: world points shared with the screen faces
     /// ([`ScreenFaces::world`]), or none.
     pub shared: &'s [P3],
-    /// The second part of the point space: the corners of the faces whose points are not
-    /// shared, face after face, in mesh order (not reversed for mirroring transforms).
+    /// The second part of the point space: the world points of the leaves the screen faces
+    /// do not hold, leaf after leaf, vertex after vertex.
     pub points: Vec<P3>,
+    /// By leaf: where its vertices' points start in the point space.
+    pub leaf_first: Vec<usize>,
     /// The corners' vertex indices in their leaf mesh, face after face.
     pub vertices: Vec<u32>,
     /// Object path of every leaf, in [`Scene::leaves`] order.
@@ -85,6 +85,11 @@ impl<'s> WorldFaces<'s> {
         };
         w.clean_piece.reserve_exact(scene.face_count());
         let mut next_piece = 0;
+        // The projected leaves, in the same global order (a hidden subtree's are absent).
+        let mut projected = screen
+            .map_or(&[][..], |sf| &sf.leaves[..])
+            .iter()
+            .peekable();
         // Each mesh's pieces once, however many instances place it.
         let mut pieces_of: HashMap<*const Mesh, Pieces> = HashMap::new();
         for (li, leaf) in leaves.iter().enumerate() {
@@ -94,55 +99,52 @@ impl<'s> WorldFaces<'s> {
                 &mut w.clean_piece,
                 &mut next_piece,
             );
-            w.add_leaf(li as u32, leaf, screen, progress);
+            let held = projected
+                .next_if(|l| l.first_face.index() == leaf.first_face)
+                .map(|l| l.world_first as usize);
+            w.add_leaf(li as u32, leaf, held, progress);
         }
         w.points.shrink_to_fit();
         w.paths = leaves.into_iter().map(|l| l.path).collect();
         w
     }
 
-    /// Appends the faces of leaf `li`: where each face's points are (shared or copied),
+    /// Appends the faces of leaf `li`, its points at `held` in the shared part (or made here),
     /// then each face's normal, a big mesh's on all threads, in face order either way.
-    fn add_leaf(
-        &mut self,
-        li: u32,
-        leaf: &Leaf,
-        screen: Option<&ScreenFaces>,
-        progress: &Progress,
-    ) {
-        let world: Vec<P3> = (0..leaf.mesh.vertices.len() as u32)
-            .map(|k| leaf.world_vertex(k))
-            .collect();
+    fn add_leaf(&mut self, li: u32, leaf: &Leaf, held: Option<usize>, progress: &Progress) {
+        let first = match held {
+            Some(at) => at,
+            None => {
+                let at = self.shared.len() + self.points.len();
+                let n = leaf.mesh.vertices.len() as u32;
+                self.points.extend((0..n).map(|k| leaf.world_vertex(k)));
+                at
+            }
+        };
+        self.leaf_first.push(first);
         let made = self.faces.len();
-        for (k, f) in leaf.mesh.faces.iter().enumerate() {
-            let first = self.vertices.len();
-            self.vertices.extend_from_slice(&f.vertices);
-            let pts = || f.vertices.iter().map(|&v| world[v as usize]);
-            let id = FaceId((leaf.first_face + k) as u32);
-            let at = match screen.and_then(|sf| same_run(sf, id, pts())) {
-                Some(at) => at,
-                None => {
-                    let at = self.shared.len() + self.points.len();
-                    self.points.extend(pts());
-                    at
-                }
-            };
+        for f in &leaf.mesh.faces {
             self.faces.push(WorldFace {
                 leaf: li,
                 len: f.vertices.len() as u32,
-                first,
-                at,
+                first: self.vertices.len(),
                 normal: V3::zeros(),
             });
+            self.vertices.extend_from_slice(&f.vertices);
         }
         // The normals in place (no second array of faces at ten million faces).
         let WorldFaces {
             faces,
             shared,
             points,
+            vertices,
             ..
         } = self;
-        let normal = |w: &mut WorldFace| w.normal = newell(run(shared, points, w.at, w.len));
+        let table = table_of(shared, points, first);
+        let normal = |w: &mut WorldFace| {
+            let at = &vertices[w.first..w.first + w.len as usize];
+            w.normal = Corners::new(at, table).newell();
+        };
         let new = &mut faces[made..];
         let n = new.len();
         if n > PARALLEL_ABOVE {
@@ -158,9 +160,12 @@ impl<'s> WorldFaces<'s> {
     }
 
     /// The world points of face `f`, in mesh order.
-    pub fn points_of(&self, f: usize) -> &[P3] {
-        let face = &self.faces[f];
-        run(self.shared, &self.points, face.at, face.len)
+    pub fn points_of(&self, f: usize) -> Corners<'_> {
+        let first = self.leaf_first[self.faces[f].leaf as usize];
+        Corners::new(
+            self.vertices_of(f),
+            table_of(self.shared, &self.points, first),
+        )
     }
 
     /// The vertex indices of face `f` in its leaf mesh.
@@ -171,34 +176,18 @@ impl<'s> WorldFaces<'s> {
 
     /// The world bounding box of face `f`: min then max.
     pub fn bbox_of(&self, f: usize) -> [[f64; 3]; 2] {
-        bbox(self.points_of(f))
+        let b = Box3::from_points(self.points_of(f).iter());
+        [b.lo.into(), b.hi.into()]
     }
 }
 
-/// The run of `len` points from `at` in the point space of `shared` then `points`.
-fn run<'a>(shared: &'a [P3], points: &'a [P3], at: usize, len: u32) -> &'a [P3] {
-    let len = len as usize;
+/// The points from `at` in the point space of `shared` then `points` (to the end of the part
+/// `at` is in: a leaf's points are all in one).
+fn table_of<'a>(shared: &'a [P3], points: &'a [P3], at: usize) -> &'a [P3] {
     match at.checked_sub(shared.len()) {
-        Some(own) => &points[own..own + len],
-        None => &shared[at..at + len],
+        Some(own) => &points[own..],
+        None => &shared[at..],
     }
-}
-
-/// Where face `id`'s world points `pts` already are among the screen faces' world points:
-/// the start of its one piece's run when that run is the same points in the same order,
-/// bit for bit.
-fn same_run(sf: &ScreenFaces, id: FaceId, pts: impl ExactSizeIterator<Item = P3>) -> Option<usize> {
-    if id.index() >= sf.face_count() {
-        return None;
-    }
-    let mut pieces = sf.pieces_of(id);
-    let (Some(p), None) = (pieces.next(), pieces.next()) else {
-        return None;
-    };
-    let run = sf.world_pts(p);
-    let bits = |q: &P3| q.coords.map(f64::to_bits);
-    let same = run.len() == pts.len() && run.iter().zip(pts).all(|(a, b)| bits(a) == bits(&b));
-    same.then_some(sf.piece(p).start as usize)
 }
 
 /// Appends a mesh's faces' [`WorldFaces::clean_piece`] numbers to `out`, numbering its
@@ -234,12 +223,6 @@ fn clean_pieces(
     }));
 }
 
-/// Bounding box of points: min then max.
-fn bbox(pts: &[P3]) -> [[f64; 3]; 2] {
-    let b = Box3::from_points(pts.iter());
-    [b.lo.into(), b.hi.into()]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -258,8 +241,8 @@ mod tests {
     }
 
     /// The faces' points and normals with the screen's points shared, against the faces made
-    /// alone: the same bits, whichever faces share (a mirrored instance, a warped face and a
-    /// perspective view through the scene's middle each keep some faces from sharing).
+    /// alone: the same bits (a mirrored instance, a warped face and a perspective view
+    /// through the scene's middle among them).
     #[test]
     fn shared_points_are_the_faces_own_bit_for_bit() {
         use crate::geom::{M4, V3};
@@ -294,34 +277,38 @@ mod tests {
         for camera in [Camera::three_quarter(), near.unwrap()] {
             let view = View::new(&scene, camera);
             let w = WorldFaces::build_counted(&scene, Some(&view.screen), &Progress::new());
-            let bits = |p: &[P3]| -> Vec<[u64; 3]> {
+            let bits = |p: Corners| -> Vec<[u64; 3]> {
                 p.iter()
                     .map(|q| q.coords.map(f64::to_bits).into())
                     .collect()
             };
-            let mut sharing = 0;
+            let shares = |f: usize| w.leaf_first[w.faces[f].leaf as usize] < w.shared.len();
             for f in 0..alone.faces.len() {
                 assert_eq!(bits(w.points_of(f)), bits(alone.points_of(f)), "face {f}");
                 assert_eq!(w.vertices_of(f), alone.vertices_of(f));
                 assert_eq!(w.faces[f].normal, alone.faces[f].normal);
                 assert_eq!(w.bbox_of(f), alone.bbox_of(f));
-                sharing += usize::from(w.faces[f].at < w.shared.len());
             }
-            // Only the faces that do not share are copied.
-            let own: usize = (0..w.faces.len())
-                .filter(|&f| w.faces[f].at >= w.shared.len())
-                .map(|f| w.faces[f].len as usize)
-                .sum();
-            assert_eq!(w.points.len(), own);
-            // The mirrored box (reversed on screen) and the warped quad (two pieces) never
-            // share; in the three-quarter view all 24 other faces do, in the perspective
-            // view those the near plane cuts do not.
-            if camera.eye.is_none() {
-                assert_eq!((alone.faces.len(), sharing), (31, 24));
-            } else {
-                assert!(sharing > 0 && sharing < 24, "{sharing}");
-            }
+            // Every leaf is projected in both views (the mirrored box reversed on screen, the
+            // warped quad split, faces cut by the near plane): all share, none is copied.
+            assert_eq!(alone.faces.len(), 31);
+            assert!((0..31).all(shares));
+            assert!(w.points.is_empty());
         }
+        // With a leaf the view does not hold, that leaf's points are made: the same bits.
+        let mut sf = View::new(&scene, Camera::three_quarter()).screen;
+        let last = sf.leaves.pop().unwrap();
+        let w = WorldFaces::build_counted(&scene, Some(&sf), &Progress::new());
+        assert_eq!(w.points.len(), 8);
+        assert_eq!(w.leaf_first.last(), Some(&w.shared.len()));
+        for f in 0..alone.faces.len() {
+            assert_eq!(
+                w.points_of(f).to_vec(),
+                alone.points_of(f).to_vec(),
+                "face {f}"
+            );
+        }
+        assert_eq!(last.face_count, 6);
         assert!(alone.shared.is_empty());
     }
 

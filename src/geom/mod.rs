@@ -5,6 +5,7 @@ pub mod boolean;
 pub mod box3;
 pub mod box_pairs;
 pub mod box_tree;
+pub mod corners;
 pub mod hull2;
 pub mod normal;
 pub mod poly2;
@@ -18,6 +19,7 @@ pub mod tri_intersect;
 pub mod triangle;
 
 pub use box3::Box3;
+pub use corners::Corners;
 pub use normal::{newell, newell_indexed};
 pub use poly2::{MultiPolygon, Polygon, Pt2, Ring};
 pub use polymesh::PolyMesh;

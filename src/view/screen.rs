@@ -4,7 +4,7 @@
 use std::ops::Range;
 
 use crate::geom::poly2::{is_convex_ccw, ring_area, Pt2};
-use crate::geom::{newell, orient2d, orient3d_refs, Rect, P3};
+use crate::geom::{newell, orient2d, orient3d_refs, Corners, Rect, P3};
 use crate::progress::Progress;
 use crate::scene::{FaceId, Leaf, Scene};
 
@@ -47,8 +47,9 @@ pub struct Piece {
     pub zmax: f64,
     /// Three well-spread points (offsets from `start`) spanning the face's plane.
     pub refs: [u32; 3],
-    /// Sign of orient2d over `refs`: +1 or -1 (0 when edge-on).
-    pub ref_turn: f64,
+    /// Sign of orient2d over `refs`: +1 or -1 (0 when edge-on). One byte, beside the flags
+    /// below: a piece is 80 bytes, and there is one a face.
+    pub ref_turn: i8,
     /// Orientation toward the viewer.
     pub facing: Facing,
     /// True for a back face of a proven solid: hidden by the solid itself (a safe cull).
@@ -73,6 +74,8 @@ pub struct LeafInfo {
     pub first_face: FaceId,
     /// Number of faces.
     pub face_count: u32,
+    /// Where its vertices' world points start in [`ScreenFaces::world`].
+    pub world_first: u32,
 }
 
 impl LeafInfo {
@@ -93,9 +96,12 @@ pub struct ScreenFaces {
     pub face_starts: Vec<u32>,
     /// Projected points (x, y, depth) of all pieces, piece after piece.
     pub points: Vec<[f64; 3]>,
-    /// World position of each point in `points` (exact input coordinates where not clipped);
-    /// side-of-plane decisions are made on these.
+    /// World points: each projected leaf's vertices placed by its transform (once a vertex,
+    /// in mesh order, from [`LeafInfo::world_first`]), then the points clipping made.
+    /// Side-of-plane decisions are made on these (exact input coordinates where not clipped).
     pub world: Vec<P3>,
+    /// The world point of each point in `points`: an index into `world`.
+    pub world_at: Vec<u32>,
     /// Sign of det(M): +1 when the camera keeps the orientation of tetrahedra, -1 when it flips it.
     pub det_sign: f64,
     /// The camera that made them.
@@ -139,7 +145,9 @@ impl ScreenFaces {
             .sum();
         out.pieces.reserve(faces);
         out.points.reserve(corners);
-        out.world.reserve(corners);
+        out.world_at.reserve(corners);
+        out.world
+            .reserve(cull.leaves.iter().map(|l| l.mesh.vertices.len()).sum());
         out.face_starts.reserve(cull.face_count as usize + 1);
         out.face_starts.push(0);
         for (li, leaf) in cull.leaves.iter().enumerate() {
@@ -258,9 +266,12 @@ impl ScreenFaces {
 
     /// The world points of piece `p`.
     #[inline]
-    pub fn world_pts(&self, p: PieceId) -> &[P3] {
+    pub fn world_pts(&self, p: PieceId) -> Corners<'_> {
         let pc = self.piece(p);
-        &self.world[pc.start as usize..(pc.start + pc.len) as usize]
+        Corners::new(
+            &self.world_at[pc.start as usize..(pc.start + pc.len) as usize],
+            &self.world,
+        )
     }
 
     /// The three world reference points of piece `p`'s plane.
@@ -279,12 +290,14 @@ impl ScreenFaces {
         hidden: &[u32],
         progress: &Progress,
     ) {
-        let world: Vec<_> = leaf
-            .mesh
-            .vertices
-            .iter()
-            .map(|v| leaf.transform.transform_point(v))
-            .collect();
+        let world_first = self.world.len() as u32;
+        self.world.extend(
+            leaf.mesh
+                .vertices
+                .iter()
+                .map(|v| leaf.transform.transform_point(v)),
+        );
+        let world = &self.world[world_first as usize..];
         let clip: Vec<[f64; 4]> = world.iter().map(|p| camera.clip_coords(p)).collect();
         let all_in_front = camera.projection == Projection::Orthographic
             || clip.iter().all(|h| h[3] >= camera.near);
@@ -297,6 +310,7 @@ impl ScreenFaces {
             path: leaf.path.clone(),
             first_face: FaceId(leaf.first_face as u32),
             face_count: leaf.mesh.faces.len() as u32,
+            world_first,
         });
         let mut hidden = hidden.iter().peekable();
         for (k, f) in leaf.mesh.faces.iter().enumerate() {
@@ -310,10 +324,13 @@ impl ScreenFaces {
                 idx.reverse();
             }
             let id = FaceId((leaf.first_face + k) as u32);
-            for piece in planar_pieces(&idx, &world) {
-                let mut poly: Vec<([f64; 4], P3)> = piece
+            for piece in planar_pieces(&idx, &self.world[world_first as usize..]) {
+                let mut poly: Vec<Corner> = piece
                     .iter()
-                    .map(|&v| (clip[v as usize], world[v as usize]))
+                    .map(|&v| {
+                        let at = world_first + v;
+                        (clip[v as usize], self.world[at as usize], at)
+                    })
                     .collect();
                 if !all_in_front {
                     poly = clip_near(&poly, camera.near);
@@ -329,14 +346,23 @@ impl ScreenFaces {
         &mut self,
         face: FaceId,
         leaf: u32,
-        poly: &[([f64; 4], P3)],
+        poly: &[Corner],
         camera: &Camera,
         back_cull: &BackCull,
     ) {
         let start = self.points.len() as u32;
-        self.world.extend(poly.iter().map(|(_, w)| *w));
+        for &(_, w, at) in poly {
+            // A point clipping made joins the table.
+            let at = if at == NEW_POINT {
+                self.world.push(w);
+                self.world.len() as u32 - 1
+            } else {
+                at
+            };
+            self.world_at.push(at);
+        }
         let persp = camera.projection == Projection::Perspective;
-        self.points.extend(poly.iter().map(|(h, _)| {
+        self.points.extend(poly.iter().map(|(h, _, _)| {
             if persp {
                 [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
             } else {
@@ -345,7 +371,7 @@ impl ScreenFaces {
         }));
         let mut piece = describe(face, &self.points[start as usize..], start, leaf);
         piece.culled = back_cull.culls(&piece);
-        let w = &self.world[start as usize..];
+        let w = Corners::new(&self.world_at[start as usize..], &self.world);
         if let (Some(eye), true) = (camera.eye, w.len() >= 3) {
             // The eye exactly in the piece's plane: edge-on, whatever rounding the divide did.
             let refs = piece.refs.map(|k| w[k as usize]);
@@ -398,21 +424,28 @@ fn exactly_planar(pts: &[P3]) -> bool {
     pts.iter().all(|p| orient3d_refs(&refs, p) == 0.0)
 }
 
+/// A corner on its way into a piece: homogeneous clip coordinates, world point, and the
+/// world point's index in [`ScreenFaces::world`] ([`NEW_POINT`] for a point clipping made).
+type Corner = ([f64; 4], P3, u32);
+
+/// [`Corner`]'s index of a world point not yet in the table.
+const NEW_POINT: u32 = u32::MAX;
+
 /// Sutherland–Hodgman clip of a homogeneous polygon (with its world points) to w >= near.
-fn clip_near(poly: &[([f64; 4], P3)], near: f64) -> Vec<([f64; 4], P3)> {
+fn clip_near(poly: &[Corner], near: f64) -> Vec<Corner> {
     let n = poly.len();
     let mut out = Vec::with_capacity(n + 2);
     for i in 0..n {
-        let ((a, wa), (b, wb)) = (poly[i], poly[(i + 1) % n]);
+        let ((a, wa, at), (b, wb, _)) = (poly[i], poly[(i + 1) % n]);
         let (da, db) = (a[3] - near, b[3] - near);
         if da >= 0.0 {
-            out.push((a, wa));
+            out.push((a, wa, at));
         }
         if (da >= 0.0) != (db >= 0.0) {
             let t = da / (da - db);
             let mut p: [f64; 4] = std::array::from_fn(|k| a[k] + t * (b[k] - a[k]));
             p[3] = near;
-            out.push((p, wa + (wb - wa) * t));
+            out.push((p, wa + (wb - wa) * t, NEW_POINT));
         }
     }
     if out.len() < 3 {
@@ -433,7 +466,7 @@ fn describe(face: FaceId, p: &[[f64; 3]], start: u32, leaf: u32) -> Piece {
         zmin: f64::INFINITY,
         zmax: f64::NEG_INFINITY,
         refs: [0, 0, 0],
-        ref_turn: 0.0,
+        ref_turn: 0,
         facing: Facing::Clipped,
         culled: false,
         convex: false,
@@ -449,7 +482,7 @@ fn describe(face: FaceId, p: &[[f64; 3]], start: u32, leaf: u32) -> Piece {
     f.refs = reference_triple(p);
     let [a, b, c] = f.refs.map(|k| [p[k as usize][0], p[k as usize][1]]);
     let turn = orient2d(a, b, c);
-    f.ref_turn = turn.signum() * (turn != 0.0) as u8 as f64;
+    f.ref_turn = (turn > 0.0) as i8 - (turn < 0.0) as i8;
     let ring: Vec<Pt2> = p.iter().map(|q| [q[0], q[1]]).collect();
     let area = if p.len() == 3 { turn } else { ring_area(&ring) };
     f.facing = if turn == 0.0 || area == 0.0 {
@@ -508,18 +541,21 @@ mod tests {
     fn near_clip_cuts_polygon() {
         let o = P3::origin();
         let poly = [
-            ([0., 0., 1., -1.], o),
-            ([1., 0., 1., 1.], o),
-            ([0., 1., 1., 1.], o),
+            ([0., 0., 1., -1.], o, 0),
+            ([1., 0., 1., 1.], o, 1),
+            ([0., 1., 1., 1.], o, 2),
         ];
         let c = clip_near(&poly, 0.5);
         assert_eq!(c.len(), 4);
-        assert!(c.iter().all(|(h, _)| h[3] >= 0.5));
+        assert!(c.iter().all(|(h, _, _)| h[3] >= 0.5));
+        // The corners kept keep their points' indices; the two cut points are new.
+        let at: Vec<u32> = c.iter().map(|e| e.2).collect();
+        assert_eq!(at, [NEW_POINT, 1, 2, NEW_POINT]);
         assert!(clip_near(
             &[
-                ([0., 0., 0., 0.1], o),
-                ([1., 0., 0., 0.1], o),
-                ([0., 1., 0., 0.2], o)
+                ([0., 0., 0., 0.1], o, 0),
+                ([1., 0., 0., 0.1], o, 1),
+                ([0., 1., 0., 0.2], o, 2)
             ],
             0.5
         )

@@ -4,7 +4,7 @@
 
 use crate::geom::hull2::has_turn;
 use crate::geom::poly2::Pt2;
-use crate::geom::{orient2d, orient3d_refs, Rect, P3};
+use crate::geom::{orient2d, orient3d_refs, Corners, Rect, P3};
 use crate::scene::FaceId;
 use crate::view::{Facing, PieceId, Projection, ScreenFaces};
 
@@ -40,7 +40,7 @@ impl Target {
             piece: p,
             face: pc.face,
             refs: sf.plane_refs(p),
-            front_sign: -pc.ref_turn * sf.det_sign,
+            front_sign: -f64::from(pc.ref_turn) * sf.det_sign,
             ring: sf.ring_ccw(p),
             rect: pc.rect,
             zmin: pc.zmin,
@@ -73,7 +73,7 @@ pub fn occluder_region(
     sf: &ScreenFaces,
     g: PieceId,
     pts: &[[f64; 3]],
-    world: &[P3],
+    world: Corners,
     t: &Target,
     sides: &mut Vec<f64>,
 ) -> Occlusion {
@@ -107,7 +107,7 @@ pub fn occluder_region(
 /// non-negative side, cut where the side changes
 /// sign. The cut is placed on the world edge with the exact side values, then projected
 /// (orthographic views interpolate the screen points directly: the same point, cheaper).
-fn front_part(sf: &ScreenFaces, pts: &[[f64; 3]], world: &[P3], sides: &[f64]) -> Vec<Pt2> {
+fn front_part(sf: &ScreenFaces, pts: &[[f64; 3]], world: Corners, sides: &[f64]) -> Vec<Pt2> {
     let perspective = sf
         .camera
         .filter(|c| c.projection == Projection::Perspective);

@@ -10,7 +10,7 @@
 use crate::geom::boolean::subtract;
 use crate::geom::hull2::covers_convex;
 use crate::geom::poly2::{MultiPolygon, Pt2, Ring};
-use crate::geom::{Rect, P3};
+use crate::geom::{Corners, Rect};
 use crate::view::ring_index::INDEXED_ABOVE;
 use crate::view::tree::{NodeKind, ScreenInbox};
 use crate::view::{Facing, PieceId, View};
@@ -56,7 +56,8 @@ pub struct Scratch {
     /// A long occluder cut to F's rectangle: its point indices, screen and world points.
     cut: Vec<u32>,
     cut_pts: Vec<[f64; 3]>,
-    cut_world: Vec<P3>,
+    /// The cut's world points, as indices into the screen faces' table.
+    cut_world: Vec<u32>,
 }
 
 /// Outcome of the walk.
@@ -167,14 +168,17 @@ fn examine(
     let (pts, world) = match sf.ring_index(g) {
         Some(index) => {
             index.cut(&t.rect, &mut scratch.cut);
-            let (all, all_world) = (sf.pts(g), sf.world_pts(g));
+            let (all, all_world) = (sf.pts(g), sf.world_pts(g).indices());
             scratch.cut_pts.clear();
             scratch.cut_world.clear();
             for &i in &scratch.cut {
                 scratch.cut_pts.push(all[i as usize]);
                 scratch.cut_world.push(all_world[i as usize]);
             }
-            (&scratch.cut_pts[..], &scratch.cut_world[..])
+            (
+                &scratch.cut_pts[..],
+                Corners::new(&scratch.cut_world, &sf.world),
+            )
         }
         None => (sf.pts(g), sf.world_pts(g)),
     };
