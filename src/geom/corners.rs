@@ -6,17 +6,26 @@ use std::ops::Index;
 use super::{newell_indexed, P3, V3};
 
 /// The corners of one polygon: corner `k` is `table[at[k]]`. Read like a slice of points
-/// (`c[k]`, [`Corners::len`], [`Corners::iter`]); no point is copied.
-#[derive(Debug, Clone, Copy)]
-pub struct Corners<'a> {
+/// (`c[k]`, [`Corners::len`], [`Corners::iter`]); no point is copied. The points are world
+/// points ([`P3`]) unless said otherwise (the screen's are `[f64; 3]`).
+#[derive(Debug)]
+pub struct Corners<'a, T = P3> {
     at: &'a [u32],
-    table: &'a [P3],
+    table: &'a [T],
 }
 
-impl<'a> Corners<'a> {
+impl<T> Clone for Corners<'_, T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<T> Copy for Corners<'_, T> {}
+
+impl<'a, T: Copy> Corners<'a, T> {
     /// The corners `table[at[0]], table[at[1]], …` (every index must be in `table`).
     #[inline]
-    pub fn new(at: &'a [u32], table: &'a [P3]) -> Self {
+    pub fn new(at: &'a [u32], table: &'a [T]) -> Self {
         Corners { at, table }
     }
 
@@ -34,13 +43,13 @@ impl<'a> Corners<'a> {
 
     /// The corners' points, in order.
     #[inline]
-    pub fn iter(&self) -> impl ExactSizeIterator<Item = &'a P3> + Clone + 'a {
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = &'a T> + Clone + 'a {
         let table = self.table;
         self.at.iter().map(move |&i| &table[i as usize])
     }
 
     /// The corners' points, copied out.
-    pub fn to_vec(&self) -> Vec<P3> {
+    pub fn to_vec(&self) -> Vec<T> {
         self.iter().copied().collect()
     }
 
@@ -49,18 +58,20 @@ impl<'a> Corners<'a> {
     pub fn indices(&self) -> &'a [u32] {
         self.at
     }
+}
 
+impl Corners<'_, P3> {
     /// Newell's normal of the polygon ([`crate::geom::newell`] of [`Corners::to_vec`]).
     pub fn newell(&self) -> V3 {
         newell_indexed(self.table, self.at)
     }
 }
 
-impl Index<usize> for Corners<'_> {
-    type Output = P3;
+impl<T> Index<usize> for Corners<'_, T> {
+    type Output = T;
 
     #[inline]
-    fn index(&self, k: usize) -> &P3 {
+    fn index(&self, k: usize) -> &T {
         &self.table[self.at[k] as usize]
     }
 }

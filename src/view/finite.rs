@@ -15,7 +15,8 @@ pub const SCREEN_LIMIT: f64 = 1e30;
 /// gets there).
 pub fn check_screen(screen: &ScreenFaces, camera: &Camera) -> Result<()> {
     let mut worst = 0.0f64;
-    for p in &screen.points {
+    // The points corners name (a vertex behind the near plane has a point no corner names).
+    for p in screen.corner_at.iter().map(|&i| &screen.points[i as usize]) {
         for &c in p {
             if !c.is_finite() {
                 worst = f64::INFINITY;

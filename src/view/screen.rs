@@ -33,7 +33,7 @@ pub enum Facing {
 pub struct Piece {
     /// The face this piece belongs to.
     pub face: FaceId,
-    /// First point in [`ScreenFaces::points`].
+    /// First corner in [`ScreenFaces::corner_at`].
     pub start: u32,
     /// Number of points.
     pub len: u32,
@@ -94,14 +94,16 @@ pub struct ScreenFaces {
     /// `face_starts[f]..face_starts[f + 1]` (length: face count + 1; a face of a hidden
     /// subtree has none).
     pub face_starts: Vec<u32>,
-    /// Projected points (x, y, depth) of all pieces, piece after piece.
-    pub points: Vec<[f64; 3]>,
+    /// The corners of all pieces, piece after piece: each the index of its point in `world`
+    /// and in `points`.
+    pub corner_at: Vec<u32>,
     /// World points: each projected leaf's vertices placed by its transform (once a vertex,
-    /// in mesh order, from [`LeafInfo::world_first`]), then the points clipping made.
+    /// in mesh order, from [`LeafInfo::world_first`]), and the points near clipping made.
     /// Side-of-plane decisions are made on these (exact input coordinates where not clipped).
     pub world: Vec<P3>,
-    /// The world point of each point in `points`: an index into `world`.
-    pub world_at: Vec<u32>,
+    /// Projected points (x, y, depth) of the points of `world`, index for index (a vertex
+    /// behind the near plane, which no corner names, has one too, maybe not finite).
+    pub points: Vec<[f64; 3]>,
     /// Sign of det(M): +1 when the camera keeps the orientation of tetrahedra, -1 when it flips it.
     pub det_sign: f64,
     /// The camera that made them.
@@ -143,11 +145,11 @@ impl ScreenFaces {
             .flat_map(|l| &l.mesh.faces)
             .map(|f| f.vertices.len())
             .sum();
+        let vertices: usize = cull.leaves.iter().map(|l| l.mesh.vertices.len()).sum();
         out.pieces.reserve(faces);
-        out.points.reserve(corners);
-        out.world_at.reserve(corners);
-        out.world
-            .reserve(cull.leaves.iter().map(|l| l.mesh.vertices.len()).sum());
+        out.corner_at.reserve(corners);
+        out.world.reserve(vertices);
+        out.points.reserve(vertices);
         out.face_starts.reserve(cull.face_count as usize + 1);
         out.face_starts.push(0);
         for (li, leaf) in cull.leaves.iter().enumerate() {
@@ -248,11 +250,17 @@ impl ScreenFaces {
         self.piece(PieceId(self.face_starts[f.index()])).leaf
     }
 
+    /// The corners of piece `p`: their indices in `world` and `points`.
+    #[inline]
+    pub fn corners(&self, p: PieceId) -> &[u32] {
+        let pc = self.piece(p);
+        &self.corner_at[pc.start as usize..(pc.start + pc.len) as usize]
+    }
+
     /// The projected points (x, y, depth) of piece `p`.
     #[inline]
-    pub fn pts(&self, p: PieceId) -> &[[f64; 3]] {
-        let pc = self.piece(p);
-        &self.points[pc.start as usize..(pc.start + pc.len) as usize]
+    pub fn pts(&self, p: PieceId) -> Corners<'_, [f64; 3]> {
+        Corners::new(self.corners(p), &self.points)
     }
 
     /// The projected ring of piece `p` in (x, y), counter-clockwise.
@@ -267,11 +275,7 @@ impl ScreenFaces {
     /// The world points of piece `p`.
     #[inline]
     pub fn world_pts(&self, p: PieceId) -> Corners<'_> {
-        let pc = self.piece(p);
-        Corners::new(
-            &self.world_at[pc.start as usize..(pc.start + pc.len) as usize],
-            &self.world,
-        )
+        Corners::new(self.corners(p), &self.world)
     }
 
     /// The three world reference points of piece `p`'s plane.
@@ -299,6 +303,7 @@ impl ScreenFaces {
         );
         let world = &self.world[world_first as usize..];
         let clip: Vec<[f64; 4]> = world.iter().map(|p| camera.clip_coords(p)).collect();
+        self.points.extend(clip.iter().map(|h| project(h, camera)));
         let all_in_front = camera.projection == Projection::Orthographic
             || clip.iter().all(|h| h[3] >= camera.near);
         // Back faces hide nothing a front face does not, and are hidden themselves, only on a
@@ -313,6 +318,7 @@ impl ScreenFaces {
             world_first,
         });
         let mut hidden = hidden.iter().peekable();
+        let mut scratch = Vec::new();
         for (k, f) in leaf.mesh.faces.iter().enumerate() {
             progress.tick(k);
             if hidden.next_if_eq(&&(k as u32)).is_some() {
@@ -335,7 +341,7 @@ impl ScreenFaces {
                 if !all_in_front {
                     poly = clip_near(&poly, camera.near);
                 }
-                self.add_piece(id, li, &poly, camera, &back_cull);
+                self.add_piece(id, li, &poly, camera, &back_cull, &mut scratch);
             }
             self.face_starts.push(self.pieces.len() as u32);
         }
@@ -349,29 +355,26 @@ impl ScreenFaces {
         poly: &[Corner],
         camera: &Camera,
         back_cull: &BackCull,
+        pts: &mut Vec<[f64; 3]>,
     ) {
-        let start = self.points.len() as u32;
-        for &(_, w, at) in poly {
-            // A point clipping made joins the table.
-            let at = if at == NEW_POINT {
-                self.world.push(w);
+        let start = self.corner_at.len() as u32;
+        for (h, w, at) in poly {
+            // A point clipping made joins the tables.
+            let at = if *at == NEW_POINT {
+                self.world.push(*w);
+                self.points.push(project(h, camera));
                 self.world.len() as u32 - 1
             } else {
-                at
+                *at
             };
-            self.world_at.push(at);
+            self.corner_at.push(at);
         }
-        let persp = camera.projection == Projection::Perspective;
-        self.points.extend(poly.iter().map(|(h, _, _)| {
-            if persp {
-                [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
-            } else {
-                [h[0], h[1], h[2]]
-            }
-        }));
-        let mut piece = describe(face, &self.points[start as usize..], start, leaf);
+        let corners = &self.corner_at[start as usize..];
+        pts.clear();
+        pts.extend(corners.iter().map(|&i| self.points[i as usize]));
+        let mut piece = describe(face, pts, start, leaf);
         piece.culled = back_cull.culls(&piece);
-        let w = Corners::new(&self.world_at[start as usize..], &self.world);
+        let w = Corners::new(corners, &self.world);
         if let (Some(eye), true) = (camera.eye, w.len() >= 3) {
             // The eye exactly in the piece's plane: edge-on, whatever rounding the divide did.
             let refs = piece.refs.map(|k| w[k as usize]);
@@ -382,7 +385,7 @@ impl ScreenFaces {
         }
         if poly.len() > INDEXED_ABOVE {
             let id = PieceId(self.pieces.len() as u32);
-            let index = RingIndex::new(&self.points[start as usize..]);
+            let index = RingIndex::new(pts);
             self.ring_indexes.push((id, index));
         }
         self.pieces.push(piece);
@@ -422,6 +425,14 @@ fn exactly_planar(pts: &[P3]) -> bool {
     let arr: Vec<[f64; 3]> = pts.iter().map(|p| [p.x, p.y, p.z]).collect();
     let refs = reference_triple(&arr).map(|k| pts[k as usize]);
     pts.iter().all(|p| orient3d_refs(&refs, p) == 0.0)
+}
+
+/// The screen point (x, y, depth) of clip coordinates `h`: divided by w in perspective.
+fn project(h: &[f64; 4], camera: &Camera) -> [f64; 3] {
+    match camera.projection {
+        Projection::Perspective => [h[0] / h[3], h[1] / h[3], h[2] / h[3]],
+        Projection::Orthographic => [h[0], h[1], h[2]],
+    }
 }
 
 /// A corner on its way into a piece: homogeneous clip coordinates, world point, and the

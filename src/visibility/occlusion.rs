@@ -72,7 +72,7 @@ pub enum Occlusion {
 pub fn occluder_region(
     sf: &ScreenFaces,
     g: PieceId,
-    pts: &[[f64; 3]],
+    pts: Corners<[f64; 3]>,
     world: Corners,
     t: &Target,
     sides: &mut Vec<f64>,
@@ -107,7 +107,7 @@ pub fn occluder_region(
 /// non-negative side, cut where the side changes
 /// sign. The cut is placed on the world edge with the exact side values, then projected
 /// (orthographic views interpolate the screen points directly: the same point, cheaper).
-fn front_part(sf: &ScreenFaces, pts: &[[f64; 3]], world: Corners, sides: &[f64]) -> Vec<Pt2> {
+fn front_part(sf: &ScreenFaces, pts: Corners<[f64; 3]>, world: Corners, sides: &[f64]) -> Vec<Pt2> {
     let perspective = sf
         .camera
         .filter(|c| c.projection == Projection::Perspective);

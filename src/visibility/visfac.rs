@@ -53,11 +53,10 @@ pub struct Scratch {
     clips: Vec<Ring>,
     sides: Vec<f64>,
     ring: Ring,
-    /// A long occluder cut to F's rectangle: its point indices, screen and world points.
+    /// A long occluder cut to F's rectangle: its corners' offsets in the piece, then the
+    /// indices of their points in the screen faces' tables.
     cut: Vec<u32>,
-    cut_pts: Vec<[f64; 3]>,
-    /// The cut's world points, as indices into the screen faces' table.
-    cut_world: Vec<u32>,
+    cut_at: Vec<u32>,
 }
 
 /// Outcome of the walk.
@@ -168,16 +167,14 @@ fn examine(
     let (pts, world) = match sf.ring_index(g) {
         Some(index) => {
             index.cut(&t.rect, &mut scratch.cut);
-            let (all, all_world) = (sf.pts(g), sf.world_pts(g).indices());
-            scratch.cut_pts.clear();
-            scratch.cut_world.clear();
-            for &i in &scratch.cut {
-                scratch.cut_pts.push(all[i as usize]);
-                scratch.cut_world.push(all_world[i as usize]);
-            }
+            let all = sf.corners(g);
+            scratch.cut_at.clear();
+            scratch
+                .cut_at
+                .extend(scratch.cut.iter().map(|&i| all[i as usize]));
             (
-                &scratch.cut_pts[..],
-                Corners::new(&scratch.cut_world, &sf.world),
+                Corners::new(&scratch.cut_at, &sf.points),
+                Corners::new(&scratch.cut_at, &sf.world),
             )
         }
         None => (sf.pts(g), sf.world_pts(g)),
