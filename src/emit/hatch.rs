@@ -15,6 +15,7 @@ use rayon::prelude::*;
 use crate::geom::boolean;
 use crate::geom::poly2::{MultiPolygon, Pt2, Ring};
 use crate::geom::{Rect, V3};
+use crate::progress::{ends_chunk, Lane, Phase, Progress, Stage, Tally, CHUNK};
 use crate::scene::{FaceId, Scene};
 use crate::view::View;
 use crate::visibility::Visibility;
@@ -88,6 +89,20 @@ pub fn hatch(
     opts: &HatchOptions,
     light: Option<V3>,
 ) -> Hatching {
+    let ignored = Progress::new();
+    hatch_counted(scene, view, vis, layout, opts, light, &Lane::open(&ignored))
+}
+
+/// [`hatch`], its visible faces counted in `lane` ([`Phase::Hatch`]) as they are hatched.
+pub(crate) fn hatch_counted(
+    scene: &Scene,
+    view: &View,
+    vis: &Visibility,
+    layout: &Layout,
+    opts: &HatchOptions,
+    light: Option<V3>,
+    lane: &Lane,
+) -> Hatching {
     let light = light_direction(&view.camera, light);
     let angle = opts.angle_deg.unwrap_or_else(|| {
         light_on_screen(&view.camera, &light).map_or(45.0, |[x, y]| y.atan2(x).to_degrees() + 90.0)
@@ -107,9 +122,14 @@ pub fn hatch(
         .map(|&(f, leaf)| (f, leaf, tone(face_shade(view, f, &light))))
         .collect();
     let spacing = opts.spacing_mm.max(1e-6);
+    lane.enter_phase(Stage::Emit, Phase::Hatch, tones.len());
     let segments = tones
         .par_iter()
-        .map(|&(f, leaf, t)| {
+        .enumerate()
+        .map(|(i, &(f, leaf, t))| {
+            if ends_chunk(i) {
+                lane.add(CHUNK);
+            }
             let mut out = Vec::new();
             for &(mult, offset) in families(t) {
                 let fam = Family::new(layout, angle + offset, spacing * mult);
@@ -123,6 +143,7 @@ pub fn hatch(
         .into_iter()
         .flatten()
         .collect();
+    lane.add(tones.len() % CHUNK);
     Hatching { segments, tones }
 }
 

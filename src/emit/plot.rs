@@ -26,7 +26,7 @@ use crate::visibility::Visibility;
 use super::clip_rect::clip_polyline;
 use super::dash::dashes;
 use super::dedup::{dedup_counted, SegmentIndex};
-use super::hatch::{hatch, tone_outlines};
+use super::hatch::{hatch_counted, tone_outlines};
 use super::join::join_counted;
 use super::lines::{Drawing, Stroke};
 use super::page::Layout;
@@ -59,11 +59,11 @@ pub fn picture(
     picture_counted(scene, view, vis, drawing, marks, opts, &lane)
 }
 
-/// [`picture`] in three phases of the emit stage, entered in `lane`: [`Phase::Dedup`] by
-/// segments looked at, [`Phase::Join`] by segments joined (each layer and pen's share its
-/// segments), and [`Phase::Order`] by strokes (each layer's share its strokes, the layers
-/// planned side by side). Mapping to the page and clipping, before them, are not counted
-/// (a few ms on 200k segments); nor are hatching and fills.
+/// [`picture`] in phases of the emit stage, entered in `lane`: with `hatch`, [`Phase::Hatch`]
+/// by visible faces hatched; then [`Phase::Dedup`] by segments looked at, [`Phase::Join`] by
+/// segments joined (each layer and pen's share its segments), and [`Phase::Order`] by strokes
+/// (each layer's share its strokes, the layers planned side by side). Mapping to the page
+/// and clipping, before dedup, are not counted (a few ms on 200k segments).
 pub(crate) fn picture_counted(
     scene: &Scene,
     view: &View,
@@ -114,7 +114,7 @@ pub(crate) fn picture_counted(
     let layout = Layout::new(&frame, opts.page, opts.margin_mm, opts.size)?;
 
     if let Some(h) = &opts.hatch {
-        let hatching = hatch(scene, view, vis, &layout, h, opts.light);
+        let hatching = hatch_counted(scene, view, vis, &layout, h, opts.light, lane);
         for &(leaf, s) in &hatching.segments {
             items.push(Item {
                 pen: Pen::Hatch,

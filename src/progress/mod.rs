@@ -30,7 +30,7 @@ pub const CHUNK: usize = 1024;
 /// True when item `i` (from 0) of a loop is the last of a [`CHUNK`]: where a chunked count
 /// adds the chunk.
 #[inline]
-fn ends_chunk(i: usize) -> bool {
+pub(crate) fn ends_chunk(i: usize) -> bool {
     (i + 1).is_multiple_of(CHUNK)
 }
 

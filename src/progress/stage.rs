@@ -81,6 +81,8 @@ pub enum Phase {
     Clip,
     /// Emit: the JSON visible-polygon set (faces written).
     Json,
+    /// Emit: the picture's hatching, face by visible face (faces).
+    Hatch,
     /// Emit: the picture's lines on the page, each piece drawn once (segments looked at).
     Dedup,
     /// Emit: the picture's lines joined into strokes, hidden ones dashed (segments joined).
@@ -107,6 +109,7 @@ impl Phase {
             Phase::Intersections => "intersections",
             Phase::Clip => "clip",
             Phase::Json => "json",
+            Phase::Hatch => "hatch",
             Phase::Dedup => "dedup",
             Phase::Join => "join",
             Phase::Order => "order",
@@ -126,7 +129,7 @@ impl Phase {
     }
 
     /// Every phase, in the order of the stages that have them.
-    pub(crate) const ALL: [Phase; 17] = [
+    pub(crate) const ALL: [Phase; 18] = [
         Phase::Whole,
         Phase::Read,
         Phase::Parse,
@@ -141,6 +144,7 @@ impl Phase {
         Phase::Intersections,
         Phase::Clip,
         Phase::Json,
+        Phase::Hatch,
         Phase::Dedup,
         Phase::Join,
         Phase::Order,
