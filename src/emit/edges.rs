@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use crate::geom::{P3, V3};
 use crate::progress::{Progress, Share};
-use crate::scene::topology::sort_by_key;
+use crate::scene::topology::sort_by_bucket;
 use crate::scene::FaceId;
 use crate::view::{Facing, View};
 
@@ -228,7 +228,7 @@ fn half_edges(world: &WorldFaces, start: usize, end: usize, base: usize) -> Vec<
         }
     }
     // seq is unique: the order is the same however the sort runs.
-    sort_by_key(&mut half, |h| (h.a, h.b, h.seq));
+    sort_by_bucket(&mut half, |h| h.a, |h| (h.a, h.b, h.seq));
     half
 }
 
@@ -242,7 +242,11 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
             s = i;
         }
     }
-    sort_by_key(&mut groups, |g| half[g.start as usize].seq);
+    sort_by_bucket(
+        &mut groups,
+        |g| half[g.start as usize].seq,
+        |g| half[g.start as usize].seq,
+    );
     groups
 }
 

@@ -48,7 +48,7 @@ use rayon::prelude::*;
 
 use crate::geom::{newell, orient3d, P3};
 use crate::progress::{Progress, Share, Span};
-use crate::scene::topology::{edge_topology, sort, Topology};
+use crate::scene::topology::{edge_topology, sort_edges, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Face, Mesh, Solidity};
 
@@ -366,7 +366,7 @@ pub fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
             (0..n).map(move |i| (f.vertices[i] as u64) << 32 | f.vertices[(i + 1) % n] as u64)
         })
         .collect();
-    sort(&mut directed);
+    sort_edges(&mut directed, |&e| e);
     // Loop steps b→a for each boundary edge a→b, in face order (on all threads, in order).
     let steps: Vec<(u32, u32)> = faces
         .par_iter()
