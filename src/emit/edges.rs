@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use crate::geom::{P3, V3};
 use crate::progress::{Progress, Share};
-use crate::scene::topology::sort_by_bucket;
+use crate::scene::topology::{sort_by_bucket, sort_by_key};
 use crate::scene::FaceId;
 use crate::view::{Facing, View};
 
@@ -242,11 +242,7 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
             s = i;
         }
     }
-    sort_by_bucket(
-        &mut groups,
-        |g| half[g.start as usize].seq,
-        |g| half[g.start as usize].seq,
-    );
+    sort_by_key(&mut groups, |g| half[g.start as usize].seq);
     groups
 }
 
