@@ -100,10 +100,44 @@ pub fn write_num(s: &mut String, x: f64) {
         s.write_str("0")
     } else if x == x.trunc() && x.abs() < 1e15 {
         write!(s, "{x}")
+    } else if (ZMIJ_FROM..ZMIJ_BELOW).contains(&x.abs()) {
+        let mut buffer = zmij::Buffer::new();
+        let digits = buffer.format_finite(x);
+        if may_tie(x, digits) {
+            write!(s, "{x:?}")
+        } else {
+            s.write_str(digits)
+        }
     } else {
         write!(s, "{x:?}")
     };
 }
+
+/// True when zmij's shortest `digits` of `x` may differ from Rust's `{:?}`. In the range
+/// both write plain decimals (Rust's `{:?}` from 1e-4 up, zmij up to 1e15, where zmij is
+/// three times as fast), both write the shortest digits that read back to `x`, the nearest
+/// to `x` among them, unless two are equally near: the one case they may break differently
+/// (found: 999999999999782.25). That tie needs `x` halfway between two numbers of k
+/// decimals, an odd multiple of 2^-(k+1).
+fn may_tie(x: f64, digits: &str) -> bool {
+    let decimals = digits.find('.').map_or(0, |i| digits.len() - i - 1) as i64;
+    let bits = x.to_bits();
+    let exp = ((bits >> 52) & 0x7ff) as i64;
+    let fraction = bits & ((1 << 52) - 1);
+    let (significand, scale) = match exp {
+        0 => (fraction, -1074),
+        _ => (fraction | 1 << 52, exp - 1075),
+    };
+    // x = odd * 2^lowest.
+    let lowest = scale + i64::from(significand.trailing_zeros());
+    lowest == -(decimals + 1)
+}
+
+/// The least magnitude [`write_num`] writes through zmij (below, Rust's `{:?}` has an exponent).
+const ZMIJ_FROM: f64 = 1e-4;
+
+/// The magnitude from which [`write_num`] leaves zmij (from there, it has an exponent).
+const ZMIJ_BELOW: f64 = 1e15;
 
 #[cfg(test)]
 mod tests {
@@ -162,5 +196,54 @@ mod tests {
         let root = Object::group("", vec![Object::instance("m", proto, mirror)]);
         let flat = flatten(&Scene::new(root, "t".into()));
         assert_eq!(flat.faces[0], vec![3, 2, 1, 0]);
+    }
+
+    #[test]
+    fn numbers_are_rusts_debug_digits() {
+        // Random bits across the magnitudes zmij writes and around its bounds, and the bounds.
+        let mut rng = crate::geom::rng::XorShift::new(11);
+        let mut seen = 0;
+        for k in 0..200_000 {
+            let x = match k % 4 {
+                0 => f64::from_bits(rng.next_u64()),
+                1 => (rng.unit() - 0.5) * 10f64.powi((k % 40) as i32 - 20),
+                2 => ZMIJ_FROM * (1.0 + (rng.unit() - 0.5) * 1e-12),
+                _ => ZMIJ_BELOW * (1.0 + (rng.unit() - 0.5) * 1e-12),
+            };
+            if !x.is_finite() {
+                continue;
+            }
+            let want = if x == 0.0 {
+                "0".to_string()
+            } else if x == x.trunc() && x.abs() < 1e15 {
+                format!("{x}")
+            } else {
+                format!("{x:?}")
+            };
+            seen += usize::from((ZMIJ_FROM..ZMIJ_BELOW).contains(&x.abs()));
+            assert_eq!(num(x), want, "{:#x}", x.to_bits());
+        }
+        assert!(seen > 50_000, "{seen}");
+        // Odd multiples of powers of two: where shortest digits can tie.
+        for j in 1..70 {
+            for _ in 0..300 {
+                let odd = (rng.next_u64() >> (11 + rng.below(50))) | 1;
+                let x = odd as f64 * 2f64.powi(-j);
+                if x.is_finite() && x != x.trunc() {
+                    assert_eq!(num(x), format!("{x:?}"), "{:#x}", x.to_bits());
+                }
+            }
+        }
+        for x in [
+            ZMIJ_FROM,
+            -ZMIJ_FROM,
+            0.1,
+            0.3,
+            2.0 / 3.0,
+            123.456,
+            1e15 - 0.5,
+        ] {
+            assert_eq!(num(x), format!("{x:?}"));
+        }
     }
 }
