@@ -206,7 +206,7 @@ mod tests {
         for k in 0..200_000 {
             let x = match k % 4 {
                 0 => f64::from_bits(rng.next_u64()),
-                1 => (rng.unit() - 0.5) * 10f64.powi((k % 40) as i32 - 20),
+                1 => (rng.unit() - 0.5) * 10f64.powi((k % 40) - 20),
                 2 => ZMIJ_FROM * (1.0 + (rng.unit() - 0.5) * 1e-12),
                 _ => ZMIJ_BELOW * (1.0 + (rng.unit() - 0.5) * 1e-12),
             };
