@@ -29,12 +29,7 @@ pub fn one_mesh(scene: &Scene) -> Mesh {
     let mut m = Mesh::default();
     for l in scene.leaves() {
         let base = m.vertices.len() as u32;
-        m.vertices.extend(
-            l.mesh
-                .vertices
-                .iter()
-                .map(|v| l.transform.transform_point(v)),
-        );
+        m.vertices.extend(l.world_vertices());
         m.faces.extend(
             l.mesh
                 .faces

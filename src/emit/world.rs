@@ -116,8 +116,7 @@ impl<'s> WorldFaces<'s> {
             Some(at) => at,
             None => {
                 let at = self.shared.len() + self.points.len();
-                let n = leaf.mesh.vertices.len() as u32;
-                self.points.extend((0..n).map(|k| leaf.world_vertex(k)));
+                self.points.extend(leaf.world_vertices());
                 at
             }
         };

@@ -77,6 +77,15 @@ impl Leaf<'_> {
         self.transform
             .transform_point(&self.mesh.vertices[k as usize])
     }
+
+    /// World positions of all vertices, in order ([`Leaf::world_vertex`] of each: the same
+    /// bits wherever they are made, which lets the screen and the drawing share them).
+    pub fn world_vertices(&self) -> impl ExactSizeIterator<Item = P3> + '_ {
+        self.mesh
+            .vertices
+            .iter()
+            .map(|v| self.transform.transform_point(v))
+    }
 }
 
 impl Scene {

@@ -295,12 +295,7 @@ impl ScreenFaces {
         progress: &Progress,
     ) {
         let world_first = self.world.len() as u32;
-        self.world.extend(
-            leaf.mesh
-                .vertices
-                .iter()
-                .map(|v| leaf.transform.transform_point(v)),
-        );
+        self.world.extend(leaf.world_vertices());
         let world = &self.world[world_first as usize..];
         let clip: Vec<[f64; 4]> = world.iter().map(|p| camera.clip_coords(p)).collect();
         self.points.extend(clip.iter().map(|h| project(h, camera)));
