@@ -261,31 +261,35 @@ fn the_picture_counts_its_segments_and_strokes() {
 }
 
 #[test]
-fn the_hatching_counts_its_visible_faces() {
+fn hatching_and_fills_count_their_visible_faces() {
     let (scene, camera) = prepared_scene();
     let mut ropts = hidden_lines(Outputs {
         svg: true,
         ..Outputs::default()
     });
     ropts.outputs.picture.hatch = Some(kepler_hsr::emit::hatch::HatchOptions::default());
+    ropts.outputs.picture.fill = true;
     let watched = Progress::new();
     let r = render_with(&scene, &camera, &ropts, Some(&watched)).unwrap();
     assert_eq!(r.svg, render(&scene, &camera, &ropts).unwrap().svg);
     let log = watched.phases();
     assert_full(&log);
-    // Every face with a visible part is hatched (its tone may draw no line), once.
+    // Every face with a visible part is hatched (its tone may draw no line) and filled, once.
     let visible = r
         .visibility
         .iter()
         .filter(|(_, f)| !f.visible.is_empty())
         .count();
-    let hatch: Vec<usize> = counts(&log)
-        .into_iter()
-        .filter(|c| c.0 == Stage::Emit && c.1 == Phase::Hatch)
-        .map(|c| c.3)
-        .collect();
+    let total = |p: Phase| -> Vec<usize> {
+        counts(&log)
+            .into_iter()
+            .filter(|c| c.0 == Stage::Emit && c.1 == p)
+            .map(|c| c.3)
+            .collect()
+    };
     assert!(visible > 100, "{visible}");
-    assert_eq!(hatch, [visible]);
+    assert_eq!(total(Phase::Hatch), [visible]);
+    assert_eq!(total(Phase::Fill), [visible]);
 }
 
 #[test]

@@ -18,7 +18,7 @@ use rayon::prelude::*;
 use crate::error::{Error, Result};
 use crate::geom::poly2::{polyline_length as length, Pt2};
 use crate::geom::Rect;
-use crate::progress::{Lane, Phase, Progress, Share, Span, Stage};
+use crate::progress::{ends_chunk, Lane, Phase, Progress, Share, Span, Stage, Tally, CHUNK};
 use crate::scene::{FaceId, Scene};
 use crate::view::{Frame, View};
 use crate::visibility::Visibility;
@@ -61,9 +61,10 @@ pub fn picture(
 
 /// [`picture`] in phases of the emit stage, entered in `lane`: with `hatch`, [`Phase::Hatch`]
 /// by visible faces hatched; then [`Phase::Dedup`] by segments looked at, [`Phase::Join`] by
-/// segments joined (each layer and pen's share its segments), and [`Phase::Order`] by strokes
-/// (each layer's share its strokes, the layers planned side by side). Mapping to the page
-/// and clipping, before dedup, are not counted (a few ms on 200k segments).
+/// segments joined (each layer and pen's share its segments), [`Phase::Order`] by strokes
+/// (each layer's share its strokes, the layers planned side by side), and with `fill`,
+/// [`Phase::Fill`] by visible faces. Mapping to the page and clipping, before dedup, are not
+/// counted (a few ms on 200k segments).
 pub(crate) fn picture_counted(
     scene: &Scene,
     view: &View,
@@ -243,7 +244,7 @@ pub(crate) fn picture_counted(
         .collect();
     stats.layers = layers.iter().map(Layer::summary).collect();
     let fills = if opts.fill {
-        fills(view, vis, &layout, opts.light)
+        fills(view, vis, &layout, opts.light, lane)
     } else {
         Vec::new()
     };
@@ -368,15 +369,23 @@ fn ordered_runs(strokes: Vec<(Pen, Vec<Pt2>)>, span: Span) -> Vec<Run> {
 /// even-odd fill of their union is each of them; drawn as one path, the triangles of one flat
 /// surface meet without the light anti-aliasing seam that two separately filled, half-covered
 /// edge pixels blend to.
+/// Counts the visible faces in `lane` ([`Phase::Fill`]).
 fn fills(
     view: &View,
     vis: &Visibility,
     layout: &Layout,
     light: Option<crate::geom::V3>,
+    lane: &Lane,
 ) -> Vec<Fill> {
     let light = light_direction(&view.camera, light);
     let mut by_grey: BTreeMap<u8, Vec<Vec<Pt2>>> = BTreeMap::new();
-    for (f, fv) in vis.iter().filter(|(_, fv)| !fv.visible.is_empty()) {
+    let visible = || vis.iter().filter(|(_, fv)| !fv.visible.is_empty());
+    let n = visible().count();
+    lane.enter_phase(Stage::Emit, Phase::Fill, n);
+    for (k, (f, fv)) in visible().enumerate() {
+        if ends_chunk(k) {
+            lane.add(CHUNK);
+        }
         let f: FaceId = f;
         let rings = fv
             .visible
@@ -390,6 +399,7 @@ fn fills(
             .clamp(0.0, 255.0) as u8;
         by_grey.entry(grey).or_default().extend(rings);
     }
+    lane.add(n % CHUNK);
     by_grey
         .into_iter()
         .filter(|(_, rings)| !rings.is_empty())

@@ -89,6 +89,8 @@ pub enum Phase {
     Join,
     /// Emit: each layer's pen order, the tour of its strokes (strokes).
     Order,
+    /// Emit: the picture's flat-shaded fills, face by visible face (faces).
+    Fill,
 }
 
 impl Phase {
@@ -110,6 +112,7 @@ impl Phase {
             Phase::Clip => "clip",
             Phase::Json => "json",
             Phase::Hatch => "hatch",
+            Phase::Fill => "fill",
             Phase::Dedup => "dedup",
             Phase::Join => "join",
             Phase::Order => "order",
@@ -129,7 +132,7 @@ impl Phase {
     }
 
     /// Every phase, in the order of the stages that have them.
-    pub(crate) const ALL: [Phase; 18] = [
+    pub(crate) const ALL: [Phase; 19] = [
         Phase::Whole,
         Phase::Read,
         Phase::Parse,
@@ -148,6 +151,7 @@ impl Phase {
         Phase::Dedup,
         Phase::Join,
         Phase::Order,
+        Phase::Fill,
     ];
 }
 
