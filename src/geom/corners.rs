@@ -8,10 +8,19 @@ use super::{newell_indexed, P3, V3};
 /// The corners of one polygon: corner `k` is `table[at[k]]`. Read like a slice of points
 /// (`c[k]`, [`Corners::len`], [`Corners::iter`]); no point is copied. The points are world
 /// points ([`P3`]) unless said otherwise (the screen's are `[f64; 3]`).
-#[derive(Debug)]
 pub struct Corners<'a, T = P3> {
     at: &'a [u32],
     table: &'a [T],
+}
+
+/// The corners' points, not the whole table.
+impl<T: std::fmt::Debug> std::fmt::Debug for Corners<'_, T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let table = self.table;
+        f.debug_list()
+            .entries(self.at.iter().map(|&i| &table[i as usize]))
+            .finish()
+    }
 }
 
 impl<T> Clone for Corners<'_, T> {
@@ -98,5 +107,8 @@ mod tests {
         assert_eq!(c.newell(), newell(&c.to_vec()));
         assert_eq!(c.newell(), V3::new(0.0, 0.0, 1.0));
         assert!(Corners::new(&[], &table).is_empty());
+        // Debug shows the corners' points only.
+        let one = Corners::new(&[2], &table);
+        assert_eq!(format!("{one:?}"), format!("[{:?}]", table[2]));
     }
 }
