@@ -64,10 +64,6 @@ impl Write for Staged {
         self.file.write(buf)
     }
 
-    fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
-        self.file.write_all(buf)
-    }
-
     fn flush(&mut self) -> std::io::Result<()> {
         self.file.flush()
     }

@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use crate::geom::boolean;
 use crate::geom::poly2::{MultiPolygon, Pt2, Ring};
 use crate::geom::{Rect, V3};
-use crate::progress::{ends_chunk, Lane, Phase, Progress, Stage, Tally, CHUNK};
+use crate::progress::{Lane, Phase, Progress, Stage, Tally};
 use crate::scene::{FaceId, Scene};
 use crate::view::View;
 use crate::visibility::Visibility;
@@ -127,9 +127,7 @@ pub(crate) fn hatch_counted(
         .par_iter()
         .enumerate()
         .map(|(i, &(f, leaf, t))| {
-            if ends_chunk(i) {
-                lane.add(CHUNK);
-            }
+            lane.tick(i);
             let mut out = Vec::new();
             for &(mult, offset) in families(t) {
                 let fam = Family::new(layout, angle + offset, spacing * mult);
@@ -143,7 +141,7 @@ pub(crate) fn hatch_counted(
         .into_iter()
         .flatten()
         .collect();
-    lane.add(tones.len() % CHUNK);
+    lane.tick_rest(tones.len());
     Hatching { segments, tones }
 }
 

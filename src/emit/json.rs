@@ -73,7 +73,6 @@ pub(crate) fn to_json_counted(
     let mut out = Sink {
         s: String::with_capacity(256 + vis.solved_count() * 128),
         to: None,
-        spill_at: usize::MAX,
     };
     match json_into(&mut out, view, vis, lines, progress) {
         Ok(()) => out.s,
@@ -115,8 +114,7 @@ fn write_json_spilling(
 ) -> io::Result<()> {
     let mut out = Sink {
         s: String::with_capacity(spill_at.min(SPILL_AT) + (SPILL_AT >> 4)),
-        to: Some(w),
-        spill_at,
+        to: Some((w, spill_at)),
     };
     json_into(&mut out, view, vis, lines, progress)?;
     out.spill_all()
@@ -125,26 +123,25 @@ fn write_json_spilling(
 /// How much text [`write_json`] gathers before it writes.
 pub const SPILL_AT: usize = 1 << 20;
 
-/// Where the text goes: all kept in `s`, or `s` written to `to` whenever it is long.
+/// Where the text goes: all kept in `s`, or `s` written to the writer of `to` whenever it
+/// is as long as `to`'s length.
 struct Sink<'w> {
     s: String,
-    to: Option<&'w mut dyn io::Write>,
-    /// How much text is gathered before it is written.
-    spill_at: usize,
+    to: Option<(&'w mut dyn io::Write, usize)>,
 }
 
 impl Sink<'_> {
-    /// Writes out the text gathered so far once it is `spill_at` long (kept when in memory).
+    /// Writes out the text gathered so far once it is long enough (kept when in memory).
     fn spill(&mut self) -> io::Result<()> {
-        if self.s.len() >= self.spill_at {
-            self.spill_all()?;
+        match &self.to {
+            Some((_, at)) if self.s.len() >= *at => self.spill_all(),
+            _ => Ok(()),
         }
-        Ok(())
     }
 
     /// Writes out all the text gathered so far (kept when in memory).
     fn spill_all(&mut self) -> io::Result<()> {
-        if let Some(w) = self.to.as_mut() {
+        if let Some((w, _)) = self.to.as_mut() {
             w.write_all(self.s.as_bytes())?;
             self.s.clear();
         }

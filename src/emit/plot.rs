@@ -18,7 +18,7 @@ use rayon::prelude::*;
 use crate::error::{Error, Result};
 use crate::geom::poly2::{polyline_length as length, Pt2};
 use crate::geom::Rect;
-use crate::progress::{ends_chunk, Lane, Phase, Progress, Share, Span, Stage, Tally, CHUNK};
+use crate::progress::{Lane, Phase, Progress, Share, Span, Stage, Tally};
 use crate::scene::{FaceId, Scene};
 use crate::view::{Frame, View};
 use crate::visibility::Visibility;
@@ -368,8 +368,7 @@ fn ordered_runs(strokes: Vec<(Pen, Vec<Pt2>)>, span: Span) -> Vec<Run> {
 /// holding the regions of every face of that grey. Visible regions are disjoint, so the
 /// even-odd fill of their union is each of them; drawn as one path, the triangles of one flat
 /// surface meet without the light anti-aliasing seam that two separately filled, half-covered
-/// edge pixels blend to.
-/// Counts the visible faces in `lane` ([`Phase::Fill`]).
+/// edge pixels blend to. Counts the visible faces in `lane` ([`Phase::Fill`]).
 fn fills(
     view: &View,
     vis: &Visibility,
@@ -383,9 +382,7 @@ fn fills(
     let n = visible().count();
     lane.enter_phase(Stage::Emit, Phase::Fill, n);
     for (k, (f, fv)) in visible().enumerate() {
-        if ends_chunk(k) {
-            lane.add(CHUNK);
-        }
+        lane.tick(k);
         let f: FaceId = f;
         let rings = fv
             .visible
@@ -399,7 +396,7 @@ fn fills(
             .clamp(0.0, 255.0) as u8;
         by_grey.entry(grey).or_default().extend(rings);
     }
-    lane.add(n % CHUNK);
+    lane.tick_rest(n);
     by_grey
         .into_iter()
         .filter(|(_, rings)| !rings.is_empty())

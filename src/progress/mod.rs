@@ -30,7 +30,7 @@ pub const CHUNK: usize = 1024;
 /// True when item `i` (from 0) of a loop is the last of a [`CHUNK`]: where a chunked count
 /// adds the chunk.
 #[inline]
-pub(crate) fn ends_chunk(i: usize) -> bool {
+fn ends_chunk(i: usize) -> bool {
     (i + 1).is_multiple_of(CHUNK)
 }
 
@@ -39,6 +39,21 @@ pub(crate) fn ends_chunk(i: usize) -> bool {
 pub(crate) trait Tally: Sync + std::fmt::Debug {
     /// Adds `n` units done to the current phase.
     fn add(&self, n: usize);
+
+    /// Counts item `i` (from 0) of a loop as done: one add of [`CHUNK`] as each chunk's
+    /// last item is done, so a hot loop pays a division, not an add, per item; after the
+    /// loop, [`Tally::tick_rest`] adds the items of the last, partial chunk.
+    #[inline]
+    fn tick(&self, i: usize) {
+        if ends_chunk(i) {
+            self.add(CHUNK);
+        }
+    }
+
+    /// Adds what [`Tally::tick`] left uncounted of a loop of `n` items.
+    fn tick_rest(&self, n: usize) {
+        self.add(n % CHUNK);
+    }
 }
 
 impl Tally for Progress {
@@ -172,19 +187,17 @@ impl Progress {
         self.done.fetch_add(n, Ordering::Relaxed);
     }
 
-    /// Counts item `i` (from 0) of a loop as done: one add of [`CHUNK`] as each chunk's
-    /// last item is done, so a hot loop pays a division, not an atomic add, per item; after
-    /// the loop, [`Progress::tick_rest`] adds the items of the last, partial chunk.
+    /// Counts item `i` (from 0) of a loop as done: one atomic add of [`CHUNK`] as each
+    /// chunk's last item is done; after the loop, [`Progress::tick_rest`] adds the items of
+    /// the last, partial chunk.
     #[inline]
     pub fn tick(&self, i: usize) {
-        if ends_chunk(i) {
-            self.add(CHUNK);
-        }
+        Tally::tick(self, i);
     }
 
     /// Adds what [`Progress::tick`] left uncounted of a loop of `n` items.
     pub fn tick_rest(&self, n: usize) {
-        self.add(n % CHUNK);
+        Tally::tick_rest(self, n);
     }
 }
 

@@ -120,17 +120,10 @@ pub fn write_num(s: &mut String, x: f64) {
 /// (found: 999999999999782.25). That tie needs `x` halfway between two numbers of k
 /// decimals, an odd multiple of 2^-(k+1).
 fn may_tie(x: f64, digits: &str) -> bool {
-    let decimals = digits.find('.').map_or(0, |i| digits.len() - i - 1) as i64;
-    let bits = x.to_bits();
-    let exp = ((bits >> 52) & 0x7ff) as i64;
-    let fraction = bits & ((1 << 52) - 1);
-    let (significand, scale) = match exp {
-        0 => (fraction, -1074),
-        _ => (fraction | 1 << 52, exp - 1075),
-    };
-    // x = odd * 2^lowest.
-    let lowest = scale + i64::from(significand.trailing_zeros());
-    lowest == -(decimals + 1)
+    let decimals = digits.find('.').map_or(0, |i| digits.len() - i - 1) as i32;
+    // Scaling by a power of two is exact here (|x| from 1e-4 to 1e15, a few dozen decimals).
+    let scaled = x * 2f64.powi(decimals + 1);
+    scaled.fract() == 0.0 && scaled % 2.0 != 0.0
 }
 
 /// The least magnitude [`write_num`] writes through zmij (below, Rust's `{:?}` has an exponent).

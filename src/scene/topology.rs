@@ -82,8 +82,8 @@ const SORTED_IN_PARALLEL_ABOVE: usize = 1 << 14;
 /// whole render). Moving the items in place instead (an American flag sort) made the render
 /// 14% slower: each swap waits on the last. Buckets sparser than [`DENSE_BUCKETS`] a item,
 /// and lists longer than [`BUCKETED_UP_TO`] (whose copy raised the peak of a 600k-face
-/// terrain by 8%, and of a 10M-face one too), go to [`sort_by_key`]. Items with equal keys must be equal, so that the order is
-/// the one every sort gives.
+/// terrain by 8%, and of a 10M-face one too), go to [`sort_by_key`]. Items with equal keys
+/// must be equal, so that the order is the one every sort gives.
 pub(crate) fn sort_by_bucket<T: Clone + Send, K: Ord>(
     v: &mut [T],
     bucket: impl Fn(&T) -> u32,
@@ -96,13 +96,11 @@ pub(crate) fn sort_by_bucket<T: Clone + Send, K: Ord>(
     if !(64..=BUCKETED_UP_TO).contains(&n) || top as usize > DENSE_BUCKETS * n {
         return sort_by_key(v, key);
     }
-    // at[b]: where bucket b starts, then (while scattering) its next place, which ends as
-    // the start of bucket b + 1.
-    let mut at = vec![0u32; top as usize + 1];
+    // at[b]: where bucket b starts; while scattering, its next place (so, after, where
+    // bucket b + 1 starts).
+    let mut at = vec![0u32; top as usize + 2];
     for x in v.iter() {
-        if let Some(next) = at.get_mut(bucket(x) as usize + 1) {
-            *next += 1;
-        }
+        at[bucket(x) as usize + 1] += 1;
     }
     for b in 1..at.len() {
         at[b] += at[b - 1];
@@ -113,8 +111,9 @@ pub(crate) fn sort_by_bucket<T: Clone + Send, K: Ord>(
         v[*slot as usize] = x;
         *slot += 1;
     }
+    // Bucket b now runs from at[b - 1] (0 for the first) to at[b].
     let mut lo = 0;
-    for &hi in &at {
+    for &hi in &at[..=top as usize] {
         if hi - lo > 1 {
             v[lo as usize..hi as usize].sort_unstable_by_key(&key);
         }

@@ -284,6 +284,13 @@ impl ScreenFaces {
         self.piece(p).refs.map(|k| w[k as usize])
     }
 
+    /// The factor that makes `orient3d` over piece `p`'s [`ScreenFaces::plane_refs`]
+    /// positive for points in front of its plane (toward the viewer): from the turn of its
+    /// projected reference points and the camera's orientation sign (0 when edge-on).
+    pub fn front_sign(&self, p: PieceId) -> f64 {
+        -f64::from(self.piece(p).ref_turn) * self.det_sign
+    }
+
     /// Projects the faces of a leaf, except its `hidden` ones (local indices, ascending: faces
     /// of components the cull found HIDDEN get no pieces).
     fn add_leaf(

@@ -40,7 +40,7 @@ impl Target {
             piece: p,
             face: pc.face,
             refs: sf.plane_refs(p),
-            front_sign: -f64::from(pc.ref_turn) * sf.det_sign,
+            front_sign: sf.front_sign(p),
             ring: sf.ring_ccw(p),
             rect: pc.rect,
             zmin: pc.zmin,

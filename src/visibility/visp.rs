@@ -66,7 +66,7 @@ pub fn face_hides(view: &View, g: PieceId, p: &P3, q: Pt2, on_face: Option<FaceI
     if on_face == Some(piece.face) || !piece.rect.contains_strictly(q) {
         return false;
     }
-    let side = orient3d_refs(&sf.plane_refs(g), p) * (-f64::from(piece.ref_turn) * sf.det_sign);
+    let side = orient3d_refs(&sf.plane_refs(g), p) * sf.front_sign(g);
     let in_front_of_p = side < 0.0 || (side == 0.0 && on_face.is_some_and(|f| piece.face < f));
     if !in_front_of_p {
         return false;
