@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use crate::geom::{P3, V3};
 use crate::progress::{Progress, Share};
-use crate::scene::topology::{sort_by_bucket, sort_by_key};
+use crate::scene::topology::{sort_by_key, sort_by_pair};
 use crate::scene::FaceId;
 use crate::view::{Facing, View};
 
@@ -227,8 +227,8 @@ fn half_edges(world: &WorldFaces, start: usize, end: usize, base: usize) -> Vec<
             }
         }
     }
-    // seq is unique: the order is the same however the sort runs.
-    sort_by_bucket(&mut half, |h| h.a, |h| (h.a, h.b, h.seq));
+    // seq is unique and counts up: the order is the same however the sort runs.
+    sort_by_pair(&mut half, |h| (h.a, h.b), |h| (h.a, h.b, h.seq));
     half
 }
 

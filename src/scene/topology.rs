@@ -21,34 +21,48 @@ pub enum Topology {
     Inconsistent,
 }
 
-/// Classifies the edges of `faces` (an empty set is open). The directed edges are sorted as
-/// packed integers, and so are their reverses: with no edge twice, the faces are closed
-/// exactly when the two lists are equal (every edge's reverse is an edge, and reversing is
-/// one-to-one). No hashing and no search: two sorts and one pass.
+/// Classifies the edges of `faces` (an empty set is open). Each traversal of an edge is a
+/// packed integer of its two vertices, least first, with its direction; sorted, the
+/// traversals of one edge are neighbours, and the faces are closed exactly when every edge
+/// comes twice, once each way. Once twice the same way, or three times, is inconsistent;
+/// once only, open (unless it runs from a vertex to itself, its own reverse). No hashing
+/// and no search: one sort and one pass.
 pub fn edge_topology(faces: &[Face]) -> Topology {
     if faces.is_empty() {
         return Topology::Open;
     }
     let corners: usize = faces.iter().map(|f| f.vertices.len()).sum();
-    let mut edges: Vec<u64> = Vec::with_capacity(corners);
+    let mut edges: Vec<(u64, bool)> = Vec::with_capacity(corners);
     for f in faces {
         let n = f.vertices.len();
         for i in 0..n {
             let (a, b) = (f.vertices[i], f.vertices[(i + 1) % n]);
-            edges.push((a as u64) << 32 | b as u64);
+            edges.push(((a.min(b) as u64) << 32 | a.max(b) as u64, a < b));
         }
     }
-    let mut reversed: Vec<u64> = edges.iter().map(|e| e.rotate_right(32)).collect();
-    sort_edges(&mut edges, |&e| e);
-    // A directed edge twice: used twice one way, or by more than two faces.
-    if edges.windows(2).any(|w| w[0] == w[1]) {
-        return Topology::Inconsistent;
+    // Equal traversals are equal items: the order is the same however the sort runs.
+    sort_edges(&mut edges, |e| e.0);
+    let mut open = false;
+    let mut i = 0;
+    while i < edges.len() {
+        let mut j = i + 1;
+        while j < edges.len() && edges[j].0 == edges[i].0 {
+            j += 1;
+        }
+        let edge = edges[i].0;
+        match j - i {
+            // An edge from a vertex to itself is its own reverse (as in `by_counts` below).
+            1 if edge >> 32 == edge & 0xffff_ffff => {}
+            1 => open = true,
+            2 if edges[i].1 != edges[i + 1].1 => {}
+            _ => return Topology::Inconsistent,
+        }
+        i = j;
     }
-    sort_edges(&mut reversed, |&e| e);
-    if edges == reversed {
-        Topology::Closed
-    } else {
+    if open {
         Topology::Open
+    } else {
+        Topology::Closed
     }
 }
 
@@ -74,63 +88,69 @@ pub(crate) fn sort_by_key<T: Send, K: Ord>(v: &mut [T], key: impl Fn(&T) -> K + 
 /// Above this many items [`sort`] and [`sort_by_key`] use all threads.
 const SORTED_IN_PARALLEL_ABOVE: usize = 1 << 14;
 
-/// Sorts `v` by `key` through `bucket`, a small coarse key the order refines
-/// (`bucket(x) < bucket(y)` implies `key(x) < key(y)`, as a packed edge's first vertex does):
-/// a counting sort by bucket (scattered from a copy of the list), then each bucket's few
-/// items sorted by `key`. Linear and on one thread, it beats a comparison sort on all threads
-/// for a mesh's edge lists (a bunny render sorts 200k edges a dozen times: CPU 0.90 of the
-/// whole render). Moving the items in place instead (an American flag sort) made the render
-/// 14% slower: each swap waits on the last. Buckets sparser than [`DENSE_BUCKETS`] a item,
-/// and lists longer than [`BUCKETED_UP_TO`] (whose copy raised the peak of a 600k-face
-/// terrain by 8%, and of a 10M-face one too), go to [`sort_by_key`]. Items with equal keys
-/// must be equal, so that the order is the one every sort gives.
-pub(crate) fn sort_by_bucket<T: Clone + Send, K: Ord>(
+/// Sorts `v` by `key`, whose order begins with `pair`'s (a packed edge's two vertices, say):
+/// a stable least-significant-digit radix sort, two counting passes (by the pair's second
+/// number, then by its first), each scattered between `v` and one copy of it. Linear, on one
+/// thread and without a comparison, it beats a comparison sort on all threads for a mesh's
+/// edge lists (a bunny render sorts 200k edges a dozen times). Being stable, it leaves items
+/// with equal pairs in the order they came: callers must give them in `key`'s order (a face
+/// or corner number counting up as the list is made, or items equal in all). Sorting by the
+/// first number, then each vertex's few items by `key` (insertion sorts, their branches
+/// mispredicted), cost the bunny's render 3.5% more CPU; moving the items in place (an
+/// American flag sort) 14% more again: each swap waits on the last. Pairs sparser than
+/// [`DENSE_BUCKETS`] a item, and lists longer than [`BUCKETED_UP_TO`] (whose copy raised the
+/// peak of a 600k-face terrain by 8%, and of a 10M-face one too), go to [`sort_by_key`].
+pub(crate) fn sort_by_pair<T: Clone + Send, K: Ord>(
     v: &mut [T],
-    bucket: impl Fn(&T) -> u32,
+    pair: impl Fn(&T) -> (u32, u32),
     key: impl Fn(&T) -> K + Sync,
 ) {
     let n = v.len();
-    let Some(top) = v.iter().map(&bucket).max() else {
+    let tops = v
+        .iter()
+        .map(&pair)
+        .reduce(|a, b| (a.0.max(b.0), a.1.max(b.1)));
+    let Some((first_top, second_top)) = tops else {
         return;
     };
-    if !(64..=BUCKETED_UP_TO).contains(&n) || top as usize > DENSE_BUCKETS * n {
+    let dense = |top: u32| top as usize <= DENSE_BUCKETS * n;
+    if !(64..=BUCKETED_UP_TO).contains(&n) || !dense(first_top) || !dense(second_top) {
         return sort_by_key(v, key);
     }
-    // at[b]: where bucket b starts; while scattering, its next place (so, after, where
-    // bucket b + 1 starts).
+    let mut copy = v.to_vec();
+    scatter(v, &mut copy, |x| pair(x).1, second_top);
+    scatter(&copy, v, |x| pair(x).0, first_top);
+}
+
+/// One counting pass of [`sort_by_pair`]: `from` into `to` by `digit` (at most `top`),
+/// stably.
+fn scatter<T: Clone>(from: &[T], to: &mut [T], digit: impl Fn(&T) -> u32, top: u32) {
+    // at[d]: where digit d's items start; while scattering, the next one's place.
     let mut at = vec![0u32; top as usize + 2];
-    for x in v.iter() {
-        at[bucket(x) as usize + 1] += 1;
+    for x in from {
+        at[digit(x) as usize + 1] += 1;
     }
-    for b in 1..at.len() {
-        at[b] += at[b - 1];
+    for d in 1..at.len() {
+        at[d] += at[d - 1];
     }
-    let items = v.to_vec();
-    for x in items {
-        let slot = &mut at[bucket(&x) as usize];
-        v[*slot as usize] = x;
+    for x in from {
+        let slot = &mut at[digit(x) as usize];
+        to[*slot as usize] = x.clone();
         *slot += 1;
-    }
-    // Bucket b now runs from at[b - 1] (0 for the first) to at[b].
-    let mut lo = 0;
-    for &hi in &at[..=top as usize] {
-        if hi - lo > 1 {
-            v[lo as usize..hi as usize].sort_unstable_by_key(&key);
-        }
-        lo = hi;
     }
 }
 
-/// Most buckets a item for which [`sort_by_bucket`] counts (beyond, it compares).
+/// Most values of a pair's number a item for which [`sort_by_pair`] counts (beyond, it
+/// compares).
 const DENSE_BUCKETS: usize = 4;
 
-/// Longest list [`sort_by_bucket`] sorts by buckets (beyond, it compares on all threads).
+/// Longest list [`sort_by_pair`] counts (beyond, it compares on all threads).
 const BUCKETED_UP_TO: usize = 1 << 20;
 
-/// [`sort_by_bucket`] of packed edges `a << 32 | b` (or such an edge with a number), by the
-/// first vertex.
+/// [`sort_by_pair`] of packed edges `a << 32 | b` (or such an edge with a number counting
+/// up in the list), by the edge.
 pub(crate) fn sort_edges<T: Ord + Copy + Send>(v: &mut [T], edge: impl Fn(&T) -> u64) {
-    sort_by_bucket(v, |x| (edge(x) >> 32) as u32, |x| *x);
+    sort_by_pair(v, |x| ((edge(x) >> 32) as u32, edge(x) as u32), |x| *x);
 }
 
 /// Connected pieces of a mesh's faces through shared edges.
@@ -206,6 +226,14 @@ mod tests {
         assert_eq!(edge_topology(&tet(true)), Topology::Inconsistent);
         assert_eq!(edge_topology(&tet(false)[..3]), Topology::Open);
         assert_eq!(edge_topology(&[]), Topology::Open);
+        // A corner repeated: its edge from a vertex to itself is its own reverse, once.
+        let mut pinched = tet(false);
+        pinched[0].vertices.insert(1, 0);
+        assert_eq!(edge_topology(&pinched), by_counts(&pinched));
+        assert_eq!(edge_topology(&pinched), Topology::Closed);
+        pinched[1].vertices.insert(1, 0);
+        assert_eq!(edge_topology(&pinched), by_counts(&pinched));
+        assert_eq!(edge_topology(&pinched), Topology::Inconsistent);
     }
 
     /// The plain definition, by counting directed edges in a map.
@@ -260,6 +288,12 @@ mod tests {
                 let k = rng.below(faces.len());
                 faces.push(faces[k].clone());
             }
+            if rng.below(4) == 0 {
+                // A corner repeated: an edge from a vertex to itself.
+                let k = rng.below(faces.len());
+                let v = faces[k].vertices[0];
+                faces[k].vertices.insert(0, v);
+            }
             let t = edge_topology(&faces);
             assert_eq!(t, by_counts(&faces), "{faces:?}");
             assert_eq!(is_closed_oriented(&faces), t == Topology::Closed);
@@ -278,15 +312,15 @@ mod tests {
     }
 
     #[test]
-    fn bucket_sort_is_the_sort() {
+    fn radix_sort_is_the_sort() {
         let mut rng = crate::geom::rng::XorShift::new(7);
         for (n, verts) in [(0, 1), (5, 3), (100, 10), (5000, 900), (5000, 1 << 30)] {
-            // Packed edges, duplicates among them, and with a number: the sort's own order.
+            // Packed edges, duplicates among them, and with a number counting up: the sort's
+            // own order.
             let mut edges: Vec<u64> = (0..n)
                 .map(|_| (rng.below(verts) as u64) << 32 | rng.below(verts) as u64)
                 .collect();
-            let mut numbered: Vec<(u64, u32)> =
-                edges.iter().map(|&e| (e, rng.below(50) as u32)).collect();
+            let mut numbered: Vec<(u64, u32)> = (edges.iter().copied()).zip(0..).collect();
             let (mut want, mut want_numbered) = (edges.clone(), numbered.clone());
             want.sort_unstable();
             want_numbered.sort_unstable();
@@ -295,11 +329,14 @@ mod tests {
             assert_eq!(edges, want, "{n} edges over {verts} vertices");
             assert_eq!(numbered, want_numbered);
         }
-        // A key finer than the bucket (unique keys, as half-edges have).
-        let mut v: Vec<(u32, u32)> = (0..3000).map(|k| (rng.below(40) as u32, k)).collect();
+        // A key finer than the pair, in input order among equal pairs (as half-edges'
+        // corners are): each pass must be stable.
+        let mut v: Vec<(u32, u32, u32)> = (0..3000)
+            .map(|k| (rng.below(40) as u32, rng.below(30) as u32, k))
+            .collect();
         let mut want = v.clone();
-        want.sort_unstable_by_key(|x| (x.0, std::cmp::Reverse(x.1)));
-        sort_by_bucket(&mut v, |x| x.0, |x| (x.0, std::cmp::Reverse(x.1)));
+        want.sort_unstable();
+        sort_by_pair(&mut v, |x| (x.0, x.1), |x| *x);
         assert_eq!(v, want);
     }
 }
