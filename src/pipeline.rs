@@ -11,8 +11,8 @@ use crate::emit::lines::{draw_counted, Drawing, LineOptions};
 use crate::emit::marks::face_marks;
 use crate::emit::picture::{Picture, PlotStats};
 use crate::emit::plot::picture_counted;
-use crate::emit::png::to_png;
-use crate::emit::svg::to_svg;
+use crate::emit::png::to_png_counted;
+use crate::emit::svg::to_svg_counted;
 use crate::error::{Error, Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
 use crate::progress::{Lane, Phase};
@@ -297,8 +297,8 @@ fn render_json_to<'s>(
         warnings,
     };
     let mut plot = None;
-    // The JSON is counted by faces written, the picture in its phases (dedup, join, order).
-    // Made side by side, they share the bar one after the other: the JSON's phase first, the
+    // The JSON is counted by faces written, the picture in its phases (page, dedup, join,
+    // order, then the SVG's and the PNG's polylines). Made side by side, they share the bar one after the other: the JSON's phase first, the
     // picture's in a lane behind it, shown from the JSON's end on (the phase the picture is
     // in then with what it has left); a picture done before the JSON never shows.
     if out.json {
@@ -312,7 +312,8 @@ fn render_json_to<'s>(
         Lane::open(progress)
     };
     stats.timed(Stage::Emit, || -> Result<()> {
-        // The JSON and the picture read the same solved view: made side by side.
+        // The JSON and the picture (with its SVG and PNG) read the same solved view: made
+        // side by side.
         let (kept, pic) = rayon::join(
             || {
                 let kept = match (out.json, json) {
@@ -325,21 +326,20 @@ fn render_json_to<'s>(
                 lane.release();
                 kept
             },
-            || {
-                pictures
-                    .then(|| r.picture_counted(&out.picture, &lane))
-                    .transpose()
+            || -> Result<_> {
+                if !pictures {
+                    return Ok(None);
+                }
+                let pic = r.picture_counted(&out.picture, &lane)?;
+                let svg = out.svg.then(|| to_svg_counted(&pic, &lane));
+                let (size, dpi) = (out.picture.size, out.picture.dpi);
+                let png = out.png.then(|| to_png_counted(&pic, size, dpi, &lane));
+                Ok(Some((pic.stats, svg, png.transpose()?)))
             },
         );
         r.json = kept?;
-        if let Some(pic) = pic? {
-            if out.svg {
-                r.svg = Some(to_svg(&pic));
-            }
-            if out.png {
-                r.png = Some(to_png(&pic, out.picture.size, out.picture.dpi)?);
-            }
-            plot = Some(pic.stats);
+        if let Some((stats, svg, png)) = pic? {
+            (r.svg, r.png, plot) = (svg, png, Some(stats));
         }
         Ok(())
     })?;

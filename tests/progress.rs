@@ -244,16 +244,23 @@ fn the_picture_counts_its_segments_and_strokes() {
         .into_iter()
         .filter(|c| c.0 == Stage::Emit)
         .collect();
-    // Alone, the picture shows every phase: the segments on the page, the same segments
-    // less those dropped whole as repeats, and every stroke of every layer.
+    // Alone, the picture shows every phase: the segments put on the page (none clipped
+    // away: the page is the drawing's own), the same segments looked at for repeats, those
+    // kept joined, every stroke of every layer ordered, then written and painted.
     let plot = r.stats.plot.as_ref().unwrap();
     let segments = plot.duplicates.segments;
     let strokes: usize = plot.layers.iter().map(|l| l.strokes).sum();
     let phase = |p: Phase| emit.iter().find(|c| c.1 == p).map(|c| c.3);
     assert_eq!(phase(Phase::Whole), Some(0), "{emit:?}");
+    assert_eq!(plot.clipped_mm, 0.0);
+    assert_eq!(phase(Phase::Page), Some(segments));
     assert_eq!(phase(Phase::Dedup), Some(segments));
     assert!(phase(Phase::Join).is_some_and(|n| n > 0 && n <= segments));
     assert_eq!(phase(Phase::Order), Some(strokes));
+    assert_eq!(phase(Phase::Svg), Some(strokes));
+    assert_eq!(phase(Phase::Png), Some(strokes));
+    let order: Vec<Phase> = emit.iter().map(|c| c.1).collect();
+    assert!(order.windows(2).all(|w| w[0] < w[1]), "in order: {order:?}");
     assert!(plot
         .layers
         .iter()
@@ -290,6 +297,13 @@ fn hatching_and_fills_count_their_visible_faces() {
     assert!(visible > 100, "{visible}");
     assert_eq!(total(Phase::Hatch), [visible]);
     assert_eq!(total(Phase::Fill), [visible]);
+    // The SVG counts the fills' rings (each closed with a Z, which nothing else writes)
+    // and the strokes.
+    let rings = r.svg.as_deref().unwrap().matches('Z').count();
+    let plot = r.stats.plot.as_ref().unwrap();
+    let strokes: usize = plot.layers.iter().map(|l| l.strokes).sum();
+    assert!(rings >= visible, "{rings} rings");
+    assert_eq!(total(Phase::Svg), [rings + strokes]);
 }
 
 #[test]
@@ -315,9 +329,14 @@ fn the_picture_beside_the_json_shows_after_it() {
             .map(|c| c.phase)
             .collect();
         assert_eq!(emit.first(), Some(&Phase::Json), "{emit:?}");
-        assert!(emit[1..]
-            .iter()
-            .all(|p| [Phase::Dedup, Phase::Join, Phase::Order].contains(p)));
+        let picture = [
+            Phase::Page,
+            Phase::Dedup,
+            Phase::Join,
+            Phase::Order,
+            Phase::Svg,
+        ];
+        assert!(emit[1..].iter().all(|p| picture.contains(p)));
         assert!(emit.windows(2).all(|w| w[0] < w[1]), "in order: {emit:?}");
     }
 }

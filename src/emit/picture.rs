@@ -262,6 +262,18 @@ impl Picture {
     pub fn width(&self, pen: Pen) -> f64 {
         self.pen_mm * pen.width_factor()
     }
+
+    /// Polylines drawn: the fills' rings and the layers' strokes.
+    pub fn polylines(&self) -> usize {
+        let rings: usize = self.fills.iter().map(|f| f.rings.len()).sum();
+        let strokes: usize = self
+            .layers
+            .iter()
+            .flat_map(|l| &l.runs)
+            .map(|r| r.lines.len())
+            .sum();
+        rings + strokes
+    }
 }
 
 #[cfg(test)]

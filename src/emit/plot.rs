@@ -18,7 +18,7 @@ use rayon::prelude::*;
 use crate::error::{Error, Result};
 use crate::geom::poly2::{polyline_length as length, Pt2};
 use crate::geom::Rect;
-use crate::progress::{Lane, Phase, Progress, Share, Span, Stage, Tally};
+use crate::progress::{Lane, Phase, Progress, Share, Span, Stage, Tally, CHUNK};
 use crate::scene::{FaceId, Scene};
 use crate::view::{Frame, View};
 use crate::visibility::Visibility;
@@ -143,7 +143,14 @@ pub(crate) fn picture_counted(
     items.sort_by_key(|it| (it.pen, it.leaf));
     let mut segs: Vec<[Pt2; 2]> = Vec::new();
     let mut owner: Vec<(Pen, u32)> = Vec::new();
+    let segments = |it: &Item| it.pts.len().saturating_sub(1);
+    lane.enter_phase(Stage::Emit, Phase::Page, items.iter().map(segments).sum());
+    let mut placed = 0;
     for it in &items {
+        // Counted by segments, a chunk at a time (most lines are a segment or two).
+        let next = placed + segments(it);
+        lane.add((next / CHUNK - placed / CHUNK) * CHUNK);
+        placed = next;
         let page: Vec<Pt2> = it.pts.iter().map(|&p| layout.to_page(p)).collect();
         let before = length(&page);
         let mut after = 0.0;
@@ -156,6 +163,7 @@ pub(crate) fn picture_counted(
         }
         stats.clipped_mm += (before - after).max(0.0);
     }
+    lane.add(placed % CHUNK);
     let eps = DEDUP_EPS_MM;
     lane.enter_phase(Stage::Emit, Phase::Dedup, segs.len());
     let (kept, dup) = dedup_counted(&segs, eps, Share::new(lane, segs.len()).span(0.0, 1.0));

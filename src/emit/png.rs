@@ -7,6 +7,7 @@ use tiny_skia::{
 };
 
 use crate::geom::poly2::Pt2;
+use crate::progress::{Lane, Phase, Progress, Share, Stage, Steps};
 use crate::Error;
 
 use super::color::Rgb;
@@ -29,9 +30,28 @@ pub fn pixel_size(pic: &Picture, px_per_mm: f64) -> (u32, u32) {
     (px(pic.page.width), px(pic.page.height))
 }
 
+/// How far into [`to_png_counted`]'s count the picture is painted: the rest is the encoding.
+const PAINTED: f64 = 0.9;
+
 /// The PNG bytes of a picture.
 pub fn to_png(pic: &Picture, size: u32, dpi: Option<f64>) -> Result<Vec<u8>, Error> {
-    let pixmap = rasterise(pic, pixels_per_mm(pic, size, dpi))?;
+    let sink = Progress::new();
+    to_png_counted(pic, size, dpi, &Lane::open(&sink))
+}
+
+/// [`to_png`], counted in `lane` ([`Phase::Png`]): each fill's rings and each run's strokes
+/// as they are painted, then the encoding.
+pub(crate) fn to_png_counted(
+    pic: &Picture,
+    size: u32,
+    dpi: Option<f64>,
+    lane: &Lane,
+) -> Result<Vec<u8>, Error> {
+    let polylines = pic.polylines();
+    lane.enter_phase(Stage::Emit, Phase::Png, polylines);
+    let share = Share::new(lane, polylines);
+    let painted = share.span(0.0, PAINTED).steps(polylines);
+    let pixmap = paint_counted(pic, pixels_per_mm(pic, size, dpi), &painted)?;
     let (w, h) = (pixmap.width(), pixmap.height());
     // Opaque background: premultiplied RGBA equals straight RGBA.
     let img = image::RgbaImage::from_raw(w, h, pixmap.take())
@@ -39,11 +59,19 @@ pub fn to_png(pic: &Picture, size: u32, dpi: Option<f64>) -> Result<Vec<u8>, Err
     let mut out = std::io::Cursor::new(Vec::new());
     img.write_to(&mut out, image::ImageFormat::Png)
         .map_err(|e| Error::Usage(format!("PNG encoding failed: {e}")))?;
+    share.finish();
     Ok(out.into_inner())
 }
 
 /// Draws the picture into a new pixmap at `k` pixels per mm.
 pub fn rasterise(pic: &Picture, k: f64) -> Result<Pixmap, Error> {
+    let sink = Progress::new();
+    let share = Share::new(&sink, 0);
+    paint_counted(pic, k, &share.span(0.0, 1.0).steps(0))
+}
+
+/// [`rasterise`], each fill's rings and each run's strokes counted in `painted` once drawn.
+fn paint_counted(pic: &Picture, k: f64, painted: &Steps) -> Result<Pixmap, Error> {
     let (w, h) = pixel_size(pic, k);
     let mut pm =
         Pixmap::new(w, h).ok_or_else(|| Error::Usage(format!("cannot make a {w}x{h} picture")))?;
@@ -71,6 +99,7 @@ pub fn rasterise(pic: &Picture, k: f64) -> Result<Pixmap, Error> {
             };
             pm.stroke_path(&path, &paint, &seam, Transform::identity(), None);
         }
+        painted.add(f.rings.len());
     }
     for layer in &pic.layers {
         for run in &layer.runs {
@@ -78,20 +107,17 @@ pub fn rasterise(pic: &Picture, k: f64) -> Result<Pixmap, Error> {
             for l in &run.lines {
                 add_polyline(&mut pb, l.iter().map(to_px), false);
             }
-            let Some(path) = pb.finish() else { continue };
-            let stroke = Stroke {
-                width: ((pic.width(run.pen) * k) as f32).max(0.5),
-                line_cap: LineCap::Round,
-                line_join: LineJoin::Round,
-                ..Stroke::default()
-            };
-            pm.stroke_path(
-                &path,
-                &paint(run.pen.grey()),
-                &stroke,
-                Transform::identity(),
-                None,
-            );
+            if let Some(path) = pb.finish() {
+                let stroke = Stroke {
+                    width: ((pic.width(run.pen) * k) as f32).max(0.5),
+                    line_cap: LineCap::Round,
+                    line_join: LineJoin::Round,
+                    ..Stroke::default()
+                };
+                let grey = paint(run.pen.grey());
+                pm.stroke_path(&path, &grey, &stroke, Transform::identity(), None);
+            }
+            painted.add(run.lines.len());
         }
     }
     Ok(pm)

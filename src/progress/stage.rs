@@ -83,6 +83,9 @@ pub enum Phase {
     Json,
     /// Emit: the picture's hatching, face by visible face (faces).
     Hatch,
+    /// Emit: the picture's lines placed on the page and clipped to its drawing area
+    /// (segments).
+    Page,
     /// Emit: the picture's lines on the page, each piece drawn once (segments looked at).
     Dedup,
     /// Emit: the picture's lines joined into strokes, hidden ones dashed (segments joined).
@@ -91,6 +94,11 @@ pub enum Phase {
     Order,
     /// Emit: the picture's flat-shaded fills, face by visible face (faces).
     Fill,
+    /// Emit: the SVG document, its fills' rings and its strokes written (polylines).
+    Svg,
+    /// Emit: the PNG picture, its fills' rings and its strokes painted, then the pixels
+    /// encoded (polylines).
+    Png,
 }
 
 impl Phase {
@@ -112,10 +120,13 @@ impl Phase {
             Phase::Clip => "clip",
             Phase::Json => "json",
             Phase::Hatch => "hatch",
+            Phase::Page => "page",
             Phase::Fill => "fill",
             Phase::Dedup => "dedup",
             Phase::Join => "join",
             Phase::Order => "order",
+            Phase::Svg => "svg",
+            Phase::Png => "png",
         }
     }
 
@@ -125,14 +136,15 @@ impl Phase {
             Phase::Whole => Unit::Items,
             Phase::Read | Phase::Parse => Unit::Bytes,
             Phase::Clip => Unit::Edges,
-            Phase::Dedup | Phase::Join => Unit::Segments,
+            Phase::Page | Phase::Dedup | Phase::Join => Unit::Segments,
             Phase::Order => Unit::Strokes,
+            Phase::Svg | Phase::Png => Unit::Polylines,
             _ => Unit::Faces,
         }
     }
 
     /// Every phase, in the order of the stages that have them.
-    pub(crate) const ALL: [Phase; 19] = [
+    pub(crate) const ALL: [Phase; 22] = [
         Phase::Whole,
         Phase::Read,
         Phase::Parse,
@@ -148,10 +160,13 @@ impl Phase {
         Phase::Clip,
         Phase::Json,
         Phase::Hatch,
+        Phase::Page,
         Phase::Dedup,
         Phase::Join,
         Phase::Order,
         Phase::Fill,
+        Phase::Svg,
+        Phase::Png,
     ];
 }
 
@@ -170,6 +185,8 @@ pub enum Unit {
     Segments,
     /// Strokes of the picture: what a plotter draws with its pen down.
     Strokes,
+    /// Polylines of the finished picture: its strokes and its fills' rings.
+    Polylines,
 }
 
 impl Unit {
@@ -182,6 +199,7 @@ impl Unit {
             Unit::Edges => "edges",
             Unit::Segments => "segments",
             Unit::Strokes => "strokes",
+            Unit::Polylines => "polylines",
         }
     }
 }
