@@ -40,7 +40,7 @@ use crate::geom::box_tree::BoxTree;
 use crate::geom::tri_intersect::{plane_axes, segment_meets_triangle, triangles_intersect};
 use crate::geom::{newell, orient2d, orient3d, Box3, P3};
 use crate::progress::{Phase, Progress, Share, Span, Stage};
-use crate::scene::topology::{edge_pieces, edge_topology, Pieces, Topology};
+use crate::scene::topology::{Pieces, Topology, Traversals};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Content, Face, Mesh, Object, Solidity};
 
@@ -70,13 +70,13 @@ pub(crate) struct Surface {
 impl Surface {
     /// The surface of `mesh` (closed and consistent), filling `span`: most of it as the
     /// faces are triangulated, the rest as the pieces are found.
-    fn of(mesh: &Mesh, span: Span) -> Surface {
+    fn of(mesh: &Mesh, pieces: Pieces, span: Span) -> Surface {
         let (tris, face_of, flat) = triangulate(mesh, span.span(0.0, 0.6));
         Surface {
             tris,
             face_of,
             flat,
-            pieces: edge_pieces(&mesh.faces),
+            pieces,
         }
     }
 
@@ -186,13 +186,22 @@ pub(crate) fn examine_until(
     } else {
         (0.12, 0.3)
     };
-    let topology = edge_topology(&mesh.faces);
+    // One sort of the edges for both the topology and, of a closed mesh, its pieces.
+    let traversals = Traversals::of(&mesh.faces);
+    let topology = if mesh.faces.is_empty() {
+        Topology::Open
+    } else {
+        traversals.topology()
+    };
     span.reach(matched);
     match topology {
         Topology::Open => e.solidity = Solidity::Open(CapFailure::NotTried),
         Topology::Inconsistent => e.solidity = Solidity::Inconsistent,
         Topology::Closed => {
-            let surface = Surface::of(mesh, span.span(matched, made));
+            // Freed before the triangles are made.
+            let pieces = traversals.pieces(mesh.faces.len());
+            drop(traversals);
+            let surface = Surface::of(mesh, pieces, span.span(matched, made));
             span.reach(made);
             if !surface.flat.is_empty() {
                 e.solidity = Solidity::Degenerate;

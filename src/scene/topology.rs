@@ -21,48 +21,111 @@ pub enum Topology {
     Inconsistent,
 }
 
-/// Classifies the edges of `faces` (an empty set is open). Each traversal of an edge is a
-/// packed integer of its two vertices, least first, with its direction; sorted, the
-/// traversals of one edge are neighbours, and the faces are closed exactly when every edge
-/// comes twice, once each way. Once twice the same way, or three times, is inconsistent;
-/// once only, open (unless it runs from a vertex to itself, its own reverse). No hashing
-/// and no search: one sort and one pass.
+/// Classifies the edges of `faces` (an empty set is open): [`Traversals::topology`].
 pub fn edge_topology(faces: &[Face]) -> Topology {
     if faces.is_empty() {
         return Topology::Open;
     }
-    let corners: usize = faces.iter().map(|f| f.vertices.len()).sum();
-    let mut edges: Vec<(u64, bool)> = Vec::with_capacity(corners);
-    for f in faces {
-        let n = f.vertices.len();
-        for i in 0..n {
-            let (a, b) = (f.vertices[i], f.vertices[(i + 1) % n]);
-            edges.push(((a.min(b) as u64) << 32 | a.max(b) as u64, a < b));
+    Traversals::of(faces).topology()
+}
+
+/// Every traversal of an edge by a face set, sorted by undirected edge: the traversals of
+/// one edge are neighbours in the list (no hashing, no search). Made once, it gives both
+/// the edge topology and the pieces (the solidity test needs both of one mesh).
+#[derive(Debug)]
+pub(crate) struct Traversals {
+    items: Vec<Traversal>,
+}
+
+/// One face's traversal of one edge.
+#[derive(Debug, Clone, Copy)]
+struct Traversal {
+    /// The edge: its two vertices packed, least first.
+    edge: u64,
+    face: u32,
+    /// From the lesser vertex to the greater.
+    forward: bool,
+}
+
+impl Traversals {
+    /// The traversals of `faces`' edges, sorted by edge (within an edge, in an order nothing
+    /// reads: the topology counts directions, the pieces join faces).
+    pub(crate) fn of(faces: &[Face]) -> Traversals {
+        let corners: usize = faces.iter().map(|f| f.vertices.len()).sum();
+        let mut items = Vec::with_capacity(corners);
+        for (k, f) in faces.iter().enumerate() {
+            let n = f.vertices.len();
+            for i in 0..n {
+                let (a, b) = (f.vertices[i], f.vertices[(i + 1) % n]);
+                items.push(Traversal {
+                    edge: (a.min(b) as u64) << 32 | a.max(b) as u64,
+                    face: k as u32,
+                    forward: a < b,
+                });
+            }
+        }
+        let pair = |t: &Traversal| ((t.edge >> 32) as u32, t.edge as u32);
+        sort_by_pair(&mut items, pair, |t| (t.edge, t.face));
+        Traversals { items }
+    }
+
+    /// The traversals, an edge at a time.
+    fn by_edge(&self) -> impl Iterator<Item = &[Traversal]> {
+        self.items.chunk_by(|a, b| a.edge == b.edge)
+    }
+
+    /// How the edges join up: closed exactly when every edge comes twice, once each way.
+    /// Once twice the same way, or three times, is inconsistent; once only, open (unless it
+    /// runs from a vertex to itself, its own reverse). An empty set is closed here:
+    /// [`edge_topology`] calls it open.
+    pub(crate) fn topology(&self) -> Topology {
+        let mut open = false;
+        for t in self.by_edge() {
+            let edge = t[0].edge;
+            match t.len() {
+                // An edge from a vertex to itself is its own reverse (as in `by_counts`).
+                1 if edge >> 32 == edge & 0xffff_ffff => {}
+                1 => open = true,
+                2 if t[0].forward != t[1].forward => {}
+                _ => return Topology::Inconsistent,
+            }
+        }
+        if open {
+            Topology::Open
+        } else {
+            Topology::Closed
         }
     }
-    // Equal traversals are equal items: the order is the same however the sort runs.
-    sort_edges(&mut edges, |e| e.0);
-    let mut open = false;
-    let mut i = 0;
-    while i < edges.len() {
-        let mut j = i + 1;
-        while j < edges.len() && edges[j].0 == edges[i].0 {
-            j += 1;
+
+    /// The pieces of the `faces` faces connected through shared edges (union-find over
+    /// the faces of each edge). They depend only on which faces share edges, not on order.
+    pub(crate) fn pieces(&self, faces: usize) -> Pieces {
+        let mut parent: Vec<u32> = (0..faces as u32).collect();
+        fn find(parent: &mut [u32], mut x: u32) -> u32 {
+            while parent[x as usize] != x {
+                parent[x as usize] = parent[parent[x as usize] as usize];
+                x = parent[x as usize];
+            }
+            x
         }
-        let edge = edges[i].0;
-        match j - i {
-            // An edge from a vertex to itself is its own reverse (as in `by_counts` below).
-            1 if edge >> 32 == edge & 0xffff_ffff => {}
-            1 => open = true,
-            2 if edges[i].1 != edges[i + 1].1 => {}
-            _ => return Topology::Inconsistent,
+        for t in self.by_edge() {
+            for w in t.windows(2) {
+                let (ra, rb) = (find(&mut parent, w[0].face), find(&mut parent, w[1].face));
+                parent[ra.max(rb) as usize] = ra.min(rb);
+            }
         }
-        i = j;
-    }
-    if open {
-        Topology::Open
-    } else {
-        Topology::Closed
+        let mut label = vec![u32::MAX; faces];
+        let mut of_face = vec![0; faces];
+        let mut count = 0;
+        for (k, slot) in of_face.iter_mut().enumerate() {
+            let r = find(&mut parent, k as u32) as usize;
+            if label[r] == u32::MAX {
+                label[r] = count as u32;
+                count += 1;
+            }
+            *slot = label[r];
+        }
+        Pieces { of_face, count }
     }
 }
 
@@ -162,47 +225,9 @@ pub(crate) struct Pieces {
     pub(crate) count: usize,
 }
 
-/// The pieces of `faces` connected through shared edges (union-find over the sorted
-/// undirected edges).
+/// The pieces of `faces` connected through shared edges ([`Traversals::pieces`]).
 pub(crate) fn edge_pieces(faces: &[Face]) -> Pieces {
-    let n = faces.len();
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            parent[x as usize] = parent[parent[x as usize] as usize];
-            x = parent[x as usize];
-        }
-        x
-    }
-    // Undirected edges with their faces, sorted: the faces of one edge are neighbours in the
-    // list (no hashing). The pieces depend only on which faces share edges, not on order.
-    let mut edges: Vec<(u64, u32)> = Vec::with_capacity(n * 3);
-    for (k, f) in faces.iter().enumerate() {
-        let m = f.vertices.len();
-        for e in 0..m {
-            let (a, b) = (f.vertices[e], f.vertices[(e + 1) % m]);
-            edges.push(((a.min(b) as u64) << 32 | a.max(b) as u64, k as u32));
-        }
-    }
-    sort_edges(&mut edges, |e| e.0);
-    for w in edges.windows(2) {
-        if w[0].0 == w[1].0 {
-            let (ra, rb) = (find(&mut parent, w[0].1), find(&mut parent, w[1].1));
-            parent[ra.max(rb) as usize] = ra.min(rb);
-        }
-    }
-    let mut label = vec![u32::MAX; n];
-    let mut of_face = vec![0; n];
-    let mut count = 0;
-    for (k, slot) in of_face.iter_mut().enumerate() {
-        let r = find(&mut parent, k as u32) as usize;
-        if label[r] == u32::MAX {
-            label[r] = count as u32;
-            count += 1;
-        }
-        *slot = label[r];
-    }
-    Pieces { of_face, count }
+    Traversals::of(faces).pieces(faces.len())
 }
 
 #[cfg(test)]
