@@ -21,7 +21,11 @@ pub enum Topology {
     Inconsistent,
 }
 
-/// Classifies the edges of `faces` (an empty set is open): [`Traversals::topology`].
+/// Classifies the edges of `faces` (an empty set is open). Every traversal of an edge,
+/// undirected with its direction, is sorted by edge; the faces are closed exactly when every
+/// edge comes twice, once each way. Once twice the same way, or three times, is
+/// inconsistent; once only, open (unless it runs from a vertex to itself, its own reverse).
+/// No hashing and no search: one sort and one pass.
 pub fn edge_topology(faces: &[Face]) -> Topology {
     if faces.is_empty() {
         return Topology::Open;
@@ -74,10 +78,8 @@ impl Traversals {
         self.items.chunk_by(|a, b| a.edge == b.edge)
     }
 
-    /// How the edges join up: closed exactly when every edge comes twice, once each way.
-    /// Once twice the same way, or three times, is inconsistent; once only, open (unless it
-    /// runs from a vertex to itself, its own reverse). An empty set is closed here:
-    /// [`edge_topology`] calls it open.
+    /// How the edges join up, as [`edge_topology`] says, except that an empty set is
+    /// closed here ([`edge_topology`] calls it open).
     pub(crate) fn topology(&self) -> Topology {
         let mut open = false;
         for t in self.by_edge() {
