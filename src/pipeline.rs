@@ -298,9 +298,10 @@ fn render_json_to<'s>(
     };
     let mut plot = None;
     // The JSON is counted by faces written, the picture in its phases (page, dedup, join,
-    // order, then the SVG's and the PNG's polylines). Made side by side, they share the bar one after the other: the JSON's phase first, the
-    // picture's in a lane behind it, shown from the JSON's end on (the phase the picture is
-    // in then with what it has left); a picture done before the JSON never shows.
+    // order, then the SVG's and the PNG's polylines). Made side by side, they share the bar
+    // one after the other: the JSON's phase first, the picture's in a lane behind it, shown
+    // from the JSON's end on (the phase the picture is in then with what it has left); a
+    // picture done before the JSON never shows.
     if out.json {
         progress.enter_phase(Stage::Emit, Phase::Json, r.visibility.solved_count());
     } else {

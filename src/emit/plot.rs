@@ -18,7 +18,7 @@ use rayon::prelude::*;
 use crate::error::{Error, Result};
 use crate::geom::poly2::{polyline_length as length, Pt2};
 use crate::geom::Rect;
-use crate::progress::{Lane, Phase, Progress, Share, Span, Stage, Tally, CHUNK};
+use crate::progress::{Lane, Phase, Progress, Share, Span, Stage, Tally};
 use crate::scene::{FaceId, Scene};
 use crate::view::{Frame, View};
 use crate::visibility::Visibility;
@@ -147,9 +147,9 @@ pub(crate) fn picture_counted(
     lane.enter_phase(Stage::Emit, Phase::Page, items.iter().map(segments).sum());
     let mut placed = 0;
     for it in &items {
-        // Counted by segments, a chunk at a time (most lines are a segment or two).
+        // Counted by segments (most lines are a segment or two), a chunk at a time.
         let next = placed + segments(it);
-        lane.add((next / CHUNK - placed / CHUNK) * CHUNK);
+        (placed..next).for_each(|s| lane.tick(s));
         placed = next;
         let page: Vec<Pt2> = it.pts.iter().map(|&p| layout.to_page(p)).collect();
         let before = length(&page);
@@ -163,7 +163,7 @@ pub(crate) fn picture_counted(
         }
         stats.clipped_mm += (before - after).max(0.0);
     }
-    lane.add(placed % CHUNK);
+    lane.tick_rest(placed);
     let eps = DEDUP_EPS_MM;
     lane.enter_phase(Stage::Emit, Phase::Dedup, segs.len());
     let (kept, dup) = dedup_counted(&segs, eps, Share::new(lane, segs.len()).span(0.0, 1.0));

@@ -188,18 +188,13 @@ pub(crate) fn examine_until(
     };
     // One sort of the edges for both the topology and, of a closed mesh, its pieces.
     let traversals = Traversals::of(&mesh.faces);
-    let topology = if mesh.faces.is_empty() {
-        Topology::Open
-    } else {
-        traversals.topology()
-    };
     span.reach(matched);
-    match topology {
+    match traversals.topology() {
         Topology::Open => e.solidity = Solidity::Open(CapFailure::NotTried),
         Topology::Inconsistent => e.solidity = Solidity::Inconsistent,
         Topology::Closed => {
             // Freed before the triangles are made.
-            let pieces = traversals.pieces(mesh.faces.len());
+            let pieces = traversals.pieces();
             drop(traversals);
             let surface = Surface::of(mesh, pieces, span.span(matched, made));
             span.reach(made);

@@ -27,9 +27,6 @@ pub enum Topology {
 /// inconsistent; once only, open (unless it runs from a vertex to itself, its own reverse).
 /// No hashing and no search: one sort and one pass.
 pub fn edge_topology(faces: &[Face]) -> Topology {
-    if faces.is_empty() {
-        return Topology::Open;
-    }
     Traversals::of(faces).topology()
 }
 
@@ -39,6 +36,8 @@ pub fn edge_topology(faces: &[Face]) -> Topology {
 #[derive(Debug)]
 pub(crate) struct Traversals {
     items: Vec<Traversal>,
+    /// How many faces traverse them.
+    faces: usize,
 }
 
 /// One face's traversal of one edge.
@@ -70,7 +69,10 @@ impl Traversals {
         }
         let pair = |t: &Traversal| ((t.edge >> 32) as u32, t.edge as u32);
         sort_by_pair(&mut items, pair, |t| (t.edge, t.face));
-        Traversals { items }
+        Traversals {
+            items,
+            faces: faces.len(),
+        }
     }
 
     /// The traversals, an edge at a time.
@@ -78,9 +80,11 @@ impl Traversals {
         self.items.chunk_by(|a, b| a.edge == b.edge)
     }
 
-    /// How the edges join up, as [`edge_topology`] says, except that an empty set is
-    /// closed here ([`edge_topology`] calls it open).
+    /// How the edges join up, as [`edge_topology`] says.
     pub(crate) fn topology(&self) -> Topology {
+        if self.faces == 0 {
+            return Topology::Open;
+        }
         let mut open = false;
         for t in self.by_edge() {
             let edge = t[0].edge;
@@ -99,9 +103,10 @@ impl Traversals {
         }
     }
 
-    /// The pieces of the `faces` faces connected through shared edges (union-find over
-    /// the faces of each edge). They depend only on which faces share edges, not on order.
-    pub(crate) fn pieces(&self, faces: usize) -> Pieces {
+    /// The pieces of the faces connected through shared edges (union-find over the faces
+    /// of each edge). They depend only on which faces share edges, not on order.
+    pub(crate) fn pieces(&self) -> Pieces {
+        let faces = self.faces;
         let mut parent: Vec<u32> = (0..faces as u32).collect();
         fn find(parent: &mut [u32], mut x: u32) -> u32 {
             while parent[x as usize] != x {
@@ -229,7 +234,7 @@ pub(crate) struct Pieces {
 
 /// The pieces of `faces` connected through shared edges ([`Traversals::pieces`]).
 pub(crate) fn edge_pieces(faces: &[Face]) -> Pieces {
-    Traversals::of(faces).pieces(faces.len())
+    Traversals::of(faces).pieces()
 }
 
 #[cfg(test)]
