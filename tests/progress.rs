@@ -6,6 +6,7 @@ use std::collections::BTreeSet;
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use kepler_hsr::prepare::{prepare_counted, prepare_with, PrepareOptions};
 use kepler_hsr::{
@@ -76,7 +77,10 @@ fn ground_obj(n: usize) -> String {
 /// A scene of two overlapping placements of a sphere (a shared prototype: trees and
 /// inboxes; curves where they cross) above an open ground (capped in prepare).
 fn scene_file() -> PathBuf {
-    let dir = temp_dir("scene");
+    // Tests run on threads of one process: each call writes its own files, so that no test
+    // reads a file another is rewriting.
+    static CALLS: AtomicUsize = AtomicUsize::new(0);
+    let dir = temp_dir(&format!("scene-{}", CALLS.fetch_add(1, Ordering::Relaxed)));
     std::fs::write(dir.join("ball.obj"), sphere_obj(24, 48)).unwrap();
     std::fs::write(dir.join("ground.obj"), ground_obj(30)).unwrap();
     let kdl = "prototype \"ball\" { mesh \"ball.obj\" }\n\
