@@ -15,7 +15,7 @@ use crate::view::ring_index::INDEXED_ABOVE;
 use crate::view::tree::{NodeKind, ScreenInbox};
 use crate::view::{Facing, PieceId, View};
 
-use super::cover::regions_cover;
+use super::cover::{regions_cover, CoverScratch};
 use super::occlusion::{occluder_region, separated_convex, Occlusion, Target};
 use super::stats::Counters;
 
@@ -47,8 +47,8 @@ pub struct Scratch {
     stack: Vec<u32>,
     /// Occluder regions with the piece each came from: clipped to F's rectangle, and whole.
     occluders: Vec<(PieceId, Ring, Ring)>,
-    /// Boundary segments of the cover test.
-    segs: Vec<([f64; 2], [f64; 2], i32)>,
+    /// Buffers of the cover test.
+    cover: CoverScratch,
     /// The regions in piece order, for the boolean call.
     clips: Vec<Ring>,
     sides: Vec<f64>,
@@ -87,7 +87,7 @@ pub fn visfac(view: &View, a: u32, f: PieceId, scratch: &mut Scratch, stats: &mu
         return Vtp::Whole;
     }
     let regions = scratch.occluders.iter().map(|(_, _, r)| r.as_slice());
-    if regions_cover(regions, &target.ring, &mut scratch.segs) {
+    if regions_cover(regions, &target.ring, &mut scratch.cover) {
         stats.emptied_by_patch += 1;
         return Vtp::Empty;
     }
