@@ -91,14 +91,19 @@ pub fn is_convex_ccw(r: &[Pt2]) -> bool {
 /// edge directions then rotate monotonically and pass each half's boundary once per turn.
 pub fn half_changes(r: &[Pt2]) -> usize {
     let n = r.len();
-    let upper: Vec<bool> = (0..n)
-        .filter_map(|i| {
-            let (a, b) = (r[i], r[(i + 1) % n]);
-            (a != b).then(|| b[1] > a[1] || (b[1] == a[1] && b[0] > a[0]))
-        })
-        .collect();
-    let m = upper.len();
-    (0..m).filter(|&i| upper[i] != upper[(i + 1) % m]).count()
+    let mut upper = (0..n).filter_map(|i| {
+        let (a, b) = (r[i], r[(i + 1) % n]);
+        (a != b).then(|| b[1] > a[1] || (b[1] == a[1] && b[0] > a[0]))
+    });
+    let Some(first) = upper.next() else {
+        return 0;
+    };
+    let (mut last, mut changes) = (first, 0);
+    for u in upper {
+        changes += usize::from(u != last);
+        last = u;
+    }
+    changes + usize::from(last != first)
 }
 
 /// Canonical form: every ring starts at its lexicographically smallest point (x, then y),

@@ -30,25 +30,41 @@ type Seg = (Pt2, Pt2, i32, u32);
 /// ([`half_changes`]); the ring then bounds a convex region, which is the closed-left-side
 /// condition (the quadratic definition is the test below's reference).
 pub fn is_convex_ccw_exact(r: &[Pt2]) -> bool {
-    let mut d: Vec<Pt2> = Vec::with_capacity(r.len());
+    // A triangle: its one orientation (a repeated point makes it 0).
+    if let [a, b, c] = r {
+        return orient2d(*a, *b, *c) > 0.0;
+    }
+    let mut buf = [[0.0; 2]; SHORT];
+    let mut long = Vec::new();
+    let d: &mut [Pt2] = if r.len() <= SHORT {
+        &mut buf[..r.len()]
+    } else {
+        long.resize(r.len(), [0.0; 2]);
+        &mut long
+    };
+    let mut n = 0;
     for &p in r {
-        if d.last() != Some(&p) {
-            d.push(p);
+        if n == 0 || d[n - 1] != p {
+            d[n] = p;
+            n += 1;
         }
     }
-    while d.len() > 1 && d.first() == d.last() {
-        d.pop();
+    while n > 1 && d[0] == d[n - 1] {
+        n -= 1;
     }
-    let n = d.len();
+    let d = &d[..n];
     n >= 3
-        && has_turn(&d)
+        && has_turn(d)
         && (0..n).all(|i| {
             let (a, b, c) = (d[i], d[(i + 1) % n], d[(i + 2) % n]);
             let o = orient2d(a, b, c);
             o > 0.0 || (o == 0.0 && !reverses(a, b, c))
         })
-        && half_changes(&d) == 2
+        && half_changes(d) == 2
 }
+
+/// Rings up to this length are checked in a buffer on the stack.
+const SHORT: usize = 16;
 
 /// For collinear a, b, c (a ≠ b, b ≠ c): true when c lies back toward a from b (exact: the
 /// signs of coordinate differences along an axis where a and b differ).
@@ -94,10 +110,11 @@ pub fn regions_cover<'a>(
     }
     let usable: Vec<&[Pt2]> = regions.filter(|r| is_convex_ccw_exact(r)).collect();
     // A seed: a region whose interior meets F's (for convex rings with area, "not separated").
-    let seeds: Vec<bool> = usable.iter().map(|r| !separated_convex(r, f)).collect();
-    if !seeds.contains(&true) {
+    // The regions before the first seed are known not to be seeds.
+    let is_seed = |k: usize| !separated_convex(usable[k], f);
+    let Some(first_seed) = (0..usable.len()).find(|&k| is_seed(k)) else {
         return false;
-    }
+    };
     collect_segments(&usable, b);
     group_segments(b, usable.len());
     b.dead.clear();
@@ -119,7 +136,7 @@ pub fn regions_cover<'a>(
             }
         }
     }
-    b.dead.iter().zip(&seeds).any(|(&d, &s)| !d && s)
+    (first_seed..usable.len()).any(|k| !b.dead[k] && (k == first_seed || is_seed(k)))
 }
 
 /// Every region's edges, undirected (the lesser point first, the sign records the
