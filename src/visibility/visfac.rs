@@ -45,8 +45,8 @@ pub enum Vtp {
 #[derive(Debug, Default)]
 pub struct Scratch {
     stack: Vec<u32>,
-    /// Occluder regions with the piece each came from: clipped to F's rectangle, and whole.
-    occluders: Vec<(PieceId, Ring, Ring)>,
+    /// Occluder regions with the piece each came from.
+    occluders: Vec<(PieceId, Ring)>,
     /// Buffers of the cover test.
     cover: CoverScratch,
     /// The regions in piece order, for the boolean call.
@@ -86,20 +86,31 @@ pub fn visfac(view: &View, a: u32, f: PieceId, scratch: &mut Scratch, stats: &mu
         stats.faces_whole += 1;
         return Vtp::Whole;
     }
-    let regions = scratch.occluders.iter().map(|(_, _, r)| r.as_slice());
+    let regions = scratch.occluders.iter().map(|(_, r)| r.as_slice());
     if regions_cover(regions, &target.ring, &mut scratch.cover) {
         stats.emptied_by_patch += 1;
         return Vtp::Empty;
     }
-    stats.faces_clipped += 1;
-    stats.occluders += scratch.occluders.len() as u64;
     // The walk's order depends on the tree; the boolean call gets the occluders in piece
-    // order, so the result is the same bytes whatever tree found them.
-    scratch.occluders.sort_unstable_by_key(|(g, _, _)| *g);
+    // order, so the result is the same bytes whatever tree found them. Each is cut to F's
+    // rectangle only now (most faces never get here); a region with no area inside it
+    // hides nothing of F (nor did it take part in the cover test: it has no seed and no
+    // edge across F).
+    scratch.occluders.sort_unstable_by_key(|(g, _)| *g);
     scratch.clips.clear();
-    scratch
-        .clips
-        .extend(scratch.occluders.drain(..).map(|(_, r, _)| r));
+    scratch.clips.extend(
+        scratch
+            .occluders
+            .drain(..)
+            .map(|(_, r)| target.rect.clip_ring(&r))
+            .filter(|c| c.len() >= 3),
+    );
+    if scratch.clips.is_empty() {
+        stats.faces_whole += 1;
+        return Vtp::Whole;
+    }
+    stats.faces_clipped += 1;
+    stats.occluders += scratch.clips.len() as u64;
     let rest = subtract(&target.ring, &target.rect, &scratch.clips);
     if rest.is_empty() {
         Vtp::Empty
@@ -201,9 +212,6 @@ fn examine(
         stats.emptied_by_face += 1;
         return Walk::Emptied;
     }
-    let clipped = t.rect.clip_ring(&region);
-    if clipped.len() >= 3 {
-        scratch.occluders.push((g, clipped, region));
-    }
+    scratch.occluders.push((g, region));
     Walk::Open
 }
