@@ -7,7 +7,7 @@
 
 use rayon::prelude::*;
 
-use crate::geom::box_pairs::{filter_map_pairs_of, overlap, Bounds3};
+use crate::geom::box_pairs::{filter_map_pairs_counted, filter_map_pairs_of, overlap, Bounds3};
 use crate::geom::{newell, orient3d_refs, Corners, P3, V3};
 use crate::progress::{Progress, Share};
 use crate::scene::FaceId;
@@ -85,39 +85,46 @@ pub(crate) fn intersection_edges_counted(
     // Results come in ascending (position, position) pair order, so in (face, face) order:
     // fixed whatever the thread count.
     share.reach(0.2);
-    // The boxes are remade from the corners when the grid asks (48 bytes a face not held).
-    let found = filter_map_pairs_of(
-        ids.len(),
-        |i| world.bbox_of(ids[i as usize] as usize),
-        |i, j| {
-            let (i, j) = (i as usize, j as usize);
-            let (lo, hi) = (ids[i] as usize, ids[j] as usize);
-            let piece = world.clean_piece[lo];
-            // Flat faces of one piece proven free of self-intersection meet in nothing but
-            // shared vertices and edges: no curve to find. (The proof is on the faces'
-            // triangles; a face off its plane is not the union of its triangles.)
-            let clean = piece != NO_PIECE && piece == world.clean_piece[hi] && flat[i] && flat[j];
-            let segs = if clean || adjacent(world, lo, hi, sorted_of(i), sorted_of(j)) {
-                Vec::new()
-            } else {
-                cross_with(&side(i), &side(j))
-            };
-            (!segs.is_empty()).then(|| {
-                segs.into_iter()
-                    .map(|seg| Edge {
-                        leaf: faces[lo].leaf,
-                        ends: seg,
-                        faces: vec![FaceId(lo as u32), FaceId(hi as u32)],
-                        kind: EdgeKind::Intersection,
-                    })
-                    .collect::<Vec<_>>()
-            })
-        },
-        share.span(0.2, 1.0),
-    );
+    // The pair test of the grid below, by positions in `ids`.
+    let pair = |i: u32, j: u32| {
+        let (i, j) = (i as usize, j as usize);
+        let (lo, hi) = (ids[i] as usize, ids[j] as usize);
+        let piece = world.clean_piece[lo];
+        // Flat faces of one piece proven free of self-intersection meet in nothing but
+        // shared vertices and edges: no curve to find. (The proof is on the faces'
+        // triangles; a face off its plane is not the union of its triangles.)
+        let clean = piece != NO_PIECE && piece == world.clean_piece[hi] && flat[i] && flat[j];
+        let segs = if clean || adjacent(world, lo, hi, sorted_of(i), sorted_of(j)) {
+            Vec::new()
+        } else {
+            cross_with(&side(i), &side(j))
+        };
+        (!segs.is_empty()).then(|| {
+            segs.into_iter()
+                .map(|seg| Edge {
+                    leaf: faces[lo].leaf,
+                    ends: seg,
+                    faces: vec![FaceId(lo as u32), FaceId(hi as u32)],
+                    kind: EdgeKind::Intersection,
+                })
+                .collect::<Vec<_>>()
+        })
+    };
+    // The boxes are held (48 bytes a face) up to HELD_BOXES faces; beyond, they are remade
+    // from the corners whenever the grid asks, as often as a face meets a candidate.
+    let box_of = |i: u32| world.bbox_of(ids[i as usize] as usize);
+    let found = if ids.len() <= HELD_BOXES {
+        let boxes: Vec<Bounds3> = (0..ids.len() as u32).map(box_of).collect();
+        filter_map_pairs_counted(&boxes, pair, share.span(0.2, 1.0))
+    } else {
+        filter_map_pairs_of(ids.len(), box_of, pair, share.span(0.2, 1.0))
+    };
     share.finish();
     found.into_iter().flatten().collect()
 }
+
+/// Most candidate faces whose boxes are held for the pair search (96 MiB of boxes).
+const HELD_BOXES: usize = 1 << 21;
 
 /// Most clean pieces compared pairwise by [`alone`] (beyond, no face is left out).
 const MAX_PIECES: usize = 4096;
