@@ -517,8 +517,7 @@ fn neighbours(ends: &[[Pt2; 2]], span: Span) -> Vec<Vec<usize>> {
         for r in 0..g {
             // Ring r holds nothing nearer than (r − 1) cells.
             if found.len() >= NEIGHBOURS {
-                found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                found.truncate(NEIGHBOURS);
+                nearest(&mut found);
                 if r > 1 && found[NEIGHBOURS - 1].0 < (r - 1) as f64 * cell {
                     break;
                 }
@@ -541,12 +540,22 @@ fn neighbours(ends: &[[Pt2; 2]], span: Span) -> Vec<Vec<usize>> {
                 }
             }
         }
-        found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        found.truncate(NEIGHBOURS);
+        nearest(&mut found);
         out.push(found.iter().map(|f| f.1).collect());
     }
     span.finish();
     out
+}
+
+/// Keeps the [`NEIGHBOURS`] nearest of `found` (distance, then slot: a total order), nearest
+/// first: the first of them selected, then only those sorted.
+fn nearest(found: &mut Vec<(f64, usize)>) {
+    let order = |a: &(f64, usize), b: &(f64, usize)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+    if found.len() > NEIGHBOURS {
+        found.select_nth_unstable_by(NEIGHBOURS - 1, order);
+        found.truncate(NEIGHBOURS);
+    }
+    found.sort_unstable_by(order);
 }
 
 #[cfg(test)]
