@@ -167,8 +167,23 @@ fn line_dist(u: Pt2, v: Pt2, p: Pt2) -> f64 {
     ((p[0] - u[0]) * dy - (p[1] - u[1]) * dx).abs() / dist(u, v)
 }
 
+/// False only where a → b (length `len`) and c → d cannot lie on one line by [`overlap`]'s
+/// test, decided without a square root. If both ends of the shorter are within `eps` of the
+/// longer's line, the cross product of their directions is at most 2 `eps` times the longer
+/// length, which is less than `len` plus c → d's L1 length; the margins (a factor, and a
+/// term for the product's rounding) keep it true of the rounded distances too.
+fn nearly_parallel(a: Pt2, b: Pt2, len: f64, c: Pt2, d: Pt2, eps: f64) -> bool {
+    let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
+    let (vx, vy) = (d[0] - c[0], d[1] - c[1]);
+    let l1 = vx.abs() + vy.abs();
+    (ux * vy - uy * vx).abs() <= 2.01 * eps * (len + l1) + 1e-12 * len * l1
+}
+
 /// How c → d covers a → b (length `len`), when they lie on one line and share more than `eps`.
 fn overlap(a: Pt2, b: Pt2, len: f64, c: Pt2, d: Pt2, eps: f64) -> Option<Cover> {
+    if !nearly_parallel(a, b, len, c, d, eps) {
+        return None;
+    }
     let lc = dist(c, d);
     if lc == 0.0 {
         return None;
