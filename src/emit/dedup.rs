@@ -299,6 +299,52 @@ impl CellGrid {
 mod tests {
     use super::*;
 
+    /// The prefilter never rejects a pair the on-line test accepts: random segments, many
+    /// along one line with their ends moved by up to twice the tolerance, at several scales.
+    #[test]
+    fn nearly_parallel_keeps_every_pair_on_one_line() {
+        let mut rng = crate::geom::rng::XorShift::new(77);
+        let mut on_line = 0;
+        for k in 0..200_000 {
+            let scale: f64 = [1e-3, 1.0, 300.0, 1e6][k % 4];
+            let eps = [0.0, 1e-9, 1e-4, 1e-2][(k / 4) % 4] * scale.min(1.0);
+            let p = |rng: &mut crate::geom::rng::XorShift| {
+                [rng.range(-scale, scale), rng.range(-scale, scale)]
+            };
+            let (a, b) = (p(&mut rng), p(&mut rng));
+            let along = |rng: &mut crate::geom::rng::XorShift| {
+                let t = rng.range(-0.5, 1.5);
+                let j = [rng.range(-2.0, 2.0) * eps, rng.range(-2.0, 2.0) * eps];
+                [
+                    a[0] + t * (b[0] - a[0]) + j[0],
+                    a[1] + t * (b[1] - a[1]) + j[1],
+                ]
+            };
+            let (c, d) = if k % 3 == 0 {
+                (p(&mut rng), p(&mut rng))
+            } else {
+                (along(&mut rng), along(&mut rng))
+            };
+            let (len, lc) = (dist(a, b), dist(c, d));
+            if len == 0.0 || lc == 0.0 {
+                continue;
+            }
+            let accepted = if lc >= len {
+                line_dist(c, d, a) <= eps && line_dist(c, d, b) <= eps
+            } else {
+                line_dist(a, b, c) <= eps && line_dist(a, b, d) <= eps
+            };
+            if accepted {
+                on_line += 1;
+                assert!(
+                    nearly_parallel(a, b, len, c, d, eps),
+                    "{a:?} {b:?} {c:?} {d:?} {eps}"
+                );
+            }
+        }
+        assert!(on_line > 10_000, "{on_line}");
+    }
+
     #[test]
     fn a_counted_dedup_fills_its_share_and_keeps_the_same() {
         use crate::progress::{Phase, Stage};
