@@ -204,7 +204,10 @@ impl Layer {
             number: self.number,
             name: self.name.clone(),
             strokes: lines.len(),
-            drawn_mm: lines.iter().map(|l| polyline_length(l)).sum(),
+            drawn_mm: lines
+                .iter()
+                .map(|l| polyline_length(l))
+                .fold(0.0, |s, d| s + d),
             travel_mm: travel,
         }
     }
@@ -302,5 +305,22 @@ mod tests {
         };
         let s = l.summary();
         assert_eq!((s.strokes, s.drawn_mm, s.travel_mm), (2, 4.0, 4.0));
+        // One stroke travels +0 (printed "0.0", not "-0.0"); an empty layer draws +0.
+        let one = Layer {
+            runs: vec![Run {
+                pen: Pen::Outline,
+                lines: vec![vec![[0., 0.], [3., 0.]]],
+            }],
+            ..l.clone()
+        };
+        let s = one.summary();
+        assert!(s.travel_mm == 0.0 && s.travel_mm.is_sign_positive());
+        assert_eq!(format!("{:.1}", s.travel_mm), "0.0");
+        let none = Layer {
+            runs: Vec::new(),
+            ..l
+        };
+        let s = none.summary();
+        assert!(s.drawn_mm.is_sign_positive() && s.travel_mm.is_sign_positive());
     }
 }

@@ -51,7 +51,9 @@ const SPAN_NEIGHBOURS: f64 = 0.5;
 /// How far into [`plan_counted`]'s span the first local search ends.
 const SPAN_SEARCH: f64 = 0.7;
 
-/// Pen-up travel of strokes drawn in order: Σ |end(i) − start(i+1)|.
+/// Pen-up travel of strokes drawn in order: Σ |end(i) − start(i+1)| (0 for one stroke or
+/// none: a fold from +0, where `sum` of no floats gives −0 and `kepler render --stats`
+/// printed "travel -0.0 mm").
 pub fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
     lines
         .windows(2)
@@ -59,7 +61,7 @@ pub fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
             let (a, b) = (w[0].as_ref(), w[1].as_ref());
             dist(a[a.len() - 1], b[0])
         })
-        .sum()
+        .fold(0.0, |s, d| s + d)
 }
 
 /// The drawing order of strokes given by their (start, end) points: (stroke, reversed).
