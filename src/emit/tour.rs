@@ -123,6 +123,8 @@ struct Tour<'a> {
     log: Option<Vec<(usize, usize)>>,
     /// Strokes in the local search's work queue (all false between searches).
     queued: Vec<bool>,
+    /// The local search's work queue, kept for its buffer.
+    queue: std::collections::VecDeque<usize>,
 }
 
 impl<'a> Tour<'a> {
@@ -154,6 +156,7 @@ impl<'a> Tour<'a> {
             eps: 1e-12 * b.longer_side().max(f64::MIN_POSITIVE),
             log: None,
             queued: vec![false; n],
+            queue: std::collections::VecDeque::new(),
         }
     }
 
@@ -173,7 +176,23 @@ impl<'a> Tour<'a> {
 
     fn at(&self, k: isize) -> usize {
         let n = self.len() as isize;
-        self.seq[k.rem_euclid(n) as usize]
+        // Callers step at most a lap either way: a wrap without a division.
+        let k = if k < 0 {
+            if k >= -n {
+                k + n
+            } else {
+                k.rem_euclid(n)
+            }
+        } else if k >= n {
+            if k < 2 * n {
+                k - n
+            } else {
+                k.rem_euclid(n)
+            }
+        } else {
+            k
+        };
+        self.seq[k as usize]
     }
 
     /// Entry point of node v in the forward direction (None for the depot).
@@ -378,15 +397,17 @@ impl<'a> Tour<'a> {
         let mut rng = XorShift::new(0x5DEE_CE66_D1CE_5EED);
         let kicks = KICKS_PER_STROKE * strokes.min(MAX_KICKED_STROKES);
         let kicked = span.span(search, 1.0).steps(kicks);
+        let mut log = Vec::new();
         for k in 0..kicks {
             if budget == 0 {
                 break;
             }
             kicked.tick_in(k, KICK_CHUNK);
-            self.log = Some(Vec::new());
+            log.clear();
+            self.log = Some(log);
             let (worse, touched) = self.kick(&mut rng);
             let gain = self.local_search(&touched, &mut budget, None);
-            let log = self.log.take().unwrap_or_default();
+            log = self.log.take().unwrap_or_default();
             if gain - worse <= self.eps {
                 for &(i, j) in log.iter().rev() {
                     self.reverse(i, j);
@@ -401,7 +422,8 @@ impl<'a> Tour<'a> {
     fn local_search(&mut self, from: &[usize], budget: &mut usize, counted: Option<&Steps>) -> f64 {
         let strokes = self.ends.len();
         let mut queued = std::mem::take(&mut self.queued);
-        let mut queue = std::collections::VecDeque::with_capacity(from.len());
+        let mut queue = std::mem::take(&mut self.queue);
+        queue.clear();
         for &v in from {
             if v < strokes && !std::mem::replace(&mut queued[v], true) {
                 queue.push_back(v);
@@ -445,10 +467,11 @@ impl<'a> Tour<'a> {
             }
         }
         // A spent budget leaves strokes queued: clear them for the next search.
-        for v in queue {
+        for &v in &queue {
             queued[v] = false;
         }
         self.queued = queued;
+        self.queue = queue;
         gained
     }
 
