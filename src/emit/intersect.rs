@@ -111,7 +111,8 @@ pub(crate) fn intersection_edges_counted(
         })
     };
     // The boxes are held (48 bytes a face) up to HELD_BOXES faces; beyond, they are remade
-    // from the corners whenever the grid asks, as often as a face meets a candidate.
+    // from the corners whenever the grid asks, as often as a face meets a candidate. Held at
+    // 10M faces (the terrain) they raise the peak 4.32 -> 4.67 GB and save 4% of the time.
     let box_of = |i: u32| world.bbox_of(ids[i as usize] as usize);
     let found = if ids.len() <= HELD_BOXES {
         let boxes: Vec<Bounds3> = (0..ids.len() as u32).map(box_of).collect();
@@ -123,8 +124,8 @@ pub(crate) fn intersection_edges_counted(
     found.into_iter().flatten().collect()
 }
 
-/// Most candidate faces whose boxes are held for the pair search (96 MiB of boxes).
-const HELD_BOXES: usize = 1 << 21;
+/// Most candidate faces whose boxes are held for the pair search (768 MiB of boxes).
+const HELD_BOXES: usize = 1 << 24;
 
 /// Most clean pieces compared pairwise by [`alone`] (beyond, no face is left out).
 const MAX_PIECES: usize = 4096;

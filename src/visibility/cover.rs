@@ -12,6 +12,10 @@
 //! if no kept segment meets it, and one region's interior meets F's interior (where w ≥ 1),
 //! then w ≥ 1 on all of F's interior off the edges, so F's interior lies in the union of the
 //! closed regions, and so does F (the union is closed). Every test is a sign of `orient2d`.
+//!
+//! The argument holds for any subset of the regions (a subset that covers F covers it), so
+//! where a second layer's boundary crosses F the regions making that part of the boundary are
+//! left out, and the layer in front is tested alone ([`regions_cover`]).
 
 use crate::geom::hull2::has_turn;
 use crate::geom::orient2d;
