@@ -144,6 +144,9 @@ fn remaining(segs: &[RankedSeg], cuts: &mut [Vec<Interval>], tol: f64) -> Vec<Ve
 /// parallel and it is longer than `tol`.
 fn along(s: &[Pt2; 2], h: &[Pt2; 2], tol: f64) -> Option<Interval> {
     let (ds, dh) = (sub(s[1], s[0]), sub(h[1], h[0]));
+    if far_from_parallel(ds, dh) {
+        return None;
+    }
     let (ls, lh) = (norm(ds), norm(dh));
     if ls == 0.0 || lh == 0.0 || (cross(ds, dh) / (ls * lh)).abs() > PARALLEL_SIN {
         return None;
@@ -168,6 +171,13 @@ fn along(s: &[Pt2; 2], h: &[Pt2; 2], tol: f64) -> Option<Interval> {
     clamp(a0, a1, 0.0, lh);
     clamp(c0, c1, -tol, tol);
     ((iv[1] - iv[0]) * ls > tol).then_some(iv)
+}
+
+/// True only of directions the parallel test of [`along`] turns away, decided before its
+/// square roots: squared, with a margin far above the rounding of either form.
+fn far_from_parallel(ds: Pt2, dh: Pt2) -> bool {
+    let c = cross(ds, dh);
+    c * c > PARALLEL_SIN * PARALLEL_SIN * (1.0 + 1e-6) * (dot(ds, ds) * dot(dh, dh))
 }
 
 /// Sorted intervals merged where they overlap or touch.
@@ -201,6 +211,38 @@ fn norm(a: Pt2) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `along` without its early turn-away: the on-line test alone, as it was.
+    fn along_by_norms(s: &[Pt2; 2], h: &[Pt2; 2]) -> bool {
+        let (ds, dh) = (sub(s[1], s[0]), sub(h[1], h[0]));
+        let (ls, lh) = (norm(ds), norm(dh));
+        !(ls == 0.0 || lh == 0.0 || (cross(ds, dh) / (ls * lh)).abs() > PARALLEL_SIN)
+    }
+
+    /// The squared turn-away before the square roots never turns away a pair the norms'
+    /// test keeps: random pairs at angles around PARALLEL_SIN, over scales from 1e-150 to
+    /// 1e150.
+    #[test]
+    fn the_early_turn_away_agrees_with_the_norms() {
+        let mut rng = crate::geom::rng::XorShift::new(99);
+        let (mut kept, mut near) = (0, 0);
+        for k in 0..300_000 {
+            let scale = 10f64.powi([-150, -3, 0, 2, 150][k % 5]);
+            let a = rng.range(0.0, std::f64::consts::TAU);
+            let angle = PARALLEL_SIN * rng.range(0.0, 2.0) * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let (l1, l2) = (rng.range(1e-3, 10.0) * scale, rng.range(1e-3, 10.0) * scale);
+            let o = [rng.range(-1.0, 1.0) * scale, rng.range(-1.0, 1.0) * scale];
+            let h = [o, [o[0] + l1 * a.cos(), o[1] + l1 * a.sin()]];
+            let b = a + angle;
+            let s = [o, [o[0] + l2 * b.cos(), o[1] + l2 * b.sin()]];
+            let by_norms = along_by_norms(&s, &h);
+            let turned = far_from_parallel(sub(s[1], s[0]), sub(h[1], h[0]));
+            assert!(!(turned && by_norms), "{s:?} {h:?}");
+            kept += usize::from(by_norms);
+            near += usize::from(!turned && !by_norms);
+        }
+        assert!(kept > 10_000 && near > 0, "{kept} {near}");
+    }
 
     fn r(kind: EdgeKind, edge: u32, a: Pt2, b: Pt2) -> Ranked {
         Ranked {
