@@ -97,6 +97,10 @@ pub struct SegmentIndex {
     seen: Vec<usize>,
     query: usize,
     cells: Vec<usize>,
+    /// The cells around `cells`, each once, in the order the query first meets them.
+    around: Vec<usize>,
+    /// Per grid cell: the last query that listed it in `around`.
+    cell_seen: Vec<usize>,
     eps: f64,
 }
 
@@ -104,12 +108,16 @@ impl SegmentIndex {
     /// An empty index over the bounds of `extent` (segments outside still work, slower);
     /// `eps` is the coincidence tolerance.
     pub fn new(extent: &[[Pt2; 2]], eps: f64) -> SegmentIndex {
+        let grid = CellGrid::new(extent);
+        let cells = grid.cells.len();
         SegmentIndex {
-            grid: CellGrid::new(extent),
+            grid,
             segs: Vec::with_capacity(extent.len()),
             seen: Vec::with_capacity(extent.len()),
             query: 0,
             cells: Vec::new(),
+            around: Vec::new(),
+            cell_seen: vec![0; cells],
             eps,
         }
     }
@@ -138,14 +146,25 @@ impl SegmentIndex {
         }
         self.query += 1;
         self.grid.cells_of(a, b, &mut self.cells);
-        for k in self.grid.near(&self.cells) {
-            if self.seen[k] == self.query {
-                continue;
+        // Neighbouring cells' neighbourhoods overlap: each cell is read once, in the order
+        // the walk round the cells first meets it (so the segments in the same order).
+        self.around.clear();
+        for c in self.grid.around(&self.cells) {
+            if self.cell_seen[c] != self.query {
+                self.cell_seen[c] = self.query;
+                self.around.push(c);
             }
-            self.seen[k] = self.query;
-            let [c, d] = self.segs[k];
-            if let Some(cov) = overlap(a, b, len, c, d, self.eps) {
-                out.push(cov);
+        }
+        for &cell in &self.around {
+            for &k in &self.grid.cells[cell] {
+                if self.seen[k] == self.query {
+                    continue;
+                }
+                self.seen[k] = self.query;
+                let [c, d] = self.segs[k];
+                if let Some(cov) = overlap(a, b, len, c, d, self.eps) {
+                    out.push(cov);
+                }
             }
         }
     }
@@ -275,20 +294,16 @@ impl CellGrid {
         }
     }
 
-    /// Entries of the cells around `cells` (may repeat).
-    fn near<'a>(&'a self, cells: &'a [usize]) -> impl Iterator<Item = usize> + 'a {
+    /// The cells around each of `cells` (itself and its eight neighbours inside the grid),
+    /// in order; a cell may come more than once.
+    fn around<'a>(&'a self, cells: &'a [usize]) -> impl Iterator<Item = usize> + 'a {
+        let (nx, ny) = (self.nx as isize, self.ny as isize);
         cells.iter().flat_map(move |&c| {
             let (x, y) = ((c % self.nx) as isize, (c / self.nx) as isize);
             (-1..=1).flat_map(move |dy| {
-                (-1..=1).flat_map(move |dx| {
+                (-1..=1).filter_map(move |dx| {
                     let (u, v) = (x + dx, y + dy);
-                    let ok = u >= 0 && v >= 0 && (u as usize) < self.nx && (v as usize) < self.ny;
-                    let list: &[usize] = if ok {
-                        &self.cells[v as usize * self.nx + u as usize]
-                    } else {
-                        &[]
-                    };
-                    list.iter().copied()
+                    (u >= 0 && v >= 0 && u < nx && v < ny).then(|| (v * nx + u) as usize)
                 })
             })
         })
