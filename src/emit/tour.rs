@@ -221,17 +221,21 @@ impl<'a> Tour<'a> {
         let n = self.len();
         let len = (j + n - i) % n + 1;
         let (mut a, mut b) = (i, j);
+        // One pass: each swapped pair takes its new positions, and every stroke in the run
+        // turns round (the middle one of an odd run stays where it is).
         for _ in 0..len / 2 {
             self.seq.swap(a, b);
+            for (k, v) in [(a, self.seq[a]), (b, self.seq[b])] {
+                let at = &mut self.place[v];
+                at.pos = k as u32;
+                at.rev = !at.rev;
+            }
             a = if a + 1 == n { 0 } else { a + 1 };
             b = if b == 0 { n - 1 } else { b - 1 };
         }
-        let mut p = i;
-        for _ in 0..len {
-            let at = &mut self.place[self.seq[p]];
-            at.pos = p as u32;
+        if len % 2 == 1 {
+            let at = &mut self.place[self.seq[a]];
             at.rev = !at.rev;
-            p = if p + 1 == n { 0 } else { p + 1 };
         }
     }
 
