@@ -10,9 +10,39 @@
 //! line runs along it: a line is drawn once).
 
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 use crate::geom::poly2::{dist, Pt2};
 use crate::progress::{Progress, Share, Span};
+
+/// A hash map keyed by a few integers (a point's bits, a cell): hashed by multiply and rotate
+/// (the hash of Firefox and rustc) instead of SipHash, whose resistance to chosen keys buys
+/// nothing on a drawing's own points. Nothing here depends on the maps' iteration order.
+type KeyMap<K, V> = HashMap<K, V, BuildHasherDefault<KeyHasher>>;
+
+/// The hasher of [`KeyMap`].
+#[derive(Debug, Default, Clone, Copy)]
+struct KeyHasher(u64);
+
+impl Hasher for KeyHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+
+    fn write_u64(&mut self, i: u64) {
+        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+
+    fn write_i64(&mut self, i: i64) {
+        self.write_u64(i as u64);
+    }
+}
 
 /// Hash key of a point: -0 and 0 are the same point.
 fn key(p: Pt2) -> (u64, u64) {
@@ -65,7 +95,7 @@ struct GraphEdge {
 
 /// The fewest trails that draw every polyline once, joined at exactly equal end points.
 fn euler_trails(lines: &[Vec<Pt2>]) -> Vec<Vec<Pt2>> {
-    let mut ids: HashMap<(u64, u64), usize> = HashMap::new();
+    let mut ids: KeyMap<(u64, u64), usize> = KeyMap::default();
     let mut node = |p: Pt2| {
         let n = ids.len();
         *ids.entry(key(p)).or_insert(n)
@@ -211,7 +241,7 @@ fn join_near(
         }
     };
     let cell = |p: Pt2| ((p[0] / tol).floor() as i64, (p[1] / tol).floor() as i64);
-    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    let mut grid: KeyMap<(i64, i64), Vec<usize>> = KeyMap::default();
     for s in 0..2 * n {
         grid.entry(cell(end(s))).or_default().push(s);
     }
