@@ -149,10 +149,17 @@ impl SegmentIndex {
         // Neighbouring cells' neighbourhoods overlap: each cell is read once, in the order
         // the walk round the cells first meets it (so the segments in the same order).
         self.around.clear();
-        for c in self.grid.around(&self.cells) {
-            if self.cell_seen[c] != self.query {
-                self.cell_seen[c] = self.query;
-                self.around.push(c);
+        let (nx, ny) = (self.grid.nx, self.grid.ny);
+        for &c in &self.cells {
+            let (x, y) = (c % nx, c / nx);
+            for v in y.saturating_sub(1)..=(y + 1).min(ny - 1) {
+                for u in x.saturating_sub(1)..=(x + 1).min(nx - 1) {
+                    let cell = v * nx + u;
+                    if self.cell_seen[cell] != self.query {
+                        self.cell_seen[cell] = self.query;
+                        self.around.push(cell);
+                    }
+                }
             }
         }
         for &cell in &self.around {
@@ -292,21 +299,6 @@ impl CellGrid {
         for &c in cells {
             self.cells[c].push(k);
         }
-    }
-
-    /// The cells around each of `cells` (itself and its eight neighbours inside the grid),
-    /// in order; a cell may come more than once.
-    fn around<'a>(&'a self, cells: &'a [usize]) -> impl Iterator<Item = usize> + 'a {
-        let (nx, ny) = (self.nx as isize, self.ny as isize);
-        cells.iter().flat_map(move |&c| {
-            let (x, y) = ((c % self.nx) as isize, (c / self.nx) as isize);
-            (-1..=1).flat_map(move |dy| {
-                (-1..=1).filter_map(move |dx| {
-                    let (u, v) = (x + dx, y + dy);
-                    (u >= 0 && v >= 0 && u < nx && v < ny).then(|| (v * nx + u) as usize)
-                })
-            })
-        })
     }
 }
 
