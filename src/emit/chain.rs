@@ -2,19 +2,13 @@
 //! greedily (nearest next start, reversal allowed) so that a pen plotter lifts the pen little.
 //! The drawing's own per-object order; pictures refine it across whole layers ([`super::tour`]).
 
-use std::collections::HashMap;
-
+use crate::geom::key_hash::{point_key as key, KeyMap};
 use crate::geom::poly2::Pt2;
-
-fn key(p: Pt2) -> (u64, u64) {
-    // -0 and 0 are the same point.
-    ((p[0] + 0.0).to_bits(), (p[1] + 0.0).to_bits())
-}
 
 /// Joins segments into polylines: each polyline follows unused segments that share an end
 /// point exactly, forward then backward. Deterministic (segments taken in input order).
 pub fn chain(segments: &[[Pt2; 2]]) -> Vec<Vec<Pt2>> {
-    let mut at: HashMap<(u64, u64), Vec<usize>> = HashMap::new();
+    let mut at: KeyMap<(u64, u64), Vec<usize>> = KeyMap::default();
     for (i, s) in segments.iter().enumerate() {
         at.entry(key(s[0])).or_default().push(i);
         if key(s[1]) != key(s[0]) {
@@ -41,7 +35,7 @@ pub fn chain(segments: &[[Pt2; 2]]) -> Vec<Vec<Pt2>> {
 fn extend(
     line: &mut Vec<Pt2>,
     segments: &[[Pt2; 2]],
-    at: &HashMap<(u64, u64), Vec<usize>>,
+    at: &KeyMap<(u64, u64), Vec<usize>>,
     used: &mut [bool],
 ) {
     loop {

@@ -9,45 +9,9 @@
 //! order, ties broken by index. A gap is bridged only where the caller allows it (no other
 //! line runs along it: a line is drawn once).
 
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
-
+use crate::geom::key_hash::{point_key as key, KeyMap};
 use crate::geom::poly2::{dist, Pt2};
 use crate::progress::{Progress, Share, Span};
-
-/// A hash map keyed by a few integers (a point's bits, a cell): hashed by multiply and rotate
-/// (the hash of Firefox and rustc) instead of SipHash, whose resistance to chosen keys buys
-/// nothing on a drawing's own points. Nothing here depends on the maps' iteration order.
-type KeyMap<K, V> = HashMap<K, V, BuildHasherDefault<KeyHasher>>;
-
-/// The hasher of [`KeyMap`].
-#[derive(Debug, Default, Clone, Copy)]
-struct KeyHasher(u64);
-
-impl Hasher for KeyHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(u64::from(b));
-        }
-    }
-
-    fn write_u64(&mut self, i: u64) {
-        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x517c_c1b7_2722_0a95);
-    }
-
-    fn write_i64(&mut self, i: i64) {
-        self.write_u64(i as u64);
-    }
-}
-
-/// Hash key of a point: -0 and 0 are the same point.
-fn key(p: Pt2) -> (u64, u64) {
-    ((p[0] + 0.0).to_bits(), (p[1] + 0.0).to_bits())
-}
 
 /// Joins polylines (each of two points or more) at exactly equal ends, then, when
 /// `tolerance > 0`, at ends closer than `tolerance` where `bridge(p, q)` allows drawing the
@@ -331,6 +295,7 @@ fn join_near(
 mod tests {
     use super::*;
     use crate::geom::poly2::polyline_length;
+    use std::collections::HashMap;
 
     #[test]
     fn a_counted_join_fills_its_share_and_joins_the_same() {

@@ -177,20 +177,11 @@ impl<'a> Tour<'a> {
     fn at(&self, k: isize) -> usize {
         let n = self.len() as isize;
         // Callers step at most a lap either way: a wrap without a division.
-        let k = if k < 0 {
-            if k >= -n {
-                k + n
-            } else {
-                k.rem_euclid(n)
-            }
-        } else if k >= n {
-            if k < 2 * n {
-                k - n
-            } else {
-                k.rem_euclid(n)
-            }
-        } else {
-            k
+        let k = match k {
+            k if (0..n).contains(&k) => k,
+            k if (-n..0).contains(&k) => k + n,
+            k if (n..2 * n).contains(&k) => k - n,
+            k => k.rem_euclid(n),
         };
         self.seq[k as usize]
     }

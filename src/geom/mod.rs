@@ -7,6 +7,7 @@ pub mod box_pairs;
 pub mod box_tree;
 pub mod corners;
 pub mod hull2;
+pub(crate) mod key_hash;
 pub mod normal;
 pub mod poly2;
 pub mod polymesh;

@@ -1,12 +1,11 @@
 //! STL loading, ASCII and binary: triangles welded into one indexed mesh by exact vertex equality.
 
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hash, Hasher};
 use std::path::Path;
 
 use super::mesh_file::{coord_problem, finish, stem_name, MeshFile, MeshGroup};
 use super::text::{decode, Word, Words};
 use crate::error::{Error, Location, Pos, Result};
+use crate::geom::key_hash::KeyMap;
 use crate::geom::P3;
 use crate::progress::{Cursor, Progress};
 
@@ -295,33 +294,9 @@ impl Key {
     }
 }
 
-/// A fast hasher for [`Key`]: multiply-rotate mixing with a final avalanche (the low mantissa
-/// bits of widened `f32` coordinates are all zero, so the output must be well mixed).
-#[derive(Default)]
-struct KeyHasher(u64);
-
-impl Hasher for KeyHasher {
-    fn finish(&self) -> u64 {
-        let mut h = self.0;
-        h ^= h >> 33;
-        h = h.wrapping_mul(0xff51_afd7_ed55_8ccd);
-        h ^= h >> 33;
-        h = h.wrapping_mul(0xc4ce_b9fe_1a85_ec53);
-        h ^ (h >> 33)
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(u64::from(b));
-        }
-    }
-    fn write_u64(&mut self, v: u64) {
-        self.0 = (self.0.rotate_left(23) ^ v).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    }
-}
-
 /// Shares vertices with bitwise-equal coordinates.
 struct Welder {
-    index: HashMap<Key, u32, BuildHasherDefault<KeyHasher>>,
+    index: KeyMap<Key, u32>,
     vertices: Vec<P3>,
 }
 
@@ -330,7 +305,7 @@ impl Welder {
     fn with_capacity(triangles: usize) -> Self {
         let n = triangles / 2 + 1;
         Welder {
-            index: HashMap::with_capacity_and_hasher(n, BuildHasherDefault::default()),
+            index: KeyMap::with_capacity_and_hasher(n, Default::default()),
             vertices: Vec::with_capacity(n),
         }
     }

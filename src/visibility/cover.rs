@@ -89,6 +89,8 @@ pub struct CoverScratch {
     /// Each region's groups (CSR: `region_at[k]..region_at[k + 1]` in `region_groups`).
     region_at: Vec<u32>,
     region_groups: Vec<u32>,
+    /// Where each region's next group goes while `region_groups` is filled.
+    fill: Vec<u32>,
     dead: Vec<bool>,
     stack: Vec<u32>,
 }
@@ -168,12 +170,10 @@ fn collect_segments(usable: &[&[Pt2]], b: &mut CoverScratch) {
 /// The groups of equal segments, and each region's groups.
 fn group_segments(b: &mut CoverScratch, regions: usize) {
     b.group_start.clear();
-    let mut group_of = Vec::with_capacity(b.segs.len());
     for (i, s) in b.segs.iter().enumerate() {
         if i == 0 || (b.segs[i - 1].0, b.segs[i - 1].1) != (s.0, s.1) {
             b.group_start.push(i as u32);
         }
-        group_of.push((b.group_start.len() - 1) as u32);
     }
     b.group_start.push(b.segs.len() as u32);
     let groups = b.group_start.len() - 1;
@@ -191,11 +191,13 @@ fn group_segments(b: &mut CoverScratch, regions: usize) {
     }
     b.region_groups.clear();
     b.region_groups.resize(b.segs.len(), 0);
-    let mut next = b.region_at.clone();
-    for (s, &g) in b.segs.iter().zip(&group_of) {
-        let k = s.3 as usize;
-        b.region_groups[next[k] as usize] = g;
-        next[k] += 1;
+    b.fill.clone_from(&b.region_at);
+    for g in 0..groups {
+        for s in &b.segs[b.group_start[g] as usize..b.group_start[g + 1] as usize] {
+            let k = s.3 as usize;
+            b.region_groups[b.fill[k] as usize] = g as u32;
+            b.fill[k] += 1;
+        }
     }
 }
 
