@@ -82,7 +82,8 @@ pub(crate) fn plan_counted(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> 
 /// The passes of [`plan_counted`].
 fn plan_steps(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> {
     let n = ends.len();
-    if n < 3 {
+    if n < 3 || 2 * n > u32::MAX as usize {
+        // Two slots a stroke must fit a `u32` ([`Near`]); no layer comes near.
         return greedy(ends, 0);
     }
     let home = [0.0, 0.0];
@@ -116,7 +117,7 @@ struct Tour<'a> {
     /// Each node's position and direction, side by side: a reversal updates both.
     place: Vec<Place>,
     /// For each end slot (2i start, 2i + 1 end of stroke i): nearest other strokes' slots.
-    near: Vec<Vec<usize>>,
+    near: Near,
     /// Least gain a move must bring (a rounding guard).
     eps: f64,
     /// Reversals made, when they are to be undone.
@@ -266,15 +267,15 @@ impl<'a> Tour<'a> {
             }
         };
         // New edge end(v) – end(m): positions (pos v, pos m).
-        for &q in &self.near[2 * v + usize::from(!self.rev(v))] {
-            let m = q / 2;
+        for &q in self.near.of(2 * v + usize::from(!self.rev(v))) {
+            let (q, m) = (q as usize, q as usize / 2);
             if q % 2 == usize::from(!self.rev(m)) {
                 consider(self.two_opt_gain(pv, self.pos(m)), pv, self.pos(m));
             }
         }
         // New edge start(v) – start(m): positions (pos v − 1, pos m − 1).
-        for &q in &self.near[2 * v + usize::from(self.rev(v))] {
-            let m = q / 2;
+        for &q in self.near.of(2 * v + usize::from(self.rev(v))) {
+            let (q, m) = (q as usize, q as usize / 2);
             if q % 2 == usize::from(self.rev(m)) {
                 let (i, j) = ((pv + n - 1) % n, (self.pos(m) + n - 1) % n);
                 consider(self.two_opt_gain(i, j), i, j);
@@ -313,8 +314,8 @@ impl<'a> Tour<'a> {
                 2 * last + usize::from(!self.rev(last)),
             ];
             for &slot in &slots {
-                for &q in &self.near[slot] {
-                    let m = q / 2;
+                for &q in self.near.of(slot) {
+                    let m = q as usize / 2;
                     if nodes.contains(&m) {
                         continue;
                     }
@@ -510,9 +511,49 @@ impl<'a> Tour<'a> {
 }
 
 /// For each end slot, the slots of the nearest ends of other strokes (up to [`NEIGHBOURS`]),
-/// nearest first; from a uniform grid, searched ring by ring. Fills `span` as the slots are
-/// searched.
-fn neighbours(ends: &[[Pt2; 2]], span: Span) -> Vec<Vec<usize>> {
+/// nearest first (by distance, then slot: a total order), in one flat table.
+struct Near {
+    /// Slot `s`'s neighbours are `slots[s * NEIGHBOURS ..][.. count[s]]`.
+    slots: Vec<u32>,
+    /// How many neighbours each slot has (fewer than [`NEIGHBOURS`] only in small layers).
+    count: Vec<u8>,
+}
+
+impl Near {
+    /// The neighbours of slot `s`, nearest first.
+    fn of(&self, s: usize) -> &[u32] {
+        &self.slots[s * NEIGHBOURS..][..usize::from(self.count[s])]
+    }
+}
+
+/// The nearest ends found so far for one slot, nearest first, at most [`NEIGHBOURS`]: a
+/// candidate goes in only when it comes before the last kept one.
+struct Nearest {
+    found: [(f64, u32); NEIGHBOURS],
+    len: usize,
+}
+
+impl Nearest {
+    /// Offers slot `t` at distance `d`.
+    fn offer(&mut self, d: f64, t: u32) {
+        let before = |a: (f64, u32), b: (f64, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).is_lt();
+        if self.len == NEIGHBOURS && !before((d, t), self.found[NEIGHBOURS - 1]) {
+            return;
+        }
+        let mut k = self.len.min(NEIGHBOURS - 1);
+        while k > 0 && before((d, t), self.found[k - 1]) {
+            self.found[k] = self.found[k - 1];
+            k -= 1;
+        }
+        self.found[k] = (d, t);
+        self.len = (self.len + 1).min(NEIGHBOURS);
+    }
+}
+
+/// The [`Near`] table of every end slot (2i start, 2i + 1 end of stroke i); from a uniform grid
+/// of about two ends a cell, searched ring by ring. Fills `span` as the slots are searched.
+/// Slots are `u32`: [`plan_steps`] plans no more than `u32::MAX / 2` strokes this way.
+fn neighbours(ends: &[[Pt2; 2]], span: Span) -> Near {
     let pts: Vec<Pt2> = ends.iter().flatten().copied().collect();
     let b = crate::geom::Rect::of_points(pts.iter());
     let side = b.longer_side();
@@ -523,24 +564,43 @@ fn neighbours(ends: &[[Pt2; 2]], span: Span) -> Vec<Vec<usize>> {
         1.0
     };
     let coord = |v: f64, o: f64| (((v - o) / cell).floor().max(0.0) as usize).min(g - 1);
-    let mut cells: Vec<Vec<usize>> = vec![Vec::new(); g * g];
-    for (s, p) in pts.iter().enumerate() {
-        cells[coord(p[1], b.ymin) * g + coord(p[0], b.xmin)].push(s);
+    let cell_of: Vec<u32> = pts
+        .iter()
+        .map(|p| (coord(p[1], b.ymin) * g + coord(p[0], b.xmin)) as u32)
+        .collect();
+    // The cells' slots side by side, in slot order within a cell (a counting sort).
+    let mut start = vec![0u32; g * g + 1];
+    for &c in &cell_of {
+        start[c as usize + 1] += 1;
     }
-    let mut out = Vec::with_capacity(pts.len());
-    let mut found: Vec<(f64, usize)> = Vec::new();
+    for c in 0..g * g {
+        start[c + 1] += start[c];
+    }
+    let mut fill = start.clone();
+    let mut in_cells = vec![0u32; pts.len()];
+    for (s, &c) in cell_of.iter().enumerate() {
+        in_cells[fill[c as usize] as usize] = s as u32;
+        fill[c as usize] += 1;
+    }
+    let mut near = Near {
+        slots: vec![0; pts.len() * NEIGHBOURS],
+        count: vec![0; pts.len()],
+    };
     let searched = span.steps(pts.len());
     for (s, p) in pts.iter().enumerate() {
         searched.tick(s);
         let (cx, cy) = (coord(p[0], b.xmin), coord(p[1], b.ymin));
-        found.clear();
+        let mut found = Nearest {
+            found: [(0.0, 0); NEIGHBOURS],
+            len: 0,
+        };
         for r in 0..g {
             // Ring r holds nothing nearer than (r − 1) cells.
-            if found.len() >= NEIGHBOURS {
-                nearest(&mut found);
-                if r > 1 && found[NEIGHBOURS - 1].0 < (r - 1) as f64 * cell {
-                    break;
-                }
+            if found.len == NEIGHBOURS
+                && r > 1
+                && found.found[NEIGHBOURS - 1].0 < (r - 1) as f64 * cell
+            {
+                break;
             }
             if r > cx.max(cy).max(g - 1 - cx).max(g - 1 - cy) {
                 break; // the ring lies wholly outside the grid
@@ -548,34 +608,34 @@ fn neighbours(ends: &[[Pt2; 2]], span: Span) -> Vec<Vec<usize>> {
             let (y0, y1) = (cy.saturating_sub(r), (cy + r).min(g - 1));
             let (x0, x1) = (cx.saturating_sub(r), (cx + r).min(g - 1));
             for y in y0..=y1 {
-                for x in x0..=x1 {
-                    if x.abs_diff(cx) != r && y.abs_diff(cy) != r {
-                        continue;
-                    }
-                    for &t in &cells[y * g + x] {
-                        if t / 2 != s / 2 {
-                            found.push((dist(*p, pts[t]), t));
+                let mut visit = |x: usize| {
+                    let c = y * g + x;
+                    for &t in &in_cells[start[c] as usize..start[c + 1] as usize] {
+                        if t as usize / 2 != s / 2 {
+                            found.offer(dist(*p, pts[t as usize]), t);
                         }
                     }
+                };
+                if y.abs_diff(cy) == r {
+                    (x0..=x1).for_each(&mut visit);
+                } else {
+                    // An inner row of the ring: only its two side cells.
+                    let right = Some(cx + r).filter(|&x| r > 0 && x < g);
+                    [cx.checked_sub(r), right]
+                        .into_iter()
+                        .flatten()
+                        .for_each(&mut visit);
                 }
             }
         }
-        nearest(&mut found);
-        out.push(found.iter().map(|f| f.1).collect());
+        let row = &mut near.slots[s * NEIGHBOURS..][..found.len];
+        for (o, f) in row.iter_mut().zip(&found.found) {
+            *o = f.1;
+        }
+        near.count[s] = found.len as u8;
     }
     span.finish();
-    out
-}
-
-/// Keeps the [`NEIGHBOURS`] nearest of `found` (distance, then slot: a total order), nearest
-/// first: the first of them selected, then only those sorted.
-fn nearest(found: &mut Vec<(f64, usize)>) {
-    let order = |a: &(f64, usize), b: &(f64, usize)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
-    if found.len() > NEIGHBOURS {
-        found.select_nth_unstable_by(NEIGHBOURS - 1, order);
-        found.truncate(NEIGHBOURS);
-    }
-    found.sort_unstable_by(order);
+    near
 }
 
 #[cfg(test)]
@@ -710,6 +770,33 @@ mod tests {
                     (before - after - g).abs() < 1e-9,
                     "{before} - {after} != {g}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn neighbours_are_the_nearest_other_ends_in_order() {
+        // Against a brute force over every pair, by distance then slot: random strokes, a
+        // cluster of coincident ends (ties broken by slot), and a layer too small to fill
+        // the lists.
+        let mut ends = random_strokes(700, 11);
+        for k in 0..40 {
+            let x = f64::from(k % 3);
+            ends.push([[50.0, 50.0], [50.0 + x, 50.0]]);
+        }
+        for ends in [ends, random_strokes(5, 12)] {
+            let sink = Progress::new();
+            let near = neighbours(&ends, Share::new(&sink, 0).span(0.0, 1.0));
+            let pts: Vec<Pt2> = ends.iter().flatten().copied().collect();
+            for (s, &p) in pts.iter().enumerate() {
+                let mut all: Vec<(f64, usize)> = (0..pts.len())
+                    .filter(|t| t / 2 != s / 2)
+                    .map(|t| (dist(p, pts[t]), t))
+                    .collect();
+                all.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                all.truncate(NEIGHBOURS);
+                let want: Vec<u32> = all.iter().map(|a| a.1 as u32).collect();
+                assert_eq!(near.of(s), &want[..], "slot {s}");
             }
         }
     }
