@@ -4,13 +4,17 @@
 //! vpype's `stat` counts it); a stroke may be drawn either way. The order starts greedy
 //! (nearest next end, from the stroke nearest the page's top-left corner), then local search
 //! improves it until no move gains: 2-opt (reverse a run of strokes) and Or-opt (move a run
-//! of up to three strokes elsewhere, either way round), candidates from each end's nearest
-//! neighbours; then iterated local search: small double-bridge kicks, each followed by local
-//! search and kept only when the travel falls. The open path is closed into a cycle through a depot at distance 0 from
-//! everything, so a reversal can always take the shorter side. Deterministic: fixed
-//! neighbour lists, a FIFO work queue, ties to the lower index, a seeded generator for the
-//! kicks, and fixed budgets of moves and kicks. Counting the work done for a progress bar
-//! (`plan_counted`) reads nothing the search decides by.
+//! of up to three strokes elsewhere, either way round). Candidates come from each end's
+//! nearest neighbours, nearest first, and stop at the first neighbour no nearer than what the
+//! move takes away at that end (the usual gain criterion: a 2-opt move that gains has an end
+//! whose new edge is shorter than the old one there, and it is found from that end; for
+//! Or-opt the bound is the run's removal gain, a heuristic). Then iterated local search: small
+//! double-bridge kicks, each followed by local search and kept only when the travel falls.
+//! The open path is closed into a cycle through a depot at distance 0 from everything, so a
+//! reversal can always take the shorter side. Deterministic: fixed neighbour lists, a FIFO
+//! work queue, ties to the lower index, a seeded generator for the kicks, and fixed budgets
+//! of moves and kicks. Counting the work done for a progress bar (`plan_counted`) reads
+//! nothing the search decides by.
 
 use crate::geom::poly2::{dist, Pt2};
 use crate::progress::{Progress, Share, Span, Steps};
@@ -192,6 +196,11 @@ impl<'a> Tour<'a> {
         (v < self.ends.len()).then(|| self.ends[v][usize::from(self.rev(v))])
     }
 
+    /// The point of end slot s (2i start, 2i + 1 end of stroke i).
+    fn slot(&self, s: usize) -> Pt2 {
+        self.ends[s / 2][s % 2]
+    }
+
     /// Exit point of node v in the forward direction (None for the depot).
     fn end(&self, v: usize) -> Option<Pt2> {
         (v < self.ends.len()).then(|| self.ends[v][usize::from(!self.rev(v))])
@@ -266,16 +275,26 @@ impl<'a> Tour<'a> {
                 best = Some((g, i, j));
             }
         };
-        // New edge end(v) – end(m): positions (pos v, pos m).
+        // New edge end(v) – end(m): positions (pos v, pos m). Only new edges shorter than
+        // the edge they replace at v (neighbours come nearest first).
+        let (ev, sv) = (self.end(v), self.start(v));
+        let out = Self::d(ev, self.start(self.at(pv as isize + 1)));
         for &q in self.near.of(2 * v + usize::from(!self.rev(v))) {
             let (q, m) = (q as usize, q as usize / 2);
+            if Self::d(ev, Some(self.slot(q))) >= out {
+                break;
+            }
             if q % 2 == usize::from(!self.rev(m)) {
                 consider(self.two_opt_gain(pv, self.pos(m)), pv, self.pos(m));
             }
         }
         // New edge start(v) – start(m): positions (pos v − 1, pos m − 1).
+        let into = Self::d(self.end(self.at(pv as isize - 1)), sv);
         for &q in self.near.of(2 * v + usize::from(self.rev(v))) {
             let (q, m) = (q as usize, q as usize / 2);
+            if Self::d(sv, Some(self.slot(q))) >= into {
+                break;
+            }
             if q % 2 == usize::from(self.rev(m)) {
                 let (i, j) = ((pv + n - 1) % n, (self.pos(m) + n - 1) % n);
                 consider(self.two_opt_gain(i, j), i, j);
@@ -314,8 +333,12 @@ impl<'a> Tour<'a> {
                 2 * last + usize::from(!self.rev(last)),
             ];
             for &slot in &slots {
+                let at = self.slot(slot);
                 for &q in self.near.of(slot) {
                     let m = q as usize / 2;
+                    if dist(at, self.slot(q as usize)) >= removed {
+                        break;
+                    }
                     if nodes.contains(&m) {
                         continue;
                     }
