@@ -559,6 +559,10 @@ struct Nearest {
 impl Nearest {
     /// Offers slot `t` at distance `d`.
     fn offer(&mut self, d: f64, t: u32) {
+        // Distances are never NaN or −0, where `>` and `total_cmp` could differ.
+        if self.len == NEIGHBOURS && d > self.found[NEIGHBOURS - 1].0 {
+            return;
+        }
         let before = |a: (f64, u32), b: (f64, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).is_lt();
         if self.len == NEIGHBOURS && !before((d, t), self.found[NEIGHBOURS - 1]) {
             return;
@@ -600,9 +604,10 @@ fn neighbours(ends: &[[Pt2; 2]], span: Span) -> Near {
         start[c + 1] += start[c];
     }
     let mut fill = start.clone();
-    let mut in_cells = vec![0u32; pts.len()];
+    // Each slot with its point, so a cell's candidates are read in a row.
+    let mut in_cells = vec![(0u32, [0.0; 2]); pts.len()];
     for (s, &c) in cell_of.iter().enumerate() {
-        in_cells[fill[c as usize] as usize] = s as u32;
+        in_cells[fill[c as usize] as usize] = (s as u32, pts[s]);
         fill[c as usize] += 1;
     }
     let mut near = Near {
@@ -633,9 +638,9 @@ fn neighbours(ends: &[[Pt2; 2]], span: Span) -> Near {
             for y in y0..=y1 {
                 let mut visit = |x: usize| {
                     let c = y * g + x;
-                    for &t in &in_cells[start[c] as usize..start[c + 1] as usize] {
+                    for &(t, q) in &in_cells[start[c] as usize..start[c + 1] as usize] {
                         if t as usize / 2 != s / 2 {
-                            found.offer(dist(*p, pts[t as usize]), t);
+                            found.offer(dist(*p, q), t);
                         }
                     }
                 };
