@@ -97,6 +97,9 @@ pub struct SegmentIndex {
     seen: Vec<usize>,
     query: usize,
     cells: Vec<usize>,
+    /// The segment `cells` was listed for (an insert of the segment just asked about reuses
+    /// them).
+    cells_for: Option<[Pt2; 2]>,
     /// The cells around `cells`, each once, in the order the query first meets them.
     around: Vec<usize>,
     /// Per grid cell: the last query that listed it in `around`.
@@ -116,6 +119,7 @@ impl SegmentIndex {
             seen: Vec::with_capacity(extent.len()),
             query: 0,
             cells: Vec::new(),
+            cells_for: None,
             around: Vec::new(),
             cell_seen: vec![0; cells],
             eps,
@@ -124,7 +128,10 @@ impl SegmentIndex {
 
     /// Adds a segment.
     pub fn insert(&mut self, s: [Pt2; 2]) {
-        self.grid.cells_of(s[0], s[1], &mut self.cells);
+        if self.cells_for != Some(s) {
+            self.grid.cells_of(s[0], s[1], &mut self.cells);
+            self.cells_for = Some(s);
+        }
         self.grid.insert(self.segs.len(), &self.cells);
         self.segs.push(s);
         self.seen.push(0);
@@ -146,6 +153,7 @@ impl SegmentIndex {
         }
         self.query += 1;
         self.grid.cells_of(a, b, &mut self.cells);
+        self.cells_for = Some([a, b]);
         // Neighbouring cells' neighbourhoods overlap: each cell is read once, in the order
         // the walk round the cells first meets it (so the segments in the same order).
         self.around.clear();
