@@ -328,15 +328,15 @@ impl<'a> Tour<'a> {
                 continue;
             }
             let (sp, ep) = (self.start(first), self.end(last));
-            let slots = [
-                2 * first + usize::from(self.rev(first)),
-                2 * last + usize::from(!self.rev(last)),
+            // The run's two outer ends, each searched from its slot.
+            let ends = [
+                (2 * first + usize::from(self.rev(first)), sp),
+                (2 * last + usize::from(!self.rev(last)), ep),
             ];
-            for &slot in &slots {
-                let at = self.slot(slot);
+            for (slot, at) in ends {
                 for &q in self.near.of(slot) {
                     let m = q as usize / 2;
-                    if dist(at, self.slot(q as usize)) >= removed {
+                    if Self::d(at, Some(self.slot(q as usize))) >= removed {
                         break;
                     }
                     if nodes.contains(&m) {
@@ -559,12 +559,11 @@ struct Nearest {
 impl Nearest {
     /// Offers slot `t` at distance `d`.
     fn offer(&mut self, d: f64, t: u32) {
-        // Distances are never NaN or −0, where `>` and `total_cmp` could differ.
-        if self.len == NEIGHBOURS && d > self.found[NEIGHBOURS - 1].0 {
-            return;
-        }
         let before = |a: (f64, u32), b: (f64, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).is_lt();
-        if self.len == NEIGHBOURS && !before((d, t), self.found[NEIGHBOURS - 1]) {
+        // A far candidate is turned away by the plain compare first (distances are never NaN
+        // or −0, where `>` and `total_cmp` could differ).
+        let last = self.found[NEIGHBOURS - 1];
+        if self.len == NEIGHBOURS && (d > last.0 || !before((d, t), last)) {
             return;
         }
         let mut k = self.len.min(NEIGHBOURS - 1);
