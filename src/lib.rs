@@ -41,15 +41,50 @@ pub mod visibility;
 
 pub use emit::{Drawing, EdgeKind, EdgeOptions, EdgeSet, LineOptions};
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
+pub use geom::{Box3, M4, P3, V3};
 pub use load::{load_scene, load_scene_counted, load_scene_with, LoadOptions};
 pub use pipeline::{
     render, render_to, render_with, Outputs, PictureOptions, RenderOptions, RenderStats, Rendered,
 };
-pub use prepare::prepare;
+pub use prepare::{prepare, HierarchyKind, PrepareOptions};
 pub use progress::{Phase, PhaseCount, Progress, Stage, Unit};
-pub use scene::{FaceId, Object, Scene};
+pub use scene::{Content, Face, FaceId, Instance, Mesh, Object, Scene, Solidity};
 pub use view::{Camera, CameraRequest, LodOptions, PieceId, Projection, View};
 pub use visibility::{FaceVisibility, Visibility};
+
+/// The line drawing: which edges are drawn, and the visible and hidden strokes a render makes.
+pub mod lines {
+    pub use crate::emit::{Drawing, EdgeKind, EdgeOptions, EdgeSet, LineOptions, Stroke};
+}
+
+/// Plotter pages and pens: page sizes, layers, hatching, colours, and what building a
+/// picture did.
+pub mod plot {
+    pub use crate::emit::{HatchOptions, LayerMode, PageSize, Pen, PictureOptions, PlotStats, Rgb};
+}
+
+/// What a render did: stage times, progress stages and phases, and the counters of the cull,
+/// the visibility pass and level-of-detail substitution.
+pub mod stats {
+    pub use crate::pipeline::RenderStats;
+    pub use crate::progress::{Phase, PhaseCount, Stage, Unit};
+    pub use crate::view::{CullSummary, LodStats};
+    pub use crate::visibility::Counters;
+}
+
+/// Franklin's queries on a scene: INCLUDE (is a point inside), VISP (is a point visible),
+/// VISOBJ (what one object does to another), and tribox interference between objects.
+pub mod query {
+    pub use crate::tribox::interfere::{
+        interfere, interfere_with, Interference, Method as InterfereMethod,
+    };
+    pub use crate::visibility::{include, visobj, visp, Inclusion, PointVisibility, Verdict};
+}
+
+/// Checking a render: the independent exact answer (rationals, no boolean engine) per face.
+pub mod check {
+    pub use crate::exact::{check as exact, ExactReport, FaceCheck};
+}
 
 /// The README's code, compiled and run as doctests.
 #[doc = include_str!("../README.md")]
