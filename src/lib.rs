@@ -25,6 +25,8 @@
 //! [`visibility::visobj()`], [`visibility::include()`], CBOX and INBOX ([`scene::Object`]),
 //! [`tribox`].
 
+pub mod check;
+mod describe;
 pub mod emit;
 pub mod error;
 pub mod exact;
@@ -34,6 +36,7 @@ pub mod pipeline;
 pub mod prepare;
 pub mod primitives;
 pub mod progress;
+pub mod query;
 pub mod scene;
 pub mod tribox;
 pub mod view;
@@ -61,6 +64,7 @@ pub mod lines {
 /// picture did.
 pub mod plot {
     pub use crate::emit::{HatchOptions, LayerMode, PageSize, Pen, PictureOptions, PlotStats, Rgb};
+    pub use crate::geom::Rect;
 }
 
 /// What a render did: stage times, progress stages and phases, and the counters of the cull,
@@ -70,20 +74,6 @@ pub mod stats {
     pub use crate::progress::{Phase, PhaseCount, Stage, Unit};
     pub use crate::view::{CullSummary, LodStats};
     pub use crate::visibility::Counters;
-}
-
-/// Franklin's queries on a scene: INCLUDE (is a point inside), VISP (is a point visible),
-/// VISOBJ (what one object does to another), and tribox interference between objects.
-pub mod query {
-    pub use crate::tribox::interfere::{
-        interfere, interfere_with, Interference, Method as InterfereMethod,
-    };
-    pub use crate::visibility::{include, visobj, visp, Inclusion, PointVisibility, Verdict};
-}
-
-/// Checking a render: the independent exact answer (rationals, no boolean engine) per face.
-pub mod check {
-    pub use crate::exact::{check as exact, ExactReport, FaceCheck};
 }
 
 /// The README's code, compiled and run as doctests.

@@ -239,6 +239,7 @@ fn render_json_to<'s>(
             stats.lod = Some(lod_stats);
             let prep = PrepareOptions {
                 hierarchy: opts.hierarchy,
+                ..PrepareOptions::default()
             };
             stats.timed(Stage::Prepare, || {
                 crate::prepare::prepare_counted(&mut s, &prep, Some(progress))

@@ -2,9 +2,7 @@
 
 use anyhow::{bail, Result};
 use clap::Args;
-use kepler_hsr::geom::{P3, V3};
-use kepler_hsr::scene::Scene;
-use kepler_hsr::view::{Camera, CameraRequest};
+use kepler_hsr::{Camera, CameraRequest, Scene, P3, V3};
 
 /// Camera flags; they override the scene's camera.
 #[derive(Args, Debug, Clone, Default)]

@@ -24,7 +24,7 @@ pub(crate) struct FlattenArgs {
 /// Runs `kepler flatten`.
 pub(crate) fn run(a: FlattenArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
     let scene = load_only(&a.scene, a.quiet, opts)?;
-    let flat = kepler_hsr::scene::flatten(&scene);
+    let flat = scene.flatten();
     write(&a.output, flat.to_obj())?;
     Ok(ExitCode::SUCCESS)
 }

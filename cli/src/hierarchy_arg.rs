@@ -1,7 +1,7 @@
 //! The `--hierarchy` flag of render and query: which object tree flat meshes get.
 
 use clap::{Args, ValueEnum};
-use kepler_hsr::prepare::{HierarchyKind, PrepareOptions};
+use kepler_hsr::{HierarchyKind, PrepareOptions};
 
 /// `--hierarchy` values.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,6 +43,7 @@ impl HierarchyArgs {
     pub(crate) fn prepare(&self) -> PrepareOptions {
         PrepareOptions {
             hierarchy: self.kind(),
+            ..PrepareOptions::default()
         }
     }
 }

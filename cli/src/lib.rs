@@ -21,8 +21,7 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
-use kepler_hsr::scene::Scene;
-use kepler_hsr::LoadOptions;
+use kepler_hsr::{LoadOptions, Scene};
 
 use camera_args::CameraArgs;
 use output::write;
@@ -35,7 +34,7 @@ pub struct Cli {
     command: Command,
     /// Refuse scenes with more faces than this once their instances are placed (counted
     /// before anything is expanded). The default fits a render in 24 GiB of memory.
-    #[arg(long, global = true, value_name = "N", default_value_t = kepler_hsr::load::DEFAULT_MAX_FACES)]
+    #[arg(long, global = true, value_name = "N", default_value_t = LoadOptions::DEFAULT_MAX_FACES)]
     max_faces: usize,
 }
 
@@ -73,12 +72,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
 /// Loads a scene and runs the prepare stage (solidity, INBOXes, object trees), printing
 /// warnings to standard error.
 fn load(path: &Path, quiet: bool, opts: &LoadOptions) -> Result<Scene> {
-    load_with(
-        path,
-        quiet,
-        opts,
-        &kepler_hsr::prepare::PrepareOptions::default(),
-    )
+    load_with(path, quiet, opts, &kepler_hsr::PrepareOptions::default())
 }
 
 /// [`load`] with the prepare stage's options.
@@ -86,7 +80,7 @@ fn load_with(
     path: &Path,
     quiet: bool,
     opts: &LoadOptions,
-    prepare: &kepler_hsr::prepare::PrepareOptions,
+    prepare: &kepler_hsr::PrepareOptions,
 ) -> Result<Scene> {
     let mut scene = load_only(path, quiet, opts)?;
     kepler_hsr::prepare::prepare_with(&mut scene, prepare);

@@ -2,7 +2,7 @@
 
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
-use kepler_hsr::emit::{HatchOptions, LayerMode, PageSize, PictureOptions, Rgb};
+use kepler_hsr::plot::{HatchOptions, LayerMode, PageSize, PictureOptions, Rgb};
 
 use super::camera_args::parse_vec3;
 

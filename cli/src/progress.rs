@@ -5,7 +5,7 @@ use std::io::{IsTerminal, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use kepler_hsr::{Phase, Unit};
+use kepler_hsr::stats::{Phase, Unit};
 
 /// Least time between two redraws.
 const REDRAW: Duration = Duration::from_millis(100);
@@ -225,9 +225,9 @@ mod tests {
     #[test]
     fn the_label_names_the_phase() {
         let p = kepler_hsr::Progress::new();
-        p.enter(kepler_hsr::Stage::Visibility, 3);
+        p.enter(kepler_hsr::stats::Stage::Visibility, 3);
         assert_eq!(phase_label(&p), "visibility");
-        p.enter_phase(kepler_hsr::Stage::Prepare, Phase::Solidity, 3);
+        p.enter_phase(kepler_hsr::stats::Stage::Prepare, Phase::Solidity, 3);
         assert_eq!(phase_label(&p), "prepare: solidity");
     }
 
@@ -245,7 +245,7 @@ mod tests {
     fn follow_returns_the_work() {
         let p = kepler_hsr::Progress::new();
         let v = follow(&p, Instant::now(), Duration::ZERO, || {
-            p.enter(kepler_hsr::Stage::Visibility, 3);
+            p.enter(kepler_hsr::stats::Stage::Visibility, 3);
             7
         });
         assert_eq!(v, 7);

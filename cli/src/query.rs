@@ -3,13 +3,12 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{anyhow, bail, Result};
+use anyhow::{bail, Result};
 use clap::Args;
-use kepler_hsr::geom::{M4, P3};
-use kepler_hsr::prepare::HierarchyKind;
-use kepler_hsr::tribox::interfere::Method;
-use kepler_hsr::view::View;
-use kepler_hsr::visibility::{include, visobj, visp, Inclusion, PointVisibility, Verdict};
+use kepler_hsr::query::{
+    include, visobj, visp, Inclusion, InterfereMethod as Method, PointVisibility, Verdict,
+};
+use kepler_hsr::{HierarchyKind, View, P3};
 
 use super::camera_args::parse_vec3;
 use super::{load_with, out, CameraArgs};
@@ -69,14 +68,14 @@ pub(crate) fn run(a: QueryArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCo
     }
     if let Some(p) = &a.include {
         let p = P3::from(parse_vec3(p, "include")?);
-        let r = include(&scene.root, &M4::identity(), &p);
+        let r = include(&scene, &p);
         out(if r == Inclusion::In { "IN" } else { "OUT" });
         return Ok(ExitCode::SUCCESS);
     }
     let view = View::new(&scene, a.camera.camera(&scene)?);
     if let Some(p) = &a.visp {
         let p = P3::from(parse_vec3(p, "visp")?);
-        let r = visp(&view, view.tree.root(), &p, None);
+        let r = visp(&view, &p);
         out(if r == PointVisibility::Visible {
             "VISIBLE"
         } else {
@@ -84,13 +83,7 @@ pub(crate) fn run(a: QueryArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCo
         });
     }
     if let Some(ab) = &a.visobj {
-        let find = |p: &str| {
-            view.tree
-                .object(p)
-                .ok_or_else(|| anyhow!("no object '{p}' (see `kepler info`)"))
-        };
-        let (oa, ob) = (find(&ab[0])?, find(&ab[1])?);
-        let r = visobj(&view, oa.node, ob.faces.clone());
+        let r = visobj(&view, &ab[0], &ab[1])?;
         out(match r {
             Verdict::Visible => "VISIBLE",
             Verdict::Hidden => "HIDDEN",

@@ -7,12 +7,11 @@ use std::time::{Duration, Instant};
 
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
-use kepler_hsr::geom::V3;
-use kepler_hsr::scene::{CameraSpec, Scene};
-use kepler_hsr::view::{turntable, turntable_frame};
+use kepler_hsr::lines::{EdgeOptions, EdgeSet, LineOptions};
+use kepler_hsr::plot::Rect;
+use kepler_hsr::stats::Stage;
 use kepler_hsr::{
-    render_to, render_with, Camera, EdgeOptions, EdgeSet, LineOptions, Outputs, Progress,
-    RenderOptions, Rendered, Stage,
+    render_to, render_with, Camera, Outputs, Progress, RenderOptions, Rendered, Scene, V3,
 };
 
 use super::camera_args::parse_vec3;
@@ -256,7 +255,7 @@ fn owned_parts(r: Rendered<'_>) -> impl Send + 'static {
 impl RenderArgs {
     /// The cameras to render (one, a views file's, or a turntable's) and, for a turntable,
     /// the one frame they share.
-    fn cameras(&self, scene: &Scene) -> Result<(Vec<Camera>, Option<kepler_hsr::geom::Rect>)> {
+    fn cameras(&self, scene: &Scene) -> Result<(Vec<Camera>, Option<Rect>)> {
         if let Some(file) = &self.views {
             let c = &self.camera;
             if c.dir.is_some() || c.eye.is_some() || c.target.is_some() || c.up.is_some() || c.ortho
@@ -277,14 +276,12 @@ impl RenderArgs {
         let Some(n) = self.turntable else {
             return Ok((vec![base], None));
         };
-        let up = match (&self.camera.up, &scene.camera) {
-            (Some(s), _) => parse_vec3(s, "up")?,
-            (None, Some(CameraSpec::Orthographic { up, .. }))
-            | (None, Some(CameraSpec::Perspective { up, .. })) => *up,
-            (None, None) => V3::y(),
+        let up = match &self.camera.up {
+            Some(s) => parse_vec3(s, "up")?,
+            None => scene.camera_up().unwrap_or_else(V3::y),
         };
-        let cams = turntable(scene, &base, up, n as usize)?;
-        Ok((cams, turntable_frame(scene, &base, up)))
+        let cams = base.turntable(scene, up, n as usize)?;
+        Ok((cams, base.turntable_frame(scene, up)))
     }
 }
 

@@ -7,15 +7,12 @@ use std::time::Instant;
 
 use anyhow::{bail, Result};
 use clap::Args;
-use kepler_hsr::geom::PolyMesh;
-use kepler_hsr::scene::cleanup::{cleanup, Origin};
-use kepler_hsr::scene::{Mesh, Object, Scene};
-use kepler_hsr::tribox::hull::hull_volume;
-use kepler_hsr::tribox::{Hierarchy, HierarchyOptions};
-use kepler_hsr::view::{LodOptions, LodStats};
-use kepler_hsr::{
-    render, EdgeOptions, EdgeSet, LineOptions, Outputs, PictureOptions, RenderOptions,
-};
+use kepler_hsr::lines::{EdgeOptions, EdgeSet, LineOptions};
+use kepler_hsr::plot::PictureOptions;
+use kepler_hsr::query::InterfereMethod;
+use kepler_hsr::stats::LodStats;
+use kepler_hsr::tribox::{table, HierarchyOptions, TableOptions, TableRow};
+use kepler_hsr::{render, LodOptions, Object, Outputs, RenderOptions, Scene};
 
 use super::{load_only, out, write, CameraArgs};
 
@@ -98,60 +95,31 @@ pub(crate) struct TriboxArgs {
     pub(crate) quiet: bool,
 }
 
-/// One object placed in the world with its hierarchy.
-struct Part {
-    path: String,
-    faces: usize,
-    diagonal: f64,
-    cbox_volume: f64,
-    hull_volume: f64,
-    hierarchy: Hierarchy,
-}
-
 /// Runs `kepler tribox`.
 pub(crate) fn run(a: TriboxArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
     if !(a.tol.is_finite() && a.tol >= 0.0 && a.min_gain.is_finite() && a.min_gain < 1.0) {
         bail!("--tol must be 0 or more and --min-gain below 1");
     }
     let scene = load_only(&a.scene, a.quiet, opts)?;
-    let opts = HierarchyOptions {
-        max_depth: a.levels as usize - 1,
-        min_gain: a.min_gain,
-    };
-    let t = Instant::now();
-    let parts: Vec<Part> = scene
-        .leaves()
-        .iter()
-        .filter_map(|l| {
-            let m = world_mesh(l.mesh, &l.transform)?;
-            let cbox = kepler_hsr::geom::Box3::from_points(m.vertices.iter());
-            let s = cbox.size();
-            Some(Part {
-                path: l.path.clone(),
-                faces: m.faces.len(),
-                diagonal: (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt(),
-                cbox_volume: cbox.volume(),
-                hull_volume: if a.no_hull {
-                    f64::NAN
-                } else {
-                    hull_volume(&m.vertices)
-                },
-                hierarchy: Hierarchy::build(&m, &opts),
-            })
-        })
-        .collect();
-    let build = t.elapsed();
+    let t = table(
+        &scene,
+        &TableOptions {
+            hierarchy: HierarchyOptions {
+                max_depth: a.levels as usize - 1,
+                min_gain: a.min_gain,
+            },
+            levels: a.levels as usize,
+            tol: a.tol,
+            hull: !a.no_hull,
+        },
+    );
     let name = a
         .scene
         .file_stem()
         .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
-    let n: usize = parts.iter().map(|p| p.faces).sum();
-    let cbox: f64 = parts.iter().map(|p| p.cbox_volume).sum();
-    let hull: f64 = parts.iter().map(|p| p.hull_volume).sum();
-    let diag = parts.iter().map(|p| p.diagonal).fold(0.0, f64::max);
-    let (mut adds_min, mut adds_max) = (u32::MAX, 0);
+    let (n, cbox, hull, diag) = (t.faces, t.cbox_volume, t.hull_volume, t.diagonal);
     let mut rows = vec![
-        format!("{name}: {} objects, N = {n} faces, CBOX volume {}, convex hull volume {}, hierarchies built in {:.1} ms", parts.len(), g(cbox), g(hull), build.as_secs_f64() * 1e3),
+        format!("{name}: {} objects, N = {n} faces, CBOX volume {}, convex hull volume {}, hierarchies built in {:.1} ms", t.objects, g(cbox), g(hull), t.build_time.as_secs_f64() * 1e3),
         String::new(),
         "| level | N | M | triboxes | N/M | error | error/diag | volume | /CBOX | /hull |".into(),
         "|---|---|---|---|---|---|---|---|---|---|".into(),
@@ -159,40 +127,25 @@ pub(crate) fn run(a: TriboxArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitC
     if let Some(dir) = &a.out {
         std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))?;
     }
-    for level in 0..a.levels as usize {
-        let mut lod = Vec::new();
-        let (mut m, mut count, mut err, mut vol) = (0, 0, 0.0f64, 0.0);
-        for p in &parts {
-            let cut = p.hierarchy.cut(level);
-            let tol = a.tol * p.diagonal;
-            for &node in &cut {
-                let t = p.hierarchy.nodes[node].tribox.simplified(tol);
-                let b = t.boundary();
-                adds_min = adds_min.min(b.ops.additions);
-                adds_max = adds_max.max(b.ops.additions);
-                vol += b.volume();
-                let mesh = b.mesh();
-                m += mesh.faces.len();
-                lod.push((format!("{}#{}", p.path, node), mesh));
-            }
-            count += cut.len();
-            err = err.max(p.hierarchy.cut_error(&cut));
-        }
+    for (level, r) in t.rows.iter().enumerate() {
         rows.push(format!(
-            "| {level} | {n} | {m} | {count} | {:.2} | {} | {} | {} | {} | {} |",
-            n as f64 / m.max(1) as f64,
-            g(err),
-            ratio(err, diag, 4),
-            g(vol),
-            ratio(vol, cbox, 3),
-            ratio(vol, hull, 3)
+            "| {level} | {n} | {} | {} | {:.2} | {} | {} | {} | {} | {} |",
+            r.faces,
+            r.triboxes,
+            n as f64 / r.faces.max(1) as f64,
+            g(r.error),
+            ratio(r.error, diag, 4),
+            g(r.volume),
+            ratio(r.volume, cbox, 3),
+            ratio(r.volume, hull, 3)
         ));
         if let Some(dir) = &a.out {
             let stem = dir.join(format!("{name}-L{level}"));
-            write(&stem.with_extension("obj"), to_obj(&lod))?;
-            write(&stem.with_extension("svg"), render_svg(&lod, &scene, &a)?)?;
+            write(&stem.with_extension("obj"), r.to_obj())?;
+            write(&stem.with_extension("svg"), render_svg(r, &scene, &a)?)?;
         }
     }
+    let (adds_min, adds_max) = t.additions;
     rows.push(String::new());
     rows.push(format!(
         "boundary evaluation: {adds_min}..{adds_max} additions per tribox (paper: at most 112), 24 shifts, at most 24 tests"
@@ -219,61 +172,9 @@ fn g(x: f64) -> String {
     }
 }
 
-/// A leaf's mesh in world coordinates (None when nothing survives cleanup).
-fn world_mesh(mesh: &Mesh, xf: &kepler_hsr::geom::M4) -> Option<Mesh> {
-    let raw = PolyMesh::new(
-        mesh.vertices
-            .iter()
-            .map(|v| xf.transform_point(v))
-            .collect(),
-        mesh.faces.iter().map(|f| f.vertices.clone()).collect(),
-    );
-    clean(&raw)
-}
-
-fn clean(raw: &PolyMesh) -> Option<Mesh> {
-    let origin = Origin {
-        file: std::path::Path::new("tribox"),
-        face_pos: &[],
-    };
-    cleanup(raw, &origin, &mut Vec::new())
-        .ok()
-        .filter(|m| !m.faces.is_empty())
-}
-
-/// One `o` group per tribox.
-fn to_obj(parts: &[(String, PolyMesh)]) -> String {
-    use std::fmt::Write as _;
-    let mut s = String::from("# kepler tribox substitutes\n");
-    let mut base = 1;
-    for (name, m) in parts {
-        let _ = writeln!(s, "o {name}");
-        for v in &m.vertices {
-            let _ = writeln!(
-                s,
-                "v {} {} {}",
-                kepler_hsr::scene::flatten::num(v.x),
-                kepler_hsr::scene::flatten::num(v.y),
-                kepler_hsr::scene::flatten::num(v.z)
-            );
-        }
-        for f in &m.faces {
-            let idx: Vec<String> = f.iter().map(|&i| (i as usize + base).to_string()).collect();
-            let _ = writeln!(s, "f {}", idx.join(" "));
-        }
-        base += m.vertices.len();
-    }
-    s
-}
-
 /// The substitutes drawn by kepler itself: exact hidden lines, every edge.
-fn render_svg(parts: &[(String, PolyMesh)], original: &Scene, a: &TriboxArgs) -> Result<String> {
-    let objs: Vec<Object> = parts
-        .iter()
-        .filter_map(|(name, m)| clean(m).map(|m| Object::from_mesh(name.clone(), m)))
-        .collect();
-    let mut scene = Scene::new(Object::group("", objs), original.source.clone());
-    scene.camera = original.camera.clone();
+fn render_svg(level: &TableRow, original: &Scene, a: &TriboxArgs) -> Result<String> {
+    let mut scene = original.with_root(Object::group("", level.objects()));
     let camera = a.camera.camera(&scene)?;
     kepler_hsr::prepare(&mut scene);
     let opts = RenderOptions {
@@ -300,13 +201,9 @@ fn render_svg(parts: &[(String, PolyMesh)], original: &Scene, a: &TriboxArgs) ->
 
 /// `kepler query --interfere`: the pairs of objects whose triboxes meet, each with whether
 /// their faces really intersect, then a summary line (with `stats`, the work done too).
-pub(crate) fn interfere_report(
-    scene: &Scene,
-    method: kepler_hsr::tribox::interfere::Method,
-    stats: bool,
-) -> String {
+pub(crate) fn interfere_report(scene: &Scene, method: InterfereMethod, stats: bool) -> String {
     let t = Instant::now();
-    let r = kepler_hsr::tribox::interfere::interfere_with(scene, method);
+    let r = kepler_hsr::query::interfere(scene, method);
     let time = t.elapsed();
     let mut lines: Vec<String> = r
         .tribox_meet

@@ -26,6 +26,10 @@ impl Default for LoadOptions {
 }
 
 impl LoadOptions {
+    /// The default limit on a scene's faces, instances expanded: what a render fits in memory
+    /// on the machine kepler is developed on (24 GiB), with room to spare.
+    pub const DEFAULT_MAX_FACES: usize = DEFAULT_MAX_FACES;
+
     /// An error at `at` when `object` (what `what` calls it) expands to more faces than the
     /// limit, naming its prototype chain.
     pub(crate) fn check(&self, object: &Object, what: &str, at: &Location) -> Result<()> {

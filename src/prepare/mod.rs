@@ -32,6 +32,9 @@ pub struct PrepareOptions {
     /// the median split per view for a mesh drawn once (building a tree costs more than one
     /// view saves: docs/notes/issue12.md).
     pub hierarchy: Option<HierarchyKind>,
+    /// INBOXes for every object, also where a render has no use for them (a scene of one
+    /// object), as `kepler info` shows them.
+    pub every_inbox: bool,
 }
 
 /// The prepare stage for a whole scene with the default options.
@@ -56,7 +59,7 @@ pub fn prepare_counted(scene: &mut Scene, opts: &PrepareOptions, progress: Optio
     let progress = progress.unwrap_or(&sink);
     solidity::mark_solids_counted(&mut scene.root, progress);
     let several = has_two_leaves(&scene.root);
-    if several {
+    if several || opts.every_inbox {
         inbox::compute_inboxes_counted(&mut scene.root, progress);
     }
     // Trees for every large mesh, for shared prototypes' only, or none.

@@ -245,6 +245,7 @@ mod tests {
             &mut s,
             &PrepareOptions {
                 hierarchy: Some(kind),
+                ..PrepareOptions::default()
             },
         );
         s
@@ -311,6 +312,7 @@ mod tests {
             &mut s,
             &PrepareOptions {
                 hierarchy: Some(HierarchyKind::Simplify),
+                ..PrepareOptions::default()
             },
         );
         let cam = Camera::three_quarter();
@@ -327,6 +329,7 @@ mod tests {
             &mut bare,
             &PrepareOptions {
                 hierarchy: Some(HierarchyKind::Median),
+                ..PrepareOptions::default()
             },
         );
         let (_, one) =

@@ -134,6 +134,14 @@ const ZMIJ_FROM: f64 = 1e-4;
 /// The magnitude from which [`write_num`] leaves zmij (from there, it has an exponent).
 const ZMIJ_BELOW: f64 = 1e15;
 
+impl Scene {
+    /// The paper's FLATTEN: the whole tree as one mesh in world coordinates, one group per
+    /// leaf object, faces in global face order ([`FlatMesh::to_obj`] writes it as OBJ).
+    pub fn flatten(&self) -> FlatMesh {
+        flatten(self)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use std::sync::Arc;

@@ -124,6 +124,23 @@ impl Scene {
     pub fn cbox(&self) -> Box3 {
         self.root.cbox
     }
+
+    /// The up vector of the scene file's camera, if it has one.
+    pub fn camera_up(&self) -> Option<V3> {
+        match self.camera.as_ref()? {
+            CameraSpec::Orthographic { up, .. } | CameraSpec::Perspective { up, .. } => Some(*up),
+        }
+    }
+
+    /// A scene with this one's source and camera and another object tree (substitutes of
+    /// its objects, say).
+    pub fn with_root(&self, root: Object) -> Scene {
+        Scene {
+            root,
+            camera: self.camera.clone(),
+            source: self.source.clone(),
+        }
+    }
 }
 
 /// Small scenes shared by the unit tests of several stages.

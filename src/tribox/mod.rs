@@ -17,7 +17,9 @@ pub mod combos;
 pub mod hierarchy;
 pub mod hull;
 pub mod interfere;
+mod table;
 
 pub use boundary::{Boundary, Case};
 pub use bounds::{Tribox, DIRECTIONS};
 pub use hierarchy::{Hierarchy, HierarchyOptions};
+pub use table::{table, Table, TableOptions, TableRow};

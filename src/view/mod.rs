@@ -99,3 +99,15 @@ impl View {
         }
     }
 }
+
+impl View {
+    /// The path of the object (leaf) a face belongs to, as `kepler info` names it; "" for a
+    /// face this view does not hold (in a culled subtree).
+    pub fn object_path(&self, f: crate::scene::FaceId) -> &str {
+        self.screen
+            .leaves
+            .iter()
+            .find(|l| l.faces().contains(&f))
+            .map_or("", |l| l.path.as_str())
+    }
+}

@@ -107,6 +107,21 @@ pub fn turntable_frame(scene: &Scene, base: &Camera, up: V3) -> Option<Rect> {
     (!rect.is_empty()).then_some(rect)
 }
 
+impl Camera {
+    /// `n` cameras a full turn apart about the vertical axis (`up`) through `scene`'s
+    /// centre, the first being this one (see the module's description).
+    pub fn turntable(&self, scene: &Scene, up: V3, n: usize) -> Result<Vec<Camera>> {
+        turntable(scene, self, up, n)
+    }
+
+    /// The one frame that holds `scene` in every view of a turntable from this camera about
+    /// `up` (None for an empty scene): set it as the pictures' frame so that the scene keeps
+    /// its place and size from picture to picture.
+    pub fn turntable_frame(&self, scene: &Scene, up: V3) -> Option<Rect> {
+        turntable_frame(scene, self, up)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
