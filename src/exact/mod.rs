@@ -8,7 +8,7 @@
 //! there everything is exact: projection, near-plane clipping, depth planes, every crossing,
 //! and the owner of every trapezoid. Faces are two-sided, edge-on faces show and hide
 //! nothing, nothing is culled, and where two faces are coplanar the earlier one is in front
-//! (DESIGN.md). Against that, [`check`] measures each face's claimed visible region (a
+//! (docs/design.md). Against that, [`check`] measures each face's claimed visible region (a
 //! [`Visibility`]) by the exact area of its symmetric difference with the answer.
 
 pub mod fraction;

@@ -3,7 +3,7 @@
 //! Every call fixes its float-to-integer grid from one rectangle that holds all its input:
 //! 61 bits per coordinate, a pitch of about 2^-60 of the rectangle's size — finer than f64's
 //! own spacing near the rectangle's corners — so results are exact to f64 precision, and the
-//! same input always meets the same grid (DESIGN.md, measured pitfalls: a grid chosen per call
+//! same input always meets the same grid (docs/design.md, measured pitfalls: a grid chosen per call
 //! from the inputs drifts; i32 drifts).
 
 use i_overlay::core::fill_rule::FillRule;

@@ -30,7 +30,7 @@ pub struct PrepareOptions {
     /// default) is the better one as measured: paper 002's tree for the meshes of prototypes
     /// placed more than once (one tree instead of one median split per placement and view),
     /// the median split per view for a mesh drawn once (building a tree costs more than one
-    /// view saves: docs/notes/issue12.md).
+    /// view saves: docs/history/issue12.md).
     pub hierarchy: Option<HierarchyKind>,
     /// INBOXes for every object, also where a render has no use for them (a scene of one
     /// object), as `kepler info` shows them.
