@@ -172,7 +172,7 @@ fn current_matrix(view: &View) -> Option<Vec<f64>> {
     let json = format!(
         "[{}]",
         (0..16)
-            .map(|k| kepler_hsr::emit::json::num(m[(k / 4, k % 4)]))
+            .map(|k| kepler_hsr::emit::write::json::num(m[(k / 4, k % 4)]))
             .collect::<Vec<_>>()
             .join(",")
     );

@@ -7,7 +7,7 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 use clap::Args;
-use kepler_hsr::emit::json::{json_string, num};
+use kepler_hsr::emit::write::json::{json_string, num};
 use kepler_hsr::geom::Box3;
 use kepler_hsr::prepare::{HierarchyKind, ObjectTree};
 use kepler_hsr::scene::{Content, Mesh, Object, Solidity};
