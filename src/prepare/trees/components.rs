@@ -188,7 +188,7 @@ mod tests {
 
     /// Two flat 4 × 4 grids of unit squares (32 triangles each), 100 apart.
     fn two_islands() -> Mesh {
-        super::super::grids(&[(0.0, 0.0, 4), (100.0, 0.0, 4)], 0.0)
+        super::super::bvtree::grids(&[(0.0, 0.0, 4), (100.0, 0.0, 4)], 0.0)
     }
 
     #[test]

@@ -1,21 +1,9 @@
-//! Object trees for flat meshes (paper 002, Tan, Chong and Low): a bounding-volume
+//! The object tree of one flat mesh (paper 002, Tan, Chong and Low): a bounding-volume
 //! hierarchy B(T) of a mesh's faces built from its simplified versions, once, in the mesh's
 //! own frame, so that every view, every placement of a prototype and every interference
 //! query walks the same tree.
 //!
-//! - [`fcs`]: floating-cell simplification of the vertices (section 4.1).
-//! - [`widths`]: cell widths from the edge-length distribution (section 5).
-//! - [`parts`]: parts of a simplified model, steps A1-A4, B1-B2, C1 (section 4.2).
-//! - [`components`]: the component tree C(T) (sections 3, 4.2).
-//! - [`binary`]: C(T) to a binary tree bottom-up, top-down below the leaf components (4.3).
-//!
 //! [`HierarchyKind::Median`] is the baseline: the median split alone over all the faces.
-
-pub mod binary;
-pub mod components;
-pub mod fcs;
-pub mod parts;
-pub mod widths;
 
 use std::ops::Range;
 use std::time::{Duration, Instant};
@@ -23,9 +11,9 @@ use std::time::{Duration, Instant};
 use crate::geom::Box3;
 use crate::scene::Mesh;
 
-pub use binary::TopDown;
-use binary::{Arena, Build};
-pub use components::ComponentTree;
+pub use super::binary::TopDown;
+use super::binary::{Arena, Build};
+pub use super::components::ComponentTree;
 
 /// Which object tree a flat mesh gets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
@@ -251,6 +239,7 @@ pub(crate) fn grids(specs: &[(f64, f64, u32)], bend: f64) -> Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::prepare::trees::binary;
 
     /// Two grids of `n` × `n` unit squares (gently curved) 50 apart, and a 3 × 3 island
     /// far from both.
