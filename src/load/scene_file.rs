@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::args::{quoted_list, Node};
-use super::camera::parse_camera;
+use super::camera_node::parse_camera;
 use super::geometry::{self, is_geometry, GeomCtx, MeshCache};
 use super::limits::LoadOptions;
 use super::source::Source;

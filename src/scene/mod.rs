@@ -4,7 +4,7 @@ pub mod cleanup;
 pub mod face_id;
 pub mod flatten;
 pub mod object;
-pub mod solidity;
+pub mod proof;
 pub mod texture;
 pub mod topology;
 pub mod triangulate;
@@ -16,7 +16,7 @@ use crate::geom::{Box3, M4, P3, V3};
 pub use face_id::FaceId;
 pub use flatten::{flatten, FlatMesh};
 pub use object::{Content, Face, Instance, Mesh, Object};
-pub use solidity::{CapFailure, ProvenPieces, Solidity};
+pub use proof::{CapFailure, ProvenPieces, Solidity};
 pub use texture::{Texture, TextureFrame};
 
 /// A camera as a scene file states it (the view stage turns it into a matrix).

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use crate::geom::{Box3, M4, P3};
 use crate::prepare::trees::bvtree::ObjectTree;
 
-use super::solidity::{ProvenPieces, Solidity};
+use super::proof::{ProvenPieces, Solidity};
 use super::texture::Texture;
 
 /// A planar polygon of an object, indexing the object's vertex list (the paper's FACE).
