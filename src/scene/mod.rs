@@ -4,6 +4,7 @@ pub mod cleanup;
 pub mod face_id;
 pub mod flatten;
 pub mod object;
+pub mod object_tree;
 pub mod proof;
 pub mod texture;
 pub mod topology;

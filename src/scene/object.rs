@@ -2,8 +2,8 @@
 
 use std::sync::Arc;
 
+use super::object_tree::ObjectTree;
 use crate::geom::{Box3, M4, P3};
-use crate::prepare::trees::bvtree::ObjectTree;
 
 use super::proof::{ProvenPieces, Solidity};
 use super::texture::Texture;
