@@ -433,7 +433,7 @@ impl Loader<'_> {
         let Some(b) = self.inbox(n, xf, &object.cbox)? else {
             return Ok(None);
         };
-        match crate::prepare::inbox::contain::inside(object, &b) {
+        match crate::scene::contain::inside(object, &b) {
             Ok(shrunk) => Ok(Some(shrunk)),
             Err(why) => Err(n.invalid(format!(
                 "the INBOX {:?}..{:?} is not inside the object: {why}",

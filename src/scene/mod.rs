@@ -1,6 +1,7 @@
 //! The scene database: Franklin's object tree with CBOX/INBOX, instancing, cleanup and FLATTEN.
 
 pub mod cleanup;
+pub mod contain;
 pub mod face_id;
 pub mod flatten;
 pub mod object;

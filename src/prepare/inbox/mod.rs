@@ -2,7 +2,6 @@
 //! lacking one, convex meshes by optimisation, other closed meshes by growing, groups from
 //! their parts, instances through their transform.
 
-pub mod contain;
 pub mod convex;
 pub mod grow;
 pub mod halfspace;
