@@ -21,6 +21,10 @@ pub use object::{Content, Face, Instance, Mesh, Object};
 pub use proof::{CapFailure, ProvenPieces, Solidity};
 pub use texture::{Texture, TextureFrame};
 
+/// Vertical field of view of a perspective camera that names none (an eye point on the
+/// command line, or a scene file's camera block), degrees.
+pub const DEFAULT_FOV_DEG: f64 = 45.0;
+
 /// A camera as a scene file states it (the view stage turns it into a matrix).
 #[derive(Debug, Clone, PartialEq)]
 pub enum CameraSpec {
