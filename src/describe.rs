@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use crate::emit::json::{json_string, num};
+use crate::emit::write::json::{json_string, num};
 use crate::geom::Box3;
 use crate::prepare::{HierarchyKind, ObjectTree};
 use crate::scene::{Content, Mesh, Object, Scene, Solidity};

@@ -31,6 +31,8 @@ pub mod emit;
 pub mod error;
 pub mod exact;
 pub mod geom;
+#[cfg(test)]
+mod layering;
 pub mod load;
 pub mod pipeline;
 pub mod prepare;

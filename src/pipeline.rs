@@ -6,13 +6,13 @@ use std::borrow::Cow;
 use std::io::Write;
 use std::time::{Duration, Instant};
 
-use crate::emit::json::{to_json_counted, write_json_counted};
+use crate::emit::lines::marks::face_marks;
 use crate::emit::lines::{draw_counted, Drawing, LineOptions};
-use crate::emit::marks::face_marks;
-use crate::emit::picture::{Picture, PlotStats};
+use crate::emit::plot::picture::{Picture, PlotStats};
 use crate::emit::plot::picture_counted;
-use crate::emit::png::to_png_counted;
-use crate::emit::svg::to_svg_counted;
+use crate::emit::write::json::{to_json_counted, write_json_counted};
+use crate::emit::write::png::to_png_counted;
+use crate::emit::write::svg::to_svg_counted;
 use crate::error::{Error, Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
 use crate::progress::{Lane, Phase};
@@ -57,7 +57,7 @@ pub struct Outputs {
     pub picture: PictureOptions,
 }
 
-pub use crate::emit::picture::PictureOptions;
+pub use crate::emit::plot::picture::PictureOptions;
 
 /// Stage times and work counters of one render.
 #[derive(Debug, Clone, Default, PartialEq)]

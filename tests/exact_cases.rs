@@ -311,7 +311,7 @@ fn perspective_eye_in_a_face_plane_sees_it_edge_on() {
 
 #[test]
 fn vtp_in_texture_coordinates() {
-    use kepler_hsr::visibility::texture::vtp_in_texture;
+    use kepler_hsr::visibility::vtp_texture::vtp_in_texture;
     // A horizontal square [0,2]^2 at z = 3 (texture frame: x = (1,0,0), y = (0,1,0), origin
     // (0,0,3)) under a square [1,3]x[0,2] at z = 5. From above the hidden part is [1,2]x[0,2];
     // looking along (0.2,-0.1,-1) the upper square's shadow on z = 3 shifts by (0.4,-0.2), the

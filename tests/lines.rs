@@ -8,10 +8,10 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 
 use common::*;
-use kepler_hsr::emit::edges::{mesh_edges, EdgeKind, EdgeOptions, EdgeSet};
-use kepler_hsr::emit::intersect::intersection_edges;
+use kepler_hsr::emit::lines::edges::{mesh_edges, EdgeKind, EdgeOptions, EdgeSet};
+use kepler_hsr::emit::lines::intersect::intersection_edges;
+use kepler_hsr::emit::lines::world::WorldFaces;
 use kepler_hsr::emit::lines::{project_segment, total_length, LineOptions};
-use kepler_hsr::emit::world::WorldFaces;
 use kepler_hsr::geom::{PolyMesh, P3, V3};
 use kepler_hsr::scene::Scene;
 use kepler_hsr::view::{Camera, View};

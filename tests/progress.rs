@@ -278,7 +278,7 @@ fn hatching_and_fills_count_their_visible_faces() {
         svg: true,
         ..Outputs::default()
     });
-    ropts.outputs.picture.hatch = Some(kepler_hsr::emit::hatch::HatchOptions::default());
+    ropts.outputs.picture.hatch = Some(kepler_hsr::emit::plot::hatch::HatchOptions::default());
     ropts.outputs.picture.fill = true;
     let watched = Progress::new();
     let r = render_with(&scene, &camera, &ropts, Some(&watched)).unwrap();

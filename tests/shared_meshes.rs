@@ -7,7 +7,7 @@ use std::collections::HashMap;
 
 use common::strokes::double_strokes;
 use common::{model, models};
-use kepler_hsr::emit::edges::{EdgeOptions, EdgeSet};
+use kepler_hsr::emit::lines::edges::{EdgeOptions, EdgeSet};
 use kepler_hsr::geom::ring_check::multipolygon_defects;
 use kepler_hsr::geom::V3;
 use kepler_hsr::{render, Camera, LineOptions, Outputs, RenderOptions};

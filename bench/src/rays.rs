@@ -8,8 +8,8 @@
 
 use rayon::prelude::*;
 
-use kepler_hsr::emit::clip_segment::Interval;
-use kepler_hsr::emit::edges::Edge;
+use kepler_hsr::emit::lines::clip_segment::Interval;
+use kepler_hsr::emit::lines::edges::Edge;
 use kepler_hsr::geom::{Rect, P3};
 use kepler_hsr::view::{Camera, View};
 

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
 use kepler_hsr::geom::{Box3, M4, V3};
-use kepler_hsr::prepare::bvtree::TopDown;
+use kepler_hsr::prepare::trees::bvtree::TopDown;
 use kepler_hsr::prepare::{HierarchyKind, ObjectTree};
 use kepler_hsr::scene::{Face, Mesh, Scene};
 use kepler_hsr::tribox::collide::{collide, collide_brute, CollideStats, FaceTriangles, Placed};

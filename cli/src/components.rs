@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use anyhow::Result;
-use kepler_hsr::emit::json::num;
+use kepler_hsr::emit::write::json::num;
 use kepler_hsr::geom::{newell, Rect, V3};
 use kepler_hsr::prepare::trees::leaf_trees;
 use kepler_hsr::scene::Scene;

@@ -1,33 +1,17 @@
-//! The emit stage: what people look at and what test suites diff.
+//! The emit stage: what people look at and what test suites diff, in three rooms.
+//!
+//! - [`lines`]: hidden-line geometry, the visible and hidden part of every edge.
+//! - [`plot`]: plotter post-processing, the drawing laid out on a page as a [`Picture`].
+//! - [`write`]: the writers, SVG, PNG and canonical JSON.
 
-pub mod chain;
-pub mod clip_rect;
-pub mod clip_segment;
-pub mod color;
-pub mod dash;
-pub mod dedup;
-pub mod edges;
-pub mod hatch;
-pub mod intersect;
-pub mod join;
-pub mod json;
 pub mod lines;
-pub mod marks;
-pub mod once;
-pub mod page;
-pub mod picture;
 pub mod plot;
-pub mod png;
-pub mod region;
-pub mod shade;
-pub mod svg;
-pub mod tour;
-pub mod world;
+pub mod write;
 
-pub use color::Rgb;
-pub use edges::{EdgeKind, EdgeOptions, EdgeSet};
-pub use hatch::HatchOptions;
-pub use json::{to_json, Lines};
+pub use lines::edges::{EdgeKind, EdgeOptions, EdgeSet};
 pub use lines::{draw, Drawing, LineOptions, Stroke};
-pub use page::PageSize;
-pub use picture::{LayerMode, Pen, Picture, PictureOptions, PlotStats};
+pub use plot::color::Rgb;
+pub use plot::hatch::HatchOptions;
+pub use plot::page::PageSize;
+pub use plot::picture::{LayerMode, Pen, Picture, PictureOptions, PlotStats};
+pub use write::json::{to_json, Lines};

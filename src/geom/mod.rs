@@ -16,6 +16,7 @@ pub mod rect;
 pub mod ring_check;
 pub(crate) mod rng;
 pub mod solid_angle;
+pub mod tri_box;
 pub mod tri_intersect;
 pub mod triangle;
 

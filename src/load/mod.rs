@@ -1,7 +1,7 @@
 //! Loading scene input: KDL scene files and mesh files (OBJ, STL, PLY) into a [`Scene`].
 
 mod args;
-mod camera;
+mod camera_node;
 mod geometry;
 mod kdl;
 mod limits;

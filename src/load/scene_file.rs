@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::args::{quoted_list, Node};
-use super::camera::parse_camera;
+use super::camera_node::parse_camera;
 use super::geometry::{self, is_geometry, GeomCtx, MeshCache};
 use super::limits::LoadOptions;
 use super::source::Source;
@@ -433,7 +433,7 @@ impl Loader<'_> {
         let Some(b) = self.inbox(n, xf, &object.cbox)? else {
             return Ok(None);
         };
-        match crate::prepare::contain::inside(object, &b) {
+        match crate::scene::contain::inside(object, &b) {
             Ok(shrunk) => Ok(Some(shrunk)),
             Err(why) => Err(n.invalid(format!(
                 "the INBOX {:?}..{:?} is not inside the object: {why}",

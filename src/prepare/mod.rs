@@ -1,23 +1,18 @@
 //! The prepare stage: view-independent facts computed once after loading — which meshes are
 //! proven solids (back faces may be culled), INBOXes, and object trees for flat meshes
 //! (paper 002).
+//!
+//! - [`inbox`]: INBOXes, boxes proven inside the closed solids of an object.
+//! - [`solidity`]: proven solids, open meshes capped, slits closed.
+//! - [`trees`]: object trees B(T) for flat meshes.
 
-pub mod bvtree;
-pub mod caps;
-pub mod contain;
-pub mod convex;
-pub mod grow;
-pub mod halfspace;
 pub mod inbox;
-pub mod place;
-mod slits;
-pub mod solid;
 pub mod solidity;
 pub mod trees;
 
-pub use bvtree::{HierarchyKind, ObjectTree};
 pub use inbox::{compute_inboxes, mesh_inbox};
 pub use solidity::{mark_solids, solidity};
+pub use trees::bvtree::{HierarchyKind, ObjectTree};
 
 use crate::progress::Progress;
 use crate::scene::Scene;

@@ -1,10 +1,12 @@
 //! The scene database: Franklin's object tree with CBOX/INBOX, instancing, cleanup and FLATTEN.
 
 pub mod cleanup;
+pub mod contain;
 pub mod face_id;
 pub mod flatten;
 pub mod object;
-pub mod solidity;
+pub mod object_tree;
+pub mod proof;
 pub mod texture;
 pub mod topology;
 pub mod triangulate;
@@ -16,8 +18,12 @@ use crate::geom::{Box3, M4, P3, V3};
 pub use face_id::FaceId;
 pub use flatten::{flatten, FlatMesh};
 pub use object::{Content, Face, Instance, Mesh, Object};
-pub use solidity::{CapFailure, ProvenPieces, Solidity};
+pub use proof::{CapFailure, ProvenPieces, Solidity};
 pub use texture::{Texture, TextureFrame};
+
+/// Vertical field of view of a perspective camera that names none (an eye point on the
+/// command line, or a scene file's camera block), degrees.
+pub const DEFAULT_FOV_DEG: f64 = 45.0;
 
 /// A camera as a scene file states it (the view stage turns it into a matrix).
 #[derive(Debug, Clone, PartialEq)]

@@ -2,10 +2,10 @@
 
 use std::sync::Arc;
 
+use super::object_tree::ObjectTree;
 use crate::geom::{Box3, M4, P3};
-use crate::prepare::bvtree::ObjectTree;
 
-use super::solidity::{ProvenPieces, Solidity};
+use super::proof::{ProvenPieces, Solidity};
 use super::texture::Texture;
 
 /// A planar polygon of an object, indexing the object's vertex list (the paper's FACE).
@@ -48,7 +48,7 @@ pub struct Mesh {
     /// proven pieces of [`Mesh::proven`]), counter-clockwise
     /// seen from outside the capped solid (empty otherwise). Never drawn, never in the output,
     /// never occluders or targets: the view only asks whether a cap facing the viewer lies over
-    /// a back face ([`mod@crate::prepare::caps`]).
+    /// a back face ([`mod@crate::prepare::solidity::caps`]).
     pub caps: Vec<[P3; 3]>,
 }
 

@@ -10,7 +10,7 @@
 //! so no meeting pair is ever skipped; the exact triangle test decides.
 
 use crate::geom::{newell, Box3, M4, P3, V3};
-use crate::prepare::bvtree::ObjectTree;
+use crate::prepare::trees::bvtree::ObjectTree;
 use crate::scene::triangulate::ear_clip;
 use crate::scene::Mesh;
 
@@ -262,7 +262,7 @@ fn proper(p: &[P3; 3]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::prepare::bvtree::HierarchyKind;
+    use crate::prepare::trees::bvtree::HierarchyKind;
     use crate::scene::Face;
 
     /// A closed octahedron of radius 1 at the origin.

@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 pub use crate::geom::tri_intersect::triangles_intersect;
 use crate::geom::{P3, V3};
-use crate::prepare::bvtree::{HierarchyKind, ObjectTree};
+use crate::prepare::trees::bvtree::{HierarchyKind, ObjectTree};
 use crate::prepare::trees::leaf_trees;
 use crate::scene::{Leaf, Mesh, Scene};
 

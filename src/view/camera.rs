@@ -4,9 +4,7 @@ use crate::error::{Error, Result};
 use crate::geom::{M4, P3, V3};
 use crate::scene::{CameraSpec, Scene};
 
-/// Vertical field of view of a perspective camera that names none (an eye point on the
-/// command line, or a scene file's camera block), degrees.
-pub const DEFAULT_FOV_DEG: f64 = 45.0;
+pub use crate::scene::DEFAULT_FOV_DEG;
 
 /// What a caller asks of the camera (the command line's `--dir`, `--eye`, `--target`,
 /// `--fov`, `--ortho`, `--up`); what it leaves unset comes from the scene's camera block, then

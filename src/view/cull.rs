@@ -18,7 +18,7 @@
 use crate::geom::hull2::{convex_hull, covers_convex};
 use crate::geom::poly2::Pt2;
 use crate::geom::{Box3, Rect, M4};
-use crate::prepare::bvtree::{HierarchyKind, ObjectTree};
+use crate::prepare::trees::bvtree::{HierarchyKind, ObjectTree};
 use crate::scene::{Content, FaceId, Leaf, Object, Scene};
 
 use super::camera::{Camera, Projection};

@@ -3,14 +3,14 @@
 //! - [`camera`]: the world-to-screen matrix, chosen from flags, the scene or a default.
 //! - [`lod`]: small objects replaced by their triboxes for this camera (optional).
 //! - [`cull`]: subtrees HIDDEN by inboxes, found from boxes before any face is projected.
-//! - [`screen`]: the remaining faces projected as planar pieces; [`mod@caps`]: which back
+//! - [`screen`]: the remaining faces projected as planar pieces; [`backfaces`]: which back
 //!   faces are culled (a solid's, a capped open mesh's away from its holes).
 //! - [`tree`]: the object tree in screen space, with bounds for VISFAC2's pruning.
 //! - [`frame`]: the part of the screen plane a picture shows.
 //! - [`mod@turntable`]: cameras carried round the scene, and one frame for all of them.
 
+pub mod backfaces;
 pub mod camera;
-pub mod caps;
 pub mod cull;
 pub mod finite;
 pub mod frame;

@@ -8,8 +8,8 @@ use crate::geom::{newell, orient2d, orient3d_refs, Corners, Rect, P3};
 use crate::progress::Progress;
 use crate::scene::{FaceId, Leaf, Scene};
 
+use super::backfaces::BackCull;
 use super::camera::{Camera, Projection};
-use super::caps::BackCull;
 use super::cull::Cull;
 use super::piece_id::PieceId;
 use super::ring_index::{RingIndex, INDEXED_ABOVE};

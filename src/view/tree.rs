@@ -13,7 +13,7 @@ use std::ops::Range;
 use crate::geom::hull2::convex_hull;
 use crate::geom::poly2::Pt2;
 use crate::geom::{Box3, Rect, M4};
-use crate::prepare::bvtree::{HierarchyKind, ObjectTree};
+use crate::prepare::trees::bvtree::{HierarchyKind, ObjectTree};
 use crate::progress::{Progress, Share, CHUNK};
 use crate::scene::{Content, FaceId, Object, Scene};
 

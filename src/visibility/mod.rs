@@ -7,10 +7,10 @@ pub mod include;
 pub mod occlusion;
 pub mod pass;
 pub mod stats;
-pub mod texture;
 pub mod visfac;
 pub mod visobj;
 pub mod visp;
+pub mod vtp_texture;
 
 pub use include::{include, Inclusion};
 pub use pass::{solve, solve_counted, FaceVisibility, PassOptions, Visibility};

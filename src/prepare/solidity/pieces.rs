@@ -12,7 +12,7 @@
 //! The test of each piece is the whole mesh's, complete: every face triangulated (a face
 //! that is not simple, or has a flat triangle, fails its piece), every pair of triangles of
 //! one piece tested for crossing, every piece's signed volume decided exactly. For an open
-//! mesh it runs on the capped surface capping last built ([`crate::prepare::caps`]): a piece
+//! mesh it runs on the capped surface capping last built ([`crate::prepare::solidity::caps`]): a piece
 //! is then proven with its caps, and only the caps of proven pieces are kept (a cap of
 //! another piece plays no part in P's argument).
 
@@ -83,7 +83,7 @@ pub(crate) fn proven_pieces(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::prepare::caps::tests::{box_with_chimney, cube_without};
+    use crate::prepare::solidity::caps::tests::{box_with_chimney, cube_without};
     use crate::prepare::solidity::decide;
     use crate::prepare::solidity::tests::crossing_piece;
     use crate::progress::{Progress, Share};

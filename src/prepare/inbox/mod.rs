@@ -1,5 +1,12 @@
-//! Fills the INBOX of every object lacking one: convex meshes by optimisation, other closed
-//! meshes by growing, groups from their parts, instances through their transform.
+//! INBOXes, boxes proven inside an object's closed solids: fills the INBOX of every object
+//! lacking one, convex meshes by optimisation, other closed meshes by growing, groups from
+//! their parts, instances through their transform.
+
+pub mod convex;
+pub mod grow;
+pub mod halfspace;
+pub mod place;
+pub mod solid;
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -8,10 +15,10 @@ use crate::geom::{Box3, P3, V3};
 use crate::progress::{Phase, Progress, Stage};
 use crate::scene::{Content, Mesh, Object};
 
-use super::convex::{convex_inbox, is_convex};
-use super::grow::grown_inbox;
-use super::place::place_box;
-use super::solid::Triangles;
+use self::convex::{convex_inbox, is_convex};
+use self::grow::grown_inbox;
+use self::place::place_box;
+use self::solid::Triangles;
 
 /// Computes an INBOX for every object of the tree that has none, keeping explicit ones.
 /// Prototypes shared by instances are prepared once and stay shared.

@@ -14,7 +14,7 @@ use crate::visibility::Visibility;
 
 use super::clip_segment::{at, intervals_in};
 use super::edges::EdgeKind;
-use super::lines::{project_segment, strokes, Stroke};
+use super::{project_segment, strokes, Stroke};
 
 /// The visible parts of every face's markings, as strokes (kind [`EdgeKind::Plain`]).
 pub fn face_marks(scene: &Scene, view: &View, vis: &Visibility) -> Vec<Stroke> {

@@ -1,6 +1,6 @@
 //! Whether a mesh is a proven solid (its back faces may be culled), a capped open mesh (its
 //! back faces may be culled away from its holes), or why not; decided in the prepare stage
-//! ([`mod@crate::prepare::solidity`], [`mod@crate::prepare::caps`]).
+//! ([`mod@crate::prepare::solidity`], [`mod@crate::prepare::solidity::caps`]).
 
 /// Whether a mesh is a proven solid, or why not.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -59,7 +59,7 @@ pub enum CapFailure {
     MeshSelfIntersecting(u64),
     /// A hole has zero area (its corners on one line: a crack along a T-junction) and an
     /// edge across it is not on a triangle, so it cannot be closed by splitting that edge
-    /// (triangles are, [`crate::prepare::caps`]), and no cap triangle can close it.
+    /// (triangles are, [`crate::prepare::solidity::caps`]), and no cap triangle can close it.
     Slit,
     /// A cap has a triangle of zero area, fanned or ear-clipped.
     Degenerate,

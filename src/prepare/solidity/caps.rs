@@ -11,7 +11,7 @@
 //! triangle) is caught exactly — such holes are then ear-clipped along their Newell normal
 //! where that projection is simple (the bunny's two deepest holes). The capped surface
 //! S = M ∪ caps is kept only when it passes the very tests that prove a solid
-//! ([`super::solidity::solidity`]): closed and consistently oriented, non-degenerate, no two
+//! ([`super::solidity`]): closed and consistently oriented, non-degenerate, no two
 //! triangles crossing, every piece of positive volume.
 //!
 //! A hole of zero area (a T-junction crack, `slits.rs`: what dropping a zero-area
@@ -52,11 +52,11 @@ use crate::scene::topology::{edge_topology, sort_edges, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Face, Mesh, Solidity};
 
+use super::pieces::Crossings;
 use super::slits::close_slits;
-use super::solidity::pieces::Crossings;
 #[cfg(test)]
-use super::solidity::solidity;
-use super::solidity::{degenerate, examine_until, Surface, NO_GROUP};
+use super::solidity;
+use super::{degenerate, examine_until, Surface, NO_GROUP};
 
 /// The caps of an open mesh that capping made a solid.
 #[derive(Debug, Clone, PartialEq)]
@@ -117,7 +117,7 @@ impl Failed {
 }
 
 /// A failure to cap, with the capped surface that failed where one was built and tested
-/// (so that [`super::solidity::pieces`] can still prove its pieces one by one).
+/// (so that [`super::pieces`] can still prove its pieces one by one).
 pub(crate) type Refused = (CapFailure, Option<Box<Failed>>);
 
 /// [`cap_holes`], saying on failure which capped surface failed, filling `span` as it goes

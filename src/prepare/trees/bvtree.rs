@@ -1,106 +1,19 @@
-//! Object trees for flat meshes (paper 002, Tan, Chong and Low): a bounding-volume
+//! The object tree of one flat mesh (paper 002, Tan, Chong and Low): a bounding-volume
 //! hierarchy B(T) of a mesh's faces built from its simplified versions, once, in the mesh's
 //! own frame, so that every view, every placement of a prototype and every interference
 //! query walks the same tree.
 //!
-//! - [`fcs`]: floating-cell simplification of the vertices (section 4.1).
-//! - [`widths`]: cell widths from the edge-length distribution (section 5).
-//! - [`parts`]: parts of a simplified model, steps A1-A4, B1-B2, C1 (section 4.2).
-//! - [`components`]: the component tree C(T) (sections 3, 4.2).
-//! - [`binary`]: C(T) to a binary tree bottom-up, top-down below the leaf components (4.3).
-//!
 //! [`HierarchyKind::Median`] is the baseline: the median split alone over all the faces.
+//! The tree's data types live in [`crate::scene::object_tree`]; its construction here.
 
-pub mod binary;
-pub mod components;
-pub mod fcs;
-pub mod parts;
-pub mod widths;
+use std::time::Instant;
 
-use std::ops::Range;
-use std::time::{Duration, Instant};
-
-use crate::geom::Box3;
 use crate::scene::Mesh;
 
-pub use binary::TopDown;
-use binary::{Arena, Build};
-pub use components::ComponentTree;
-
-/// Which object tree a flat mesh gets.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
-pub enum HierarchyKind {
-    /// Paper 002: components of simplified models, merged bottom-up, median split below.
-    #[default]
-    Simplify,
-    /// The median split alone (kepler's tree before paper 002).
-    Median,
-}
-
-impl HierarchyKind {
-    /// Lower-case name, as the `--hierarchy` flag spells it.
-    pub fn name(self) -> &'static str {
-        match self {
-            HierarchyKind::Simplify => "simplify",
-            HierarchyKind::Median => "median",
-        }
-    }
-}
-
-/// A node of B(T): a set of faces (a range of [`ObjectTree::faces`]) and its CBOX.
-#[derive(Debug, Clone, PartialEq)]
-pub struct TreeNode {
-    /// CBOX of the node's faces, in the mesh's frame.
-    pub cbox: Box3,
-    /// The node's faces: a range of [`ObjectTree::faces`].
-    pub faces: Range<u32>,
-    /// The two children, if not a leaf.
-    pub children: Option<[u32; 2]>,
-    /// True for a node of the upper BV-tree: a component of C(T) or a merge of components.
-    pub component: bool,
-    /// An INBOX of the node's region (a box inside the closed mesh within the node's CBOX),
-    /// where the prepare stage found one.
-    pub inbox: Option<Box3>,
-}
-
-/// Preprocessing times, split as the paper's Table 1.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct BuildTimes {
-    /// Simplification plus component computation.
-    pub components: Duration,
-    /// Bottom-up conversion of C(T) to the upper levels of B(T).
-    pub bottom_up: Duration,
-    /// Top-down split below the leaf components (all of the median tree).
-    pub top_down: Duration,
-}
-
-/// Size of a tree, for `kepler info`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct TreeShape {
-    /// Nodes.
-    pub nodes: usize,
-    /// Depth (a lone root has depth 0).
-    pub depth: usize,
-    /// Leaves.
-    pub leaves: usize,
-    /// Nodes of the upper BV-tree (components and their merges).
-    pub component_nodes: usize,
-}
-
-/// B(T) of one mesh.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ObjectTree {
-    /// How it was built.
-    pub kind: HierarchyKind,
-    /// The nodes, in depth-first order; the root is node 0.
-    pub nodes: Vec<TreeNode>,
-    /// Local face indices, ordered so that every node's faces are contiguous.
-    pub faces: Vec<u32>,
-    /// C(T) (empty for the median tree).
-    pub components: ComponentTree,
-    /// Preprocessing times.
-    pub times: BuildTimes,
-}
+pub use super::binary::TopDown;
+use super::binary::{Arena, Build};
+pub use super::components::ComponentTree;
+pub use crate::scene::object_tree::{BuildTimes, HierarchyKind, ObjectTree, TreeNode, TreeShape};
 
 impl ObjectTree {
     /// The tree of `kind` over the faces of `mesh`: below the leaf components of the
@@ -170,34 +83,6 @@ impl ObjectTree {
         self.nodes[id as usize].faces.end = self.faces.len() as u32;
         id
     }
-
-    /// The local faces of node `n`.
-    pub fn faces_of(&self, n: u32) -> &[u32] {
-        let r = &self.nodes[n as usize].faces;
-        &self.faces[r.start as usize..r.end as usize]
-    }
-
-    /// Nodes, depth, leaves and upper nodes.
-    pub fn shape(&self) -> TreeShape {
-        let mut s = TreeShape::default();
-        let mut stack = vec![(0u32, 0usize)];
-        while let Some((n, d)) = stack.pop() {
-            let node = &self.nodes[n as usize];
-            s.nodes += 1;
-            s.depth = s.depth.max(d);
-            s.component_nodes += node.component as usize;
-            match node.children {
-                Some([l, r]) => stack.extend([(l, d + 1), (r, d + 1)]),
-                None => s.leaves += 1,
-            }
-        }
-        s
-    }
-
-    /// Sum of the CBOX volumes of all nodes (the paper's "bounding volume per instance").
-    pub fn total_volume(&self) -> f64 {
-        self.nodes.iter().map(|n| n.cbox.volume()).sum()
-    }
 }
 
 /// The upper BV-tree of C(T)'s node `c`: its children's subtrees merged bottom-up; a leaf
@@ -251,6 +136,7 @@ pub(crate) fn grids(specs: &[(f64, f64, u32)], bend: f64) -> Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::prepare::trees::binary;
 
     /// Two grids of `n` × `n` unit squares (gently curved) 50 apart, and a 3 × 3 island
     /// far from both.

@@ -225,7 +225,7 @@ fn clean_pieces(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::emit::intersect::intersection_edges;
+    use crate::emit::lines::intersect::intersection_edges;
     use crate::scene::Object;
 
     #[test]

@@ -10,8 +10,8 @@ use crate::geom::poly2::Pt2;
 use crate::progress::{Lane, Phase, Progress, Share, Stage, Steps};
 use crate::Error;
 
-use super::color::Rgb;
-use super::picture::Picture;
+use crate::emit::plot::color::Rgb;
+use crate::emit::plot::picture::Picture;
 
 /// Largest PNG side in pixels.
 const MAX_SIDE: f64 = 32768.0;
@@ -150,8 +150,8 @@ fn add_polyline(pb: &mut PathBuilder, pts: impl Iterator<Item = (f64, f64)>, clo
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::emit::page::PageSize;
-    use crate::emit::picture::{Fill, Layer, LayerMode, Pen, PlotStats, Run};
+    use crate::emit::plot::page::PageSize;
+    use crate::emit::plot::picture::{Fill, Layer, LayerMode, Pen, PlotStats, Run};
 
     fn pic() -> Picture {
         Picture {

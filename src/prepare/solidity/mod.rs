@@ -15,7 +15,7 @@
 //! - every edge-connected piece has positive signed volume (outward), decided exactly: then
 //!   its w is 0 or +1.
 //!
-//! An open mesh is then offered to [`super::caps`]: with its holes capped it may still be
+//! An open mesh is then offered to [`self::caps`]: with its holes capped it may still be
 //! proven a solid, and its back faces culled away from the caps.
 //!
 //! Anything else keeps two-sided faces: correct, only slower.
@@ -29,11 +29,13 @@ use num_traits::{Signed, Zero};
 
 use rayon::prelude::*;
 
+pub mod caps;
 pub mod pieces;
 
 use pieces::Crossings;
 mod plates;
 mod slab;
+mod slits;
 
 use crate::geom::box_pairs::{filter_map_pairs_counted, overlap, Bounds3};
 use crate::geom::box_tree::BoxTree;
@@ -218,7 +220,7 @@ pub(crate) fn examine_until(
 }
 
 /// Fills [`Mesh::solidity`] of `mesh`, and for an open mesh whose holes cap into a solid
-/// ([`super::caps`]), its [`Mesh::caps`]; where the whole is not a solid, the pieces that
+/// ([`self::caps`]), its [`Mesh::caps`]; where the whole is not a solid, the pieces that
 /// are ([`Mesh::proven`], [`pieces`]) with their caps.
 pub fn decide(mesh: &mut Mesh) {
     let sink = Progress::new();
@@ -234,7 +236,7 @@ pub(crate) fn decide_counted(mesh: &mut Mesh, share: &Share) {
     let pieces = share.span(0.97, 1.0);
     let (s, proven) = match whole.solidity {
         // `examine` found the edges open (only that makes the whole `Open`).
-        Solidity::Open(_) => match super::caps::capping_open(mesh, share.span(test, 0.97)) {
+        Solidity::Open(_) => match self::caps::capping_open(mesh, share.span(test, 0.97)) {
             Ok(caps) => {
                 mesh.caps = caps.triangles;
                 (Solidity::Capped(caps.loops), None)

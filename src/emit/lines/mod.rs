@@ -1,10 +1,24 @@
-//! The line drawing: the visible (and hidden) part of every edge, computed exactly from the
-//! VTPs of the faces beside it, chained into polylines and ordered for a pen plotter.
+//! Hidden-line geometry: the line drawing, the visible (and hidden) part of every edge,
+//! computed exactly from the VTPs of the faces beside it, chained into polylines and ordered
+//! for a pen plotter.
+//!
+//! - [`edges`]: which edges a mesh has and which of them are drawn.
+//! - [`world`]: the faces in world coordinates; [`intersect`]: where faces cross each other.
+//! - [`clip_segment`], [`region`]: the exact segment-against-region test.
+//! - [`once`]: every piece of screen line stroked once; [`marks`]: face markings.
 //!
 //! An edge is visible where it lies on the closed visible region of a face beside it; its
 //! hidden part is the rest of it. Edge-on faces have empty VTPs, so the other face decides.
 //! Where several edges project onto one screen line, the line is stroked once
-//! ([`super::once`]).
+//! ([`once`]).
+
+pub mod clip_segment;
+pub mod edges;
+pub mod intersect;
+pub mod marks;
+pub mod once;
+pub mod region;
+pub mod world;
 
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
@@ -18,14 +32,14 @@ use crate::scene::{FaceId, Scene};
 use crate::view::{Camera, Projection, View};
 use crate::visibility::Visibility;
 
-use super::chain::{chain, order};
-use super::clip_segment::{at, complement, intervals_in, intervals_in_region, union, Interval};
-use super::edges::{mesh_edges_counted, Edge, EdgeKind, EdgeOptions};
-use super::intersect::intersection_edges_counted;
-use super::json::Lines;
-use super::once::{stroke_once, Ranked};
-use super::region::Region;
-use super::world::WorldFaces;
+use self::clip_segment::{at, complement, intervals_in, intervals_in_region, union, Interval};
+use self::edges::{mesh_edges_counted, Edge, EdgeKind, EdgeOptions};
+use self::intersect::intersection_edges_counted;
+use self::once::{stroke_once, Ranked};
+use self::region::Region;
+use self::world::WorldFaces;
+use crate::emit::plot::chain::{chain, order};
+use crate::emit::write::json::Lines;
 
 /// Options of the line drawing.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

@@ -13,7 +13,7 @@ use crate::geom::solid_angle::winding_number;
 use crate::geom::{Box3, M4, P3, V3};
 use crate::scene::Object;
 
-use super::grow::tri_meets_box;
+use crate::geom::tri_box::tri_meets_box;
 
 /// Relative margin by which a checked box is shrunk (of the object's largest CBOX side).
 pub const MARGIN: f64 = 1e-9;

@@ -351,7 +351,7 @@ fn spans(p: Corners, s: &[f64], dir: &V3) -> Vec<[(f64, P3); 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::emit::world::WorldFace;
+    use crate::emit::lines::world::WorldFace;
 
     fn pts(p: &[[f64; 3]]) -> Vec<P3> {
         p.iter().map(|p| P3::new(p[0], p[1], p[2])).collect()

@@ -1,14 +1,14 @@
 //! The picture both SVG and PNG draw, on a page in millimetres: fills, and layers of strokes
-//! in the order a plotter draws them, each stroke with a pen. [`super::plot`] builds it.
+//! in the order a plotter draws them, each stroke with a pen. [`super::picture()`] builds it.
 
 use crate::geom::poly2::{polyline_length, Pt2, Ring};
 use crate::geom::{Rect, V3};
 
 use super::color::Rgb;
 use super::dedup::DedupStats;
-use super::edges::EdgeKind;
 use super::hatch::HatchOptions;
 use super::page::PageSize;
+use crate::emit::lines::edges::EdgeKind;
 
 /// A pen: what a kind of line is drawn with. Pens in priority order: where two lines
 /// coincide, the one with the earlier pen is kept.

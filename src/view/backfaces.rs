@@ -1,5 +1,5 @@
 //! Which back faces of a leaf the view may cull: all of a proven solid's, a capped open
-//! mesh's away from the caps that face the viewer (the argument: [`mod@crate::prepare::caps`]),
+//! mesh's away from the caps that face the viewer (the argument: [`mod@crate::prepare::solidity::caps`]),
 //! or those of the proven pieces of a mesh that is not a solid as a whole, away from their
 //! caps ([`mod@crate::prepare::solidity::pieces`]).
 

@@ -8,7 +8,7 @@
 //! taking every second or fourth line of the densest. So a hatch line runs on across the
 //! faces of a smooth mesh and across tone boundaries, and the pieces join into long strokes.
 //! Each line is one segment over the whole drawing, the same for every face, cut with the
-//! exact segment-against-region test the line drawing uses ([`super::clip_segment`]).
+//! exact segment-against-region test the line drawing uses ([`crate::emit::lines::clip_segment`]).
 
 use rayon::prelude::*;
 
@@ -20,9 +20,9 @@ use crate::scene::{FaceId, Scene};
 use crate::view::View;
 use crate::visibility::Visibility;
 
-use super::clip_segment::{at, intervals_in};
 use super::page::Layout;
 use super::shade::{face_shade, light_direction, light_on_screen};
+use crate::emit::lines::clip_segment::{at, intervals_in};
 
 /// How hatching looks.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -12,30 +12,7 @@ use super::binary::area;
 use super::fcs::{cell_order, cluster, grades};
 use super::parts::face_parts;
 use super::widths::cell_widths;
-
-/// A node of C(T): a component (a set of the original faces).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Component {
-    /// Level of the simplified model that made it (0: the whole mesh, 1: the coarsest model).
-    pub level: usize,
-    /// Its faces (local face indices, ascending).
-    pub faces: Vec<u32>,
-    /// Its sub-components (indices into [`ComponentTree::nodes`]); empty for a leaf.
-    pub children: Vec<u32>,
-}
-
-/// C(T) with the simplified models that made it.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct ComponentTree {
-    /// Cell width of each simplified model, coarsest first.
-    pub widths: Vec<f64>,
-    /// Vertices left in each simplified model (clusters).
-    pub clusters: Vec<usize>,
-    /// Components made from each simplified model (new nodes of that level).
-    pub per_level: Vec<usize>,
-    /// The nodes; the root (all faces) is node 0.
-    pub nodes: Vec<Component>,
-}
+pub use crate::scene::object_tree::{Component, ComponentTree};
 
 impl ComponentTree {
     /// C(T) of a mesh from its simplified models at the widths of its edge lengths.
@@ -188,7 +165,7 @@ mod tests {
 
     /// Two flat 4 × 4 grids of unit squares (32 triangles each), 100 apart.
     fn two_islands() -> Mesh {
-        super::super::grids(&[(0.0, 0.0, 4), (100.0, 0.0, 4)], 0.0)
+        super::super::bvtree::grids(&[(0.0, 0.0, 4), (100.0, 0.0, 4)], 0.0)
     }
 
     #[test]

@@ -3,9 +3,7 @@
 use super::args::{boolean, Node};
 use crate::error::Result;
 use crate::geom::{P3, V3};
-use crate::scene::CameraSpec;
-
-use crate::view::camera::DEFAULT_FOV_DEG;
+use crate::scene::{CameraSpec, DEFAULT_FOV_DEG};
 
 /// The nodes a `camera` block may hold.
 const CAMERA_NODES: [&str; 6] = ["eye", "target", "up", "fov", "ortho", "dir"];

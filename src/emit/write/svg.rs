@@ -13,7 +13,7 @@ use crate::geom::poly2::Pt2;
 use crate::progress::{Lane, Phase, Progress, Share, Stage};
 
 use super::json::num;
-use super::picture::{LayerMode, Pen, Picture};
+use crate::emit::plot::picture::{LayerMode, Pen, Picture};
 
 /// The Inkscape namespace (layers).
 const INKSCAPE: &str = "http://www.inkscape.org/namespaces/inkscape";
@@ -62,7 +62,7 @@ pub(crate) fn to_svg_counted(pic: &Picture, lane: &Lane) -> String {
             for r in &f.rings {
                 polyline(&mut d, r, true);
             }
-            let grey = super::color::Rgb::grey(f.grey).hex();
+            let grey = crate::emit::plot::color::Rgb::grey(f.grey).hex();
             g = g.add(
                 Path::new()
                     .set("d", d)
@@ -115,7 +115,10 @@ fn layer(number: u32, name: &str) -> Group {
 
 /// Sets a pen's stroke colour and width (mm) on an element.
 fn pen_style<T: svg::Node>(mut e: T, pen: Pen, pic: &Picture) -> T {
-    e.assign("stroke", super::color::Rgb::grey(pen.grey()).hex());
+    e.assign(
+        "stroke",
+        crate::emit::plot::color::Rgb::grey(pen.grey()).hex(),
+    );
     e.assign("stroke-width", num(pic.width(pen)));
     e
 }
@@ -148,9 +151,9 @@ fn polyline(d: &mut String, pts: &[Pt2], close: bool) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::emit::color::Rgb;
-    use crate::emit::page::PageSize;
-    use crate::emit::picture::{Fill, Layer, PlotStats, Run};
+    use crate::emit::plot::color::Rgb;
+    use crate::emit::plot::page::PageSize;
+    use crate::emit::plot::picture::{Fill, Layer, PlotStats, Run};
 
     fn pic(mode: LayerMode) -> Picture {
         Picture {

@@ -1,14 +1,26 @@
-//! Builds the [`Picture`] of a solved view: the drawing's lines (and hatching, markings,
-//! fills) laid out on the page in mm, clipped exactly to the drawing area, each line drawn
-//! once, joined into long strokes, hidden lines dashed, and every layer ordered to cut the
-//! pen's travel.
+//! Plotter post-processing: builds the [`Picture`] of a solved view, the drawing's lines (and
+//! hatching, markings, fills) laid out on the page in mm, clipped exactly to the drawing
+//! area, each line drawn once, joined into long strokes, hidden lines dashed, and every layer
+//! ordered to cut the pen's travel.
 //!
 //! Steps: frame and page layout; hatch lines (their spacing is in mm); map to the page and
-//! clip ([`super::clip_rect`]); drop repeated and overlapping collinear pieces, visible pens
-//! first ([`super::dedup`]); per layer and pen, join at equal ends then within
-//! `join_mm` ([`super::join`]), simplify when asked (geo's Ramer–Douglas–Peucker), dash the
-//! hidden pen ([`super::dash`]) and join dashes that meet; per layer, order all strokes
-//! ([`super::tour`]).
+//! clip ([`clip_rect`]); drop repeated and overlapping collinear pieces, visible pens
+//! first ([`dedup`]); per layer and pen, join at equal ends then within
+//! `join_mm` ([`join`]), simplify when asked (geo's Ramer–Douglas–Peucker), dash the
+//! hidden pen ([`dash`]) and join dashes that meet; per layer, order all strokes
+//! ([`tour`]).
+
+pub mod chain;
+pub mod clip_rect;
+pub mod color;
+pub mod dash;
+pub mod dedup;
+pub mod hatch;
+pub mod join;
+pub mod page;
+pub mod picture;
+pub mod shade;
+pub mod tour;
 
 use std::collections::BTreeMap;
 
@@ -23,18 +35,18 @@ use crate::scene::{FaceId, Scene};
 use crate::view::{Frame, View};
 use crate::visibility::Visibility;
 
-use super::clip_rect::clip_polyline;
-use super::dash::dashes;
-use super::dedup::{dedup_counted, SegmentIndex};
-use super::hatch::{hatch_counted, tone_outlines};
-use super::join::join_counted;
-use super::lines::{Drawing, Stroke};
-use super::page::Layout;
-use super::picture::{Fill, Layer, LayerMode, Pen, Picture, PictureOptions, PlotStats, Run};
-use super::shade::{face_shade, light_direction};
-use super::tour::plan_counted;
+use self::clip_rect::clip_polyline;
+use self::dash::dashes;
+use self::dedup::{dedup_counted, SegmentIndex};
+use self::hatch::{hatch_counted, tone_outlines};
+use self::join::join_counted;
+use self::page::Layout;
+use self::picture::{Fill, Layer, LayerMode, Pen, Picture, PictureOptions, PlotStats, Run};
+use self::shade::{face_shade, light_direction};
+use self::tour::plan_counted;
+use crate::emit::lines::{Drawing, Stroke};
 
-/// Coincidence tolerance of [`super::dedup::dedup`] on the page: lines closer than 0.1 µm are one line
+/// Coincidence tolerance of [`dedup::dedup`] on the page: lines closer than 0.1 µm are one line
 /// (a plotter's step is about 10 µm, a pen 100 µm or more).
 const DEDUP_EPS_MM: f64 = 1e-4;
 

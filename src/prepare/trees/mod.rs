@@ -2,6 +2,20 @@
 //! need one gets its B(T) once, in its own frame (a prototype's once for all its
 //! placements), and, when the scene has inboxes at all, an INBOX per large component of a
 //! closed mesh: the subobjects Franklin's pruning needs, which a flat mesh lacks.
+//!
+//! - [`bvtree`]: B(T) of one mesh, built from its simplified versions.
+//! - [`fcs`]: floating-cell simplification of the vertices (section 4.1).
+//! - [`widths`]: cell widths from the edge-length distribution (section 5).
+//! - [`parts`]: parts of a simplified model, steps A1-A4, B1-B2, C1 (section 4.2).
+//! - [`components`]: the component tree C(T) (sections 3, 4.2).
+//! - [`binary`]: C(T) to a binary tree bottom-up, top-down below the leaf components (4.3).
+
+pub mod binary;
+pub mod bvtree;
+pub mod components;
+pub mod fcs;
+pub mod parts;
+pub mod widths;
 
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
@@ -10,9 +24,9 @@ use crate::geom::{Box3, P3};
 use crate::progress::{Phase, Progress, Stage};
 use crate::scene::{Content, Mesh, Object};
 
-use super::bvtree::{HierarchyKind, ObjectTree};
-use super::grow::grown_inbox_in;
-use super::solid::Triangles;
+use self::bvtree::{HierarchyKind, ObjectTree};
+use crate::prepare::inbox::grow::grown_inbox_in;
+use crate::prepare::inbox::solid::Triangles;
 
 /// Meshes with fewer faces keep the view's median split (a tree would cost more than it saves).
 pub const MIN_FACES: usize = 256;
