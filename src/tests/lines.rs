@@ -2,19 +2,17 @@
 //! face beside it is front-facing), visible + hidden = all (non-convex scenes), and the
 //! intersection segment of two crossing faces, endpoints worked by hand.
 
-mod common;
-
 use std::collections::HashMap;
 use std::path::PathBuf;
 
-use common::*;
-use kepler_hsr::emit::edges::{mesh_edges, EdgeKind, EdgeOptions, EdgeSet};
-use kepler_hsr::emit::intersect::intersection_edges;
-use kepler_hsr::emit::lines::{project_segment, total_length, LineOptions};
-use kepler_hsr::emit::world::WorldFaces;
-use kepler_hsr::geom::{PolyMesh, P3, V3};
-use kepler_hsr::scene::Scene;
-use kepler_hsr::view::{Camera, View};
+use super::common::*;
+use crate::emit::edges::{mesh_edges, EdgeKind, EdgeOptions, EdgeSet};
+use crate::emit::intersect::intersection_edges;
+use crate::emit::lines::{project_segment, total_length, LineOptions};
+use crate::emit::world::WorldFaces;
+use crate::geom::{PolyMesh, P3, V3};
+use crate::scene::Scene;
+use crate::view::{Camera, View};
 
 fn all_edges(hidden: bool) -> LineOptions {
     LineOptions {
@@ -26,28 +24,13 @@ fn all_edges(hidden: bool) -> LineOptions {
     }
 }
 
-/// Models directory: `$KEPLER_MODELS`, `../shared/models` or `/work/shared/models`.
-fn model(name: &str) -> Option<PathBuf> {
-    let mut dirs: Vec<PathBuf> = std::env::var_os("KEPLER_MODELS")
-        .map(PathBuf::from)
-        .into_iter()
-        .collect();
-    dirs.push(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/models"));
-    dirs.push(PathBuf::from("/work/shared/models"));
-    let found = dirs.into_iter().map(|d| d.join(name)).find(|p| p.is_file());
-    if found.is_none() {
-        println!("skipped: {name} not found (set KEPLER_MODELS to the models directory)");
-    }
-    found
-}
-
 fn load(path: &std::path::Path) -> Scene {
-    kepler_hsr::load::load_scene(path, &mut Vec::new()).unwrap()
+    crate::load::load_scene(path, &mut Vec::new()).unwrap()
 }
 
 /// Icosphere: an icosahedron subdivided `n` times, pushed onto the unit sphere.
 fn icosphere(n: u32) -> PolyMesh {
-    let ico = kepler_hsr::primitives::by_name("icosahedron").unwrap();
+    let ico = crate::primitives::by_name("icosahedron").unwrap();
     let mut verts: Vec<P3> = ico
         .vertices
         .iter()
@@ -126,7 +109,7 @@ fn check_convex(scene: &Scene, name: &str) {
 fn convex_solids_visible_length_is_analytic() {
     check_convex(&scene(vec![("ico", prim(icosphere(2)))]), "icosphere");
     for name in ["cube", "dodecahedron", "truncated_icosahedron", "snub_cube"] {
-        let m = prim(kepler_hsr::primitives::by_name(name).unwrap());
+        let m = prim(crate::primitives::by_name(name).unwrap());
         check_convex(&scene(vec![(name, m)]), name);
     }
 }
@@ -271,13 +254,13 @@ fn crossing_faces_draw_their_intersection_exactly() {
 /// with round caps: 7 in assembly, 58 in town).
 #[test]
 fn example_drawings_have_no_zero_length_strokes() {
-    use kepler_hsr::emit::lines::is_dot;
-    use kepler_hsr::view::CameraRequest;
-    use kepler_hsr::{render, Outputs, RenderOptions};
+    use crate::emit::lines::is_dot;
+    use crate::view::CameraRequest;
+    use crate::{render, Outputs, RenderOptions};
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes");
     for name in ["assembly", "town", "polyhedra"] {
         let mut scene = load(&root.join(format!("{name}.kdl")));
-        kepler_hsr::prepare(&mut scene);
+        crate::prepare(&mut scene);
         let camera = Camera::for_scene(&scene, &CameraRequest::default()).unwrap();
         let opts = RenderOptions {
             lines: LineOptions {

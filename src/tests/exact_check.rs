@@ -2,18 +2,16 @@
 //! engine, no tolerance): hand-worked cases, self-intersecting and inside-out solids that
 //! culling used to get wrong, random scenes of every kind, and the shared meshes.
 
-mod common;
-
-use common::*;
-use kepler_hsr::exact::{check, ExactReport};
-use kepler_hsr::geom::{P3, V3};
-use kepler_hsr::scene::{Scene, Solidity};
-use kepler_hsr::view::Camera;
-use kepler_hsr::{render, FaceId, RenderOptions};
+use super::common::*;
+use crate::exact::{check, ExactReport};
+use crate::geom::{P3, V3};
+use crate::scene::{Scene, Solidity};
+use crate::view::Camera;
+use crate::{render, FaceId, RenderOptions};
 
 /// Renders as a user would (prepared: culling where proven safe) and checks every face.
 fn prepared_check(mut scene: Scene, cam: Camera, faces: Option<&[FaceId]>) -> ExactReport {
-    kepler_hsr::prepare(&mut scene);
+    crate::prepare(&mut scene);
     let r = render(&scene, &cam, &RenderOptions::default()).unwrap();
     check(&scene, &cam, &r.visibility, faces)
 }
@@ -43,9 +41,9 @@ fn unit_cube_from_a_corner() {
 
 /// A prepared scene whose first leaf is forced to count as a solid: the old cull rule.
 fn force_cull(mut scene: Scene) -> Scene {
-    kepler_hsr::prepare(&mut scene);
-    if let kepler_hsr::scene::Content::Subobjects(subs) = &mut scene.root.content {
-        if let kepler_hsr::scene::Content::Mesh(m) = &mut subs[0].content {
+    crate::prepare(&mut scene);
+    if let crate::scene::Content::Subobjects(subs) = &mut scene.root.content {
+        if let crate::scene::Content::Mesh(m) = &mut subs[0].content {
             m.solidity = Some(Solidity::Solid);
         }
     }
@@ -53,7 +51,7 @@ fn force_cull(mut scene: Scene) -> Scene {
 }
 
 fn solidity_of(scene: &Scene) -> Solidity {
-    kepler_hsr::prepare::solidity(scene.leaves()[0].mesh)
+    crate::prepare::solidity(scene.leaves()[0].mesh)
 }
 
 /// An octahedron whose top apex is pulled down and out through the side: closed and
@@ -63,7 +61,7 @@ fn fold() -> Scene {
 }
 
 /// The mesh of [`fold`].
-fn fold_mesh() -> kepler_hsr::scene::Mesh {
+fn fold_mesh() -> crate::scene::Mesh {
     let pts = [
         [1., 0., 0.],
         [0., 1., 0.],
@@ -134,12 +132,11 @@ fn fold_and_inside_out_tetrahedron_match_the_exact_answer() {
 }
 
 /// A random convex solid (a primitive) scaled and placed, optionally wound inwards.
-fn solid(rng: &mut Rng, k: usize, inward: bool) -> kepler_hsr::scene::Mesh {
+fn solid(rng: &mut Rng, k: usize, inward: bool) -> crate::scene::Mesh {
     // The three smallest Platonic solids: the check is exact, and slow.
-    let raw =
-        kepler_hsr::primitives::by_name(["tetrahedron", "cube", "octahedron"][k % 3]).unwrap();
-    let s = 0.3 + 0.4 * rng.f();
-    let t = V3::new(rng.f(), rng.f(), rng.f());
+    let raw = crate::primitives::by_name(["tetrahedron", "cube", "octahedron"][k % 3]).unwrap();
+    let s = 0.3 + 0.4 * rng.unit();
+    let t = V3::new(rng.unit(), rng.unit(), rng.unit());
     let faces = raw
         .faces
         .iter()
@@ -151,7 +148,7 @@ fn solid(rng: &mut Rng, k: usize, inward: bool) -> kepler_hsr::scene::Mesh {
             f
         })
         .collect();
-    prim(kepler_hsr::geom::PolyMesh::new(
+    prim(crate::geom::PolyMesh::new(
         raw.vertices
             .iter()
             .map(|v| P3::from(v.coords * s + t))
@@ -161,7 +158,7 @@ fn solid(rng: &mut Rng, k: usize, inward: bool) -> kepler_hsr::scene::Mesh {
 }
 
 /// Two solids joined into one mesh (they overlap: a self-intersecting closed surface).
-fn joined(a: &kepler_hsr::scene::Mesh, b: &kepler_hsr::scene::Mesh) -> kepler_hsr::scene::Mesh {
+fn joined(a: &crate::scene::Mesh, b: &crate::scene::Mesh) -> crate::scene::Mesh {
     let mut pts: Vec<[f64; 3]> = a.vertices.iter().map(|p| [p.x, p.y, p.z]).collect();
     let off = pts.len() as u32;
     pts.extend(b.vertices.iter().map(|p| [p.x, p.y, p.z]));
@@ -186,9 +183,9 @@ fn random_scene(rng: &mut Rng, kind: usize) -> Scene {
         0 => scene(
             (0..6)
                 .map(|i| {
-                    let c = [rng.f(), rng.f(), rng.f()];
+                    let c = [rng.unit(), rng.unit(), rng.unit()];
                     let p: Vec<[f64; 3]> = (0..3)
-                        .map(|_| std::array::from_fn(|k| c[k] + (rng.f() - 0.5) * 1.2))
+                        .map(|_| std::array::from_fn(|k| c[k] + (rng.unit() - 0.5) * 1.2))
                         .collect();
                     (["a", "b", "c", "d", "e", "f"][i], mesh(&p, &[&[0, 1, 2]]))
                 })
@@ -196,7 +193,7 @@ fn random_scene(rng: &mut Rng, kind: usize) -> Scene {
         ),
         // Cyclic overlap: three bars each over the next.
         1 => {
-            let j = 0.05 * rng.f();
+            let j = 0.05 * rng.unit();
             scene(vec![
                 ("x", cuboid([0., 0., 0.], [3., 0.6, 0.2 + j])),
                 ("y", cuboid([2.3, 0., 0.1], [2.9, 3., 0.4])),
@@ -217,10 +214,10 @@ fn random_scene(rng: &mut Rng, kind: usize) -> Scene {
         }
         // Coplanar overlapping faces of different objects.
         2 => {
-            let z = (rng.f() * 4.0).round() / 4.0;
+            let z = (rng.unit() * 4.0).round() / 4.0;
             scene(vec![
                 ("p", square(0., 0., 1., z)),
-                ("q", square(0.25 + 0.5 * rng.f(), 0.25, 1., z)),
+                ("q", square(0.25 + 0.5 * rng.unit(), 0.25, 1., z)),
                 ("r", cuboid([0.5, 0.5, z], [1.2, 1.4, z + 0.5])),
             ])
         }
@@ -250,7 +247,7 @@ fn random_scene(rng: &mut Rng, kind: usize) -> Scene {
 
 #[test]
 fn random_scenes_of_every_kind_match_the_exact_answer() {
-    let mut rng = Rng(11);
+    let mut rng = Rng::new(11);
     // One round in the suite (the check is big-number arithmetic, slow in a dev build);
     // KEPLER_EXACT_ROUNDS=N runs more.
     let rounds = std::env::var("KEPLER_EXACT_ROUNDS")
@@ -262,7 +259,7 @@ fn random_scenes_of_every_kind_match_the_exact_answer() {
             let s = random_scene(&mut rng, kind);
             let b = s.cbox();
             let (c, r) = (b.center(), (b.hi - b.lo).norm());
-            let dir = V3::new(rng.f() - 0.5, rng.f() - 0.5, -1.0);
+            let dir = V3::new(rng.unit() - 0.5, rng.unit() - 0.5, -1.0);
             let cams = [
                 Camera::orthographic(dir, V3::y()).unwrap(),
                 Camera::perspective(c - dir.normalize() * 1.2 * r, c, V3::y(), 50.0, 0.3 * r)
@@ -282,12 +279,12 @@ fn random_scenes_of_every_kind_match_the_exact_answer() {
 /// agrees in four views, and forcing the whole mesh to cull is wrong and seen to be.
 #[test]
 fn only_proven_pieces_cull() {
-    let mut rng = Rng(5);
+    let mut rng = Rng::new(5);
     let good = joined(&solid(&mut rng, 1, false), &solid(&mut rng, 2, false));
     let bad = joined(&fold_mesh(), &solid(&mut rng, 0, true));
     let s = scene(vec![("parts", joined(&good, &bad))]);
     let mut prepared = s.clone();
-    kepler_hsr::prepare(&mut prepared);
+    crate::prepare(&mut prepared);
     let m = prepared.leaves()[0].mesh;
     assert!(
         matches!(m.solidity, Some(Solidity::SelfIntersecting(_))),
@@ -330,13 +327,13 @@ fn ogre_proven_pieces_match_the_exact_answer() {
     let Some(path) = model("ogre.obj") else {
         return;
     };
-    let mut s = kepler_hsr::load_scene(&path, &mut Vec::new()).unwrap();
-    kepler_hsr::prepare(&mut s);
+    let mut s = crate::load_scene(&path, &mut Vec::new()).unwrap();
+    crate::prepare(&mut s);
     let d = V3::new(-1., -2., -3.);
     let m = s.leaves()[0].mesh;
     let p = m.proven.as_ref().expect("ogre's pieces are proven");
     assert_eq!((p.proven, p.pieces), (43, 44));
-    let back = |f: &kepler_hsr::scene::Face| {
+    let back = |f: &crate::scene::Face| {
         let v = |i: usize| m.vertices[f.vertices[i] as usize];
         (v(1) - v(0)).cross(&(v(2) - v(0))).dot(&d) > 0.0
     };
@@ -367,7 +364,7 @@ fn ogre_proven_pieces_match_the_exact_answer() {
 #[test]
 fn cow_matches_the_exact_answer() {
     let Some(path) = model("cow.obj") else { return };
-    let s = kepler_hsr::load_scene(&path, &mut Vec::new()).unwrap();
+    let s = crate::load_scene(&path, &mut Vec::new()).unwrap();
     assert_eq!(solidity_of(&s), Solidity::SelfIntersecting(81));
     let mut faces: Vec<FaceId> = [5380, 5381, 5382, 5446, 5465, 5472, 5473, 5474]
         .into_iter()

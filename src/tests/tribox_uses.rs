@@ -2,29 +2,16 @@
 //! renders keep the visibility invariants, interference agrees with exact tests, and on the
 //! shared meshes the tribox sits between the convex hull and the CBOX.
 
-mod common;
-
-use common::*;
-use kepler_hsr::geom::poly2::MultiPolygon;
-use kepler_hsr::geom::{PolyMesh, P3, V3};
-use kepler_hsr::scene::{Mesh, Object, Scene};
-use kepler_hsr::tribox::hull::hull_volume;
-use kepler_hsr::tribox::interfere::interfere;
-use kepler_hsr::tribox::{Hierarchy, HierarchyOptions, Tribox};
-use kepler_hsr::view::{substitute, LodOptions};
-use kepler_hsr::view::{Camera, Facing};
-use kepler_hsr::FaceId;
-
-/// xorshift64*.
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545F4914F6CDD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use super::common::*;
+use crate::geom::poly2::MultiPolygon;
+use crate::geom::{PolyMesh, P3, V3};
+use crate::scene::{Mesh, Object, Scene};
+use crate::tribox::hull::hull_volume;
+use crate::tribox::interfere::interfere;
+use crate::tribox::{Hierarchy, HierarchyOptions, Tribox};
+use crate::view::{substitute, LodOptions};
+use crate::view::{Camera, Facing};
+use crate::FaceId;
 
 /// A closed prism over a simple polygon (counter-clockwise), from z = 0 to z = h.
 fn extrude(poly: &[[f64; 2]], h: f64) -> Mesh {
@@ -73,9 +60,9 @@ fn samples(m: &Mesh, rng: &mut Rng) -> (Vec<P3>, Vec<P3>) {
         let n = (1..p.len() - 1)
             .map(|i| (p[i] - p[0]).cross(&(p[i + 1] - p[0])))
             .sum::<V3>();
-        for [i, j, k] in kepler_hsr::scene::triangulate::ear_clip(&p, &n) {
+        for [i, j, k] in crate::scene::triangulate::ear_clip(&p, &n) {
             for _ in 0..3 {
-                let (mut a, mut b) = (rng.f(), rng.f());
+                let (mut a, mut b) = (rng.unit(), rng.unit());
                 if a + b > 1.0 {
                     (a, b) = (1.0 - a, 1.0 - b);
                 }
@@ -83,11 +70,11 @@ fn samples(m: &Mesh, rng: &mut Rng) -> (Vec<P3>, Vec<P3>) {
             }
         }
     }
-    let bb = kepler_hsr::geom::Box3::from_points(m.vertices.iter());
+    let bb = crate::geom::Box3::from_points(m.vertices.iter());
     let s = bb.size();
     let mut interior = Vec::new();
     for _ in 0..400 {
-        let q = bb.lo + V3::new(rng.f() * s[0], rng.f() * s[1], rng.f() * s[2]);
+        let q = bb.lo + V3::new(rng.unit() * s[0], rng.unit() * s[1], rng.unit() * s[2]);
         if m.winding_number(&q).abs() > 0.5 {
             interior.push(q);
         }
@@ -105,7 +92,7 @@ fn check_cover(m: &Mesh, what: &str) {
         },
     );
     assert!(h.depth() >= 1, "{what}: never split");
-    let mut rng = Rng(31);
+    let mut rng = Rng::new(31);
     let (surface, interior) = samples(m, &mut rng);
     assert!(!interior.is_empty());
     let eps = 1e-9 * h.nodes[0].tribox.thickness(0);
@@ -165,7 +152,7 @@ fn hierarchy_cells_cover_the_solid() {
 #[test]
 fn lod_render_keeps_visibility_invariants() {
     let ball = |s: f64, at: V3| {
-        let raw = kepler_hsr::primitives::by_name("truncated_icosahedron").unwrap();
+        let raw = crate::primitives::by_name("truncated_icosahedron").unwrap();
         prim(PolyMesh::new(
             raw.vertices
                 .iter()
@@ -271,7 +258,7 @@ fn shared_meshes_tribox_between_hull_and_cbox() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let scene: Scene = kepler_hsr::load::load_scene(&p, &mut Vec::new()).unwrap();
+        let scene: Scene = crate::load::load_scene(&p, &mut Vec::new()).unwrap();
         let pts: Vec<P3> = scene
             .leaves()
             .iter()

@@ -1,12 +1,10 @@
 //! Exact answers worked by hand: overlapping squares, crossing planes, cyclic bars, an L-shaped
 //! solid seen into its corner, a cube from a vertex-on view, coplanar faces, shared edges.
 
-mod common;
-
-use common::*;
-use kepler_hsr::geom::V3;
-use kepler_hsr::view::Camera;
-use kepler_hsr::FaceId;
+use super::common::*;
+use crate::geom::V3;
+use crate::view::Camera;
+use crate::FaceId;
 
 #[test]
 fn two_overlapping_squares() {
@@ -58,7 +56,7 @@ fn crossing_planes_hide_each_other_on_their_own_side() {
 }
 
 /// A flat bar from `p` to `q` of width `w`, rising linearly from z = 0 at `p` to z = 1 at `q`.
-fn bar(p: [f64; 2], q: [f64; 2], w: f64) -> kepler_hsr::scene::Mesh {
+fn bar(p: [f64; 2], q: [f64; 2], w: f64) -> crate::scene::Mesh {
     let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
     let len = (dx * dx + dy * dy).sqrt();
     let (nx, ny) = (-dy / len * w / 2.0, dx / len * w / 2.0);
@@ -106,7 +104,7 @@ fn three_cyclically_overlapping_bars() {
 }
 
 /// The L-shaped prism: L = (0,0),(2,0),(2,1),(1,1),(1,2),(0,2) extruded over z in [0,1].
-fn l_solid() -> kepler_hsr::scene::Mesh {
+fn l_solid() -> crate::scene::Mesh {
     let l = [[0., 0.], [2., 0.], [2., 1.], [1., 1.], [1., 2.], [0., 2.]];
     let mut pts = Vec::new();
     for z in [0., 1.] {
@@ -260,7 +258,7 @@ fn parallel_planes_nearer_hides_farther_from_both_sides() {
 
 #[test]
 fn perspective_sees_near_box_in_front() {
-    use kepler_hsr::geom::P3;
+    use crate::geom::P3;
     // A unit square at z = 1 in front of a 4x4 square at z = 0, eye on the axis at z = 3.
     let s = scene(vec![
         ("back", square(-2., -2., 4., 0.)),
@@ -275,8 +273,8 @@ fn perspective_sees_near_box_in_front() {
 
 #[test]
 fn perspective_eye_in_a_face_plane_sees_it_edge_on() {
-    use kepler_hsr::geom::P3;
-    use kepler_hsr::view::Facing;
+    use crate::geom::P3;
+    use crate::view::Facing;
     // A box whose top face lies in the plane z = 2, eye at height 2 looking across it, and a
     // wall in front of the box: the top face is exactly edge-on, nothing leaks past the wall.
     let s = scene(vec![
@@ -311,7 +309,7 @@ fn perspective_eye_in_a_face_plane_sees_it_edge_on() {
 
 #[test]
 fn vtp_in_texture_coordinates() {
-    use kepler_hsr::visibility::texture::vtp_in_texture;
+    use crate::visibility::texture::vtp_in_texture;
     // A horizontal square [0,2]^2 at z = 3 (texture frame: x = (1,0,0), y = (0,1,0), origin
     // (0,0,3)) under a square [1,3]x[0,2] at z = 5. From above the hidden part is [1,2]x[0,2];
     // looking along (0.2,-0.1,-1) the upper square's shadow on z = 3 shifts by (0.4,-0.2), the
@@ -329,7 +327,7 @@ fn vtp_in_texture_coordinates() {
     ] {
         let (view, vis) = run(&s, cam);
         let t = vtp_in_texture(&view, &vis, FaceId(1)).unwrap();
-        let area: f64 = t.iter().map(kepler_hsr::geom::poly2::polygon_area).sum();
+        let area: f64 = t.iter().map(crate::geom::poly2::polygon_area).sum();
         close(area, want, 1e-12);
         for p in t.iter().flatten().flatten() {
             assert!(

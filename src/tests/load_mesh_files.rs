@@ -3,9 +3,10 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use kepler_hsr::geom::P3;
-use kepler_hsr::load::{load_mesh, MeshFile};
-use kepler_hsr::Pos;
+use crate::geom::P3;
+use crate::load::{load_mesh, MeshFile};
+use crate::Pos;
+use kepler_testkit::{model, models_dir};
 
 /// A good fixture of `tests/fixtures/meshes/`.
 fn fixture(name: &str) -> PathBuf {
@@ -123,36 +124,9 @@ fn ply_ascii_little_and_big_endian_cubes_agree() {
     );
 }
 
-/// The shared models directory: `$KEPLER_MODELS` (which, when set, must be a directory: a
-/// mistyped path fails rather than skips), else `../shared/models` beside the crate; None,
-/// with a message, when that default is absent.
-fn models_dir() -> Option<PathBuf> {
-    if let Some(dir) = std::env::var_os("KEPLER_MODELS").map(PathBuf::from) {
-        assert!(
-            dir.is_dir(),
-            "KEPLER_MODELS={} is not a directory",
-            dir.display()
-        );
-        return Some(dir);
-    }
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models");
-    if !dir.is_dir() {
-        println!(
-            "skipped: no models at {} (set KEPLER_MODELS to the models directory)",
-            dir.display()
-        );
-        return None;
-    }
-    Some(dir)
-}
-
 #[test]
 fn suzanne_has_500_faces_468_of_them_quads() {
-    let Some(path) = models_dir()
-        .map(|d| d.join("suzanne.obj"))
-        .filter(|p| p.is_file())
-    else {
-        println!("skipped: suzanne.obj not found (set KEPLER_MODELS to the models directory)");
+    let Some(path) = model("suzanne.obj") else {
         return;
     };
     let m = load_mesh(&path).unwrap_or_else(|e| panic!("{e}"));

@@ -1,16 +1,14 @@
 //! Every shared mesh (../shared/models), rendered as a user would (prepared, culled where
 //! proven safe): every emitted ring valid, no piece of line stroked twice.
 
-mod common;
-
 use std::collections::HashMap;
 
-use common::strokes::double_strokes;
-use common::{model, models};
-use kepler_hsr::emit::edges::{EdgeOptions, EdgeSet};
-use kepler_hsr::geom::ring_check::multipolygon_defects;
-use kepler_hsr::geom::V3;
-use kepler_hsr::{render, Camera, LineOptions, Outputs, RenderOptions};
+use super::common::strokes::double_strokes;
+use super::common::{model, models};
+use crate::emit::edges::{EdgeOptions, EdgeSet};
+use crate::geom::ring_check::multipolygon_defects;
+use crate::geom::V3;
+use crate::{render, Camera, LineOptions, Outputs, RenderOptions};
 
 /// The shared meshes, by file name.
 const MESHES: [&str; 15] = [
@@ -44,8 +42,8 @@ fn shared_meshes_emit_valid_rings_and_stroke_each_line_once() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let mut scene = kepler_hsr::load_scene(&path, &mut Vec::new()).unwrap();
-        kepler_hsr::prepare(&mut scene);
+        let mut scene = crate::load_scene(&path, &mut Vec::new()).unwrap();
+        crate::prepare(&mut scene);
         let cam = Camera::orthographic(V3::new(-1., -2., -3.), V3::y()).unwrap();
         let opts = RenderOptions {
             lines: LineOptions {
@@ -102,7 +100,7 @@ fn teapot_seams_merge_and_leave_only_real_borders() {
     let Some(path) = model("teapot.obj") else {
         return;
     };
-    let scene = kepler_hsr::load_scene(&path, &mut Vec::new()).unwrap();
+    let scene = crate::load_scene(&path, &mut Vec::new()).unwrap();
     let mesh = scene.leaves()[0].mesh;
     let mut uses: HashMap<(u32, u32), usize> = HashMap::new();
     for f in &mesh.faces {

@@ -2,25 +2,23 @@
 //! union of the projected faces, VISP on random points agrees with membership in the VTPs,
 //! and offset/scaled coordinates give the same answers, scaled.
 
-mod common;
-
-use common::*;
-use kepler_hsr::geom::poly2::{locate, Pt2, Side};
-use kepler_hsr::geom::winding;
-use kepler_hsr::geom::{P3, V3};
-use kepler_hsr::scene::{Mesh, Scene};
-use kepler_hsr::view::{Camera, Facing, View};
-use kepler_hsr::visibility::{visp, PointVisibility, Visibility};
-use kepler_hsr::FaceId;
+use super::common::*;
+use crate::geom::poly2::{locate, Pt2, Side};
+use crate::geom::winding;
+use crate::geom::{P3, V3};
+use crate::scene::{Mesh, Scene};
+use crate::view::{Camera, Facing, View};
+use crate::visibility::{visp, PointVisibility, Visibility};
+use crate::FaceId;
 
 fn random_triangles(rng: &mut Rng, n: usize, offset: f64, scale: f64) -> Scene {
     let objs: Vec<(String, Mesh)> = (0..n)
         .map(|i| {
-            let c = [rng.f(), rng.f(), rng.f()];
+            let c = [rng.unit(), rng.unit(), rng.unit()];
             let mut p = [[0.0; 3]; 3];
             for v in &mut p {
                 for k in 0..3 {
-                    v[k] = (c[k] + (rng.f() - 0.5) * 0.8) * scale + offset;
+                    v[k] = (c[k] + (rng.unit() - 0.5) * 0.8) * scale + offset;
                 }
             }
             (format!("t{i}"), mesh(&p, &[&[0, 1, 2]]))
@@ -30,13 +28,13 @@ fn random_triangles(rng: &mut Rng, n: usize, offset: f64, scale: f64) -> Scene {
 }
 
 fn random_solids(rng: &mut Rng, n: usize) -> Scene {
-    let names = kepler_hsr::primitives::names();
+    let names = crate::primitives::names();
     let objs: Vec<(String, Mesh)> = (0..n)
         .map(|i| {
-            let raw = kepler_hsr::primitives::by_name(names[i % names.len()]).unwrap();
-            let s = 0.2 + 0.3 * rng.f();
-            let t = V3::new(rng.f() * 2.0, rng.f() * 2.0, rng.f() * 2.0);
-            let raw = kepler_hsr::geom::PolyMesh::new(
+            let raw = crate::primitives::by_name(names[i % names.len()]).unwrap();
+            let s = 0.2 + 0.3 * rng.unit();
+            let t = V3::new(rng.unit() * 2.0, rng.unit() * 2.0, rng.unit() * 2.0);
+            let raw = crate::geom::PolyMesh::new(
                 raw.vertices
                     .iter()
                     .map(|v| P3::from(v.coords * s + t))
@@ -55,7 +53,7 @@ fn cameras(rng: &mut Rng, centre: P3) -> Vec<Camera> {
         Camera::three_quarter(),
     ];
     for _ in 0..2 {
-        let d = V3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5);
+        let d = V3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5);
         cams.push(Camera::orthographic(d, V3::new(0.1, 1.0, 0.2)).unwrap());
     }
     let eye = centre + V3::new(2.5, 1.5, 3.0);
@@ -98,15 +96,15 @@ fn check_visp(view: &View, vis: &Visibility, rng: &mut Rng, per_face: usize) -> 
         // skip it, as points near VTP edges are skipped below.
         let ring = view.screen.ring_ccw(f);
         let size = view.screen.piece(f).rect.longer_side();
-        if kepler_hsr::geom::poly2::ring_area(&ring) <= 1e-9 * size * size {
+        if crate::geom::poly2::ring_area(&ring) <= 1e-9 * size * size {
             continue;
         }
         let w = view.screen.world_pts(f).to_vec();
         let id = view.screen.piece(f).face;
         for _ in 0..per_face {
             // A random point of the (triangle fan of the) face.
-            let k = 1 + (rng.f() * (w.len() - 2) as f64) as usize;
-            let (mut a, mut b) = (rng.f(), rng.f());
+            let k = 1 + (rng.unit() * (w.len() - 2) as f64) as usize;
+            let (mut a, mut b) = (rng.unit(), rng.unit());
             if a + b > 1.0 {
                 (a, b) = (1.0 - a, 1.0 - b);
             }
@@ -144,9 +142,9 @@ fn self_overlap(view: &View, id: FaceId, q: Pt2) -> bool {
 }
 
 /// True within 1e-9 (relative to the ring's size) of an edge of the multipolygon.
-fn near_boundary(m: &kepler_hsr::geom::poly2::MultiPolygon, q: Pt2) -> bool {
+fn near_boundary(m: &crate::geom::poly2::MultiPolygon, q: Pt2) -> bool {
     m.iter().flatten().any(|r| {
-        let size = kepler_hsr::geom::Rect::of_points(r.iter()).longer_side();
+        let size = crate::geom::Rect::of_points(r.iter()).longer_side();
         (0..r.len()).any(|i| {
             let (a, b) = (r[i], r[(i + 1) % r.len()]);
             let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
@@ -164,7 +162,7 @@ fn near_boundary(m: &kepler_hsr::geom::poly2::MultiPolygon, q: Pt2) -> bool {
 
 #[test]
 fn random_interpenetrating_triangles() {
-    let mut rng = Rng(0x9E3779B97F4A7C15);
+    let mut rng = Rng::new(0x9E3779B97F4A7C15);
     let mut checked = 0;
     for round in 0..6 {
         let s = random_triangles(&mut rng, 40 + 10 * round, 0.0, 1.0);
@@ -179,11 +177,11 @@ fn random_interpenetrating_triangles() {
 
 #[test]
 fn random_closed_solids() {
-    let mut rng = Rng(12345);
+    let mut rng = Rng::new(12345);
     for _ in 0..3 {
         let mut s = random_solids(&mut rng, 14);
         // Prepared: each primitive is proven solid, so its back faces are culled.
-        kepler_hsr::prepare::prepare(&mut s);
+        crate::prepare::prepare(&mut s);
         for (ci, cam) in cameras(&mut rng, P3::new(1.0, 1.0, 1.0))
             .into_iter()
             .enumerate()
@@ -199,9 +197,9 @@ fn random_closed_solids() {
 
 #[test]
 fn offset_and_scaled_coordinates_give_scaled_answers() {
-    let base = random_triangles(&mut Rng(7), 60, 0.0, 1.0);
-    let shifted = random_triangles(&mut Rng(7), 60, 1e6, 1.0);
-    let shrunk = random_triangles(&mut Rng(7), 60, 0.0, 1e-6);
+    let base = random_triangles(&mut Rng::new(7), 60, 0.0, 1.0);
+    let shifted = random_triangles(&mut Rng::new(7), 60, 1e6, 1.0);
+    let shrunk = random_triangles(&mut Rng::new(7), 60, 0.0, 1e-6);
     for dir in [V3::new(0., 0., -1.), V3::new(-0.4, -0.7, -1.0)] {
         let cam = Camera::orthographic(dir, V3::y()).unwrap();
         let (_, a) = run(&base, cam);
@@ -226,7 +224,7 @@ fn offset_and_scaled_coordinates_give_scaled_answers() {
 
 #[test]
 fn output_is_identical_whatever_the_thread_count() {
-    let s = random_triangles(&mut Rng(99), 80, 0.0, 1.0);
+    let s = random_triangles(&mut Rng::new(99), 80, 0.0, 1.0);
     let cam = Camera::three_quarter();
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
@@ -245,7 +243,7 @@ fn output_is_identical_whatever_the_thread_count() {
 #[test]
 fn shared_meshes_from_several_views() {
     let Some(dir) = models() else { return };
-    let mut rng = Rng(2024);
+    let mut rng = Rng::new(2024);
     for name in [
         "cube.obj",
         "twocubes.obj",
@@ -260,7 +258,7 @@ fn shared_meshes_from_several_views() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let s = kepler_hsr::load::load_scene(&path, &mut Vec::new()).unwrap();
+        let s = crate::load::load_scene(&path, &mut Vec::new()).unwrap();
         let b = s.cbox();
         let c = b.center();
         let r = (b.hi - b.lo).norm();

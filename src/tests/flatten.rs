@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use kepler_hsr::scene::{flatten, FlatMesh};
+use crate::scene::{flatten, FlatMesh};
 
 fn corners(f: &FlatMesh) -> Vec<Vec<[f64; 3]>> {
     f.faces
@@ -18,11 +18,11 @@ fn corners(f: &FlatMesh) -> Vec<Vec<[f64; 3]>> {
 }
 
 fn round_trip(scene_path: &Path, tmp: &Path) {
-    let scene = kepler_hsr::load::load_scene(scene_path, &mut Vec::new()).unwrap();
+    let scene = crate::load::load_scene(scene_path, &mut Vec::new()).unwrap();
     let first = flatten(&scene);
     let obj1 = tmp.join("first.obj");
     std::fs::write(&obj1, first.to_obj()).unwrap();
-    let second = flatten(&kepler_hsr::load::load_scene(&obj1, &mut Vec::new()).unwrap());
+    let second = flatten(&crate::load::load_scene(&obj1, &mut Vec::new()).unwrap());
     assert_eq!(
         corners(&first),
         corners(&second),
@@ -44,7 +44,7 @@ fn round_trip(scene_path: &Path, tmp: &Path) {
     );
     let obj2 = tmp.join("second.obj");
     std::fs::write(&obj2, second.to_obj()).unwrap();
-    let third = flatten(&kepler_hsr::load::load_scene(&obj2, &mut Vec::new()).unwrap());
+    let third = flatten(&crate::load::load_scene(&obj2, &mut Vec::new()).unwrap());
     assert_eq!(
         second.to_obj(),
         third.to_obj(),
@@ -86,17 +86,9 @@ fn scenes_and_fixtures_round_trip() {
 
 #[test]
 fn shared_meshes_round_trip() {
-    let dir = std::env::var_os("KEPLER_MODELS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models"));
-    if !dir.is_dir() {
-        eprintln!("skipping: no models at {}", dir.display());
-        return;
-    }
     let tmp = temp_dir("models");
     for name in ["suzanne.obj", "beetle.obj", "teapot.obj", "twocubes.obj"] {
-        let p = dir.join(name);
-        if p.exists() {
+        if let Some(p) = kepler_testkit::model(name) {
             round_trip(&p, &tmp);
         }
     }

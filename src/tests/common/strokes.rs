@@ -1,7 +1,7 @@
 //! Drawing checks shared by the integration tests: pieces of line stroked twice.
 
-use kepler_hsr::emit::lines::Stroke;
-use kepler_hsr::geom::poly2::Pt2;
+use crate::emit::lines::Stroke;
+use crate::geom::poly2::Pt2;
 
 /// One straight piece of a stroke.
 #[derive(Debug, Clone, Copy)]

@@ -4,8 +4,9 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
-use kepler_hsr::load::{load_mesh, parse_mesh};
-use kepler_hsr::Error;
+use crate::load::{load_mesh, parse_mesh};
+use crate::Error;
+use kepler_testkit::Rng;
 
 /// The fixture directory `sub` of this crate.
 fn fixtures(sub: &str) -> PathBuf {
@@ -149,19 +150,9 @@ fn bad_mesh_files_give_exact_messages() {
     }
 }
 
-/// A deterministic pseudo-random byte generator (xorshift64*).
-struct Noise(u64);
-
-impl Noise {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-    fn bytes(&mut self, n: usize) -> Vec<u8> {
-        (0..n).map(|_| (self.next() >> 56) as u8).collect()
-    }
+/// `n` random bytes.
+fn noise_bytes(rng: &mut Rng, n: usize) -> Vec<u8> {
+    (0..n).map(|_| (rng.next_u64() >> 56) as u8).collect()
 }
 
 /// Parses `bytes` as `name`, failing the test on a panic.
@@ -178,11 +169,11 @@ fn no_panic(name: &str, bytes: &[u8], what: &str) {
 
 #[test]
 fn garbage_truncation_and_mutation_never_panic() {
-    let mut noise = Noise(0x9e37_79b9_7f4a_7c15);
+    let mut noise = Rng::new(0x9e37_79b9_7f4a_7c15);
     for ext in ["obj", "stl", "ply"] {
         let name = format!("noise.{ext}");
         for n in [0, 1, 5, 83, 84, 85, 134, 200, 1000] {
-            let b = noise.bytes(n);
+            let b = noise_bytes(&mut noise, n);
             no_panic(&name, &b, "random bytes");
         }
     }
@@ -195,13 +186,13 @@ fn garbage_truncation_and_mutation_never_panic() {
         }
         for _ in 0..2000 {
             let mut b = bytes.clone();
-            for _ in 0..1 + noise.next() % 4 {
-                let i = (noise.next() % b.len() as u64) as usize;
-                b[i] = match noise.next() % 4 {
-                    0 => (noise.next() >> 56) as u8,
+            for _ in 0..1 + noise.next_u64() % 4 {
+                let i = (noise.next_u64() % b.len() as u64) as usize;
+                b[i] = match noise.next_u64() % 4 {
+                    0 => (noise.next_u64() >> 56) as u8,
                     1 => b'\n',
                     2 => b' ',
-                    _ => b"0123456789-.e/"[(noise.next() % 14) as usize],
+                    _ => b"0123456789-.e/"[(noise.next_u64() % 14) as usize],
                 };
             }
             no_panic(&name, &b, "a mutated copy");

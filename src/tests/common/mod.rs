@@ -3,13 +3,13 @@
 
 use std::sync::Arc;
 
-use kepler_hsr::geom::poly2::{multipolygon_area, MultiPolygon};
-use kepler_hsr::geom::{PolyMesh, M4, P3, V3};
-use kepler_hsr::scene::cleanup::{cleanup, Origin};
-use kepler_hsr::scene::{Mesh, Object, Scene};
-use kepler_hsr::view::{Camera, View};
-use kepler_hsr::visibility::Visibility;
-use kepler_hsr::{render, Drawing, LineOptions, Outputs, RenderOptions};
+use crate::geom::poly2::{multipolygon_area, MultiPolygon};
+use crate::geom::{PolyMesh, M4, P3, V3};
+use crate::scene::cleanup::{cleanup, Origin};
+use crate::scene::{Mesh, Object, Scene};
+use crate::view::{Camera, View};
+use crate::visibility::Visibility;
+use crate::{render, Drawing, LineOptions, Outputs, RenderOptions};
 
 /// A cleaned mesh from points and faces.
 pub(crate) fn mesh(pts: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
@@ -56,7 +56,7 @@ pub(crate) fn square(x0: f64, y0: f64, s: f64, z: f64) -> Mesh {
 
 /// A box mesh.
 pub(crate) fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Mesh {
-    prim(kepler_hsr::primitives::cuboid(
+    prim(crate::primitives::cuboid(
         P3::new(lo[0], lo[1], lo[2]),
         P3::new(hi[0], hi[1], hi[2]),
     ))
@@ -154,49 +154,10 @@ pub(crate) fn instance(name: &str, proto: &Arc<Object>, m: M4) -> Object {
 /// Union area of many multipolygons on a fixed i64 grid (i_overlay, NonZero): precise to
 /// f64 precision; used where geo's coarser grid (~1e-10 relative) is not enough.
 pub(crate) fn union_area_exact(parts: &[&MultiPolygon]) -> f64 {
-    kepler_hsr::geom::boolean::union_area(parts)
+    crate::geom::boolean::union_area(parts)
 }
 
-/// The shared models directory, or None (tests then skip with a message).
-/// The shared model `name` (e.g. "ogre.obj"), or None with a message saying why it is
-/// skipped (no models directory, or the model absent).
-pub(crate) fn model(name: &str) -> Option<std::path::PathBuf> {
-    let path = models()?.join(name);
-    if path.exists() {
-        Some(path)
-    } else {
-        eprintln!("skipping {name}: absent");
-        None
-    }
-}
-
-pub(crate) fn models() -> Option<std::path::PathBuf> {
-    let dir = std::env::var_os("KEPLER_MODELS")
-        .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| {
-            std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/models"))
-        });
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "skipping: no models at {} (set KEPLER_MODELS)",
-            dir.display()
-        );
-        None
-    }
-}
+pub(crate) use kepler_testkit::{model, models_dir as models};
 pub(crate) mod strokes;
 
-/// xorshift64*: a tiny deterministic generator.
-pub(crate) struct Rng(pub(crate) u64);
-
-impl Rng {
-    /// A number in [0, 1).
-    pub(crate) fn f(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545F4914F6CDD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+pub(crate) use kepler_testkit::Rng;

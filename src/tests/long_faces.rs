@@ -2,14 +2,12 @@
 //! pass with long occluders cut to each face's window (view::ring_index) gives the same
 //! visible polygons as the pass on whole rings, in several views.
 
-mod common;
-
-use common::*;
-use kepler_hsr::geom::{P3, V3};
-use kepler_hsr::primitives::prism;
-use kepler_hsr::scene::{Mesh, Scene};
-use kepler_hsr::view::{Camera, View};
-use kepler_hsr::visibility::{solve, PassOptions};
+use super::common::*;
+use crate::geom::{P3, V3};
+use crate::primitives::prism;
+use crate::scene::{Mesh, Scene};
+use crate::view::{Camera, View};
+use crate::visibility::{solve, PassOptions};
 
 /// A 300-sided prism (about 48 across, 1 tall) lying over a row of small boxes and a
 /// 500-gon cutting through them (exactly planar, so it stays one piece).

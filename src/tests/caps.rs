@@ -3,15 +3,13 @@
 //! mirrored placements, and for random views of random open primitives, with VISP on points
 //! of every culled piece as a second, independent witness.
 
-mod common;
-
 use std::sync::Arc;
 
-use common::*;
-use kepler_hsr::geom::{M4, P3, V3};
-use kepler_hsr::scene::{CapFailure, Content, Mesh, Object, Scene, Solidity};
-use kepler_hsr::view::{Camera, Facing, View};
-use kepler_hsr::visibility::{visp, PointVisibility};
+use super::common::*;
+use crate::geom::{M4, P3, V3};
+use crate::scene::{CapFailure, Content, Mesh, Object, Scene, Solidity};
+use crate::view::{Camera, Facing, View};
+use crate::visibility::{visp, PointVisibility};
 
 /// A box [0,1]×[0,1]×[0,h] with its top (z = h) missing: 5 faces, open at the top.
 fn open_box(h: f64) -> Mesh {
@@ -38,7 +36,7 @@ fn open_box(h: f64) -> Mesh {
 
 fn prepared(s: &Scene) -> Scene {
     let mut p = s.clone();
-    kepler_hsr::prepare::prepare(&mut p);
+    crate::prepare::prepare(&mut p);
     p
 }
 
@@ -116,10 +114,7 @@ fn the_open_box_caps_and_culls_only_away_from_its_mouth() {
     let into = Camera::orthographic(V3::new(0.3, 0.2, -1.0), V3::y()).unwrap();
     assert_eq!(compare(&s, into), 0);
     let (_, vis) = run(&p, into);
-    assert!(
-        vis.face(kepler_hsr::FaceId(0)).area > 0.5,
-        "the floor is seen"
-    );
+    assert!(vis.face(crate::FaceId(0)).area > 0.5, "the floor is seen");
 
     // In perspective, from above the mouth and from below.
     let c = P3::new(0.5, 0.5, 0.5);
@@ -151,7 +146,7 @@ fn a_tall_open_box_seen_from_the_side_culls_the_back_faces_below_the_mouth() {
     assert_eq!(culled, 1);
     let p = prepared(&s);
     let v = View::new(&p, cam);
-    let floor = v.screen.pieces_of(kepler_hsr::FaceId(0)).next().unwrap();
+    let floor = v.screen.pieces_of(crate::FaceId(0)).next().unwrap();
     assert!(v.screen.piece(floor).culled);
     assert_eq!(v.screen.piece(floor).facing, Facing::Back);
 }
@@ -189,23 +184,22 @@ fn mirrored_placements_cull_like_their_image() {
 
 #[test]
 fn random_views_of_random_open_primitives_equal_the_two_sided_answer() {
-    let names = kepler_hsr::primitives::names();
-    let mut rng = Rng(0x5DEECE66D);
+    let names = crate::primitives::names();
+    let mut rng = Rng::new(0x5DEECE66D);
     let (mut culled, mut capped, mut refused) = (0, 0, 0);
     for round in 0..4 {
         let objs: Vec<(String, Mesh)> = (0..10)
             .map(|i| {
-                let raw =
-                    kepler_hsr::primitives::by_name(names[(i + round) % names.len()]).unwrap();
-                let s = 0.3 + 0.3 * rng.f();
-                let t = V3::new(rng.f() * 2.0, rng.f() * 2.0, rng.f() * 2.0);
+                let raw = crate::primitives::by_name(names[(i + round) % names.len()]).unwrap();
+                let s = 0.3 + 0.3 * rng.unit();
+                let t = V3::new(rng.unit() * 2.0, rng.unit() * 2.0, rng.unit() * 2.0);
                 // Drop one or two faces (neighbours or not).
                 let mut faces = raw.faces.clone();
-                for _ in 0..1 + (rng.f() * 2.0) as usize {
-                    let k = (rng.f() * faces.len() as f64) as usize;
+                for _ in 0..1 + (rng.unit() * 2.0) as usize {
+                    let k = (rng.unit() * faces.len() as f64) as usize;
                     faces.remove(k.min(faces.len() - 1));
                 }
-                let raw = kepler_hsr::geom::PolyMesh::new(
+                let raw = crate::geom::PolyMesh::new(
                     raw.vertices
                         .iter()
                         .map(|v| P3::from(v.coords * s + t))
@@ -226,10 +220,10 @@ fn random_views_of_random_open_primitives_equal_the_two_sided_answer() {
         let centre = P3::new(1.2, 1.2, 1.2);
         let mut cams = vec![];
         for _ in 0..3 {
-            let d = V3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5);
+            let d = V3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5);
             cams.push(Camera::orthographic(d, V3::new(0.1, 1.0, 0.2)).unwrap());
         }
-        let eye = centre + V3::new(rng.f() * 6.0 - 3.0, 2.5, rng.f() * 6.0 - 3.0);
+        let eye = centre + V3::new(rng.unit() * 6.0 - 3.0, 2.5, rng.unit() * 6.0 - 3.0);
         cams.push(Camera::perspective(eye, centre, V3::y(), 50.0, 0.01).unwrap());
         for cam in cams {
             culled += compare(&s, cam);

@@ -6,8 +6,8 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use kepler_hsr::load::load_scene;
-use kepler_hsr::scene::{Content, Object};
+use crate::load::load_scene;
+use crate::scene::{Content, Object};
 
 fn crate_dir(sub: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(sub)
@@ -89,7 +89,7 @@ fn polyhedra_shows_all_eighteen_solids() {
         .iter()
         .map(|l| l.path.rsplit('/').next().unwrap_or("").to_string())
         .collect();
-    for solid in kepler_hsr::primitives::names() {
+    for solid in crate::primitives::names() {
         assert!(names.iter().any(|n| n == solid), "{solid} missing");
     }
     for leaf in scene.leaves() {
@@ -163,13 +163,8 @@ fn damaged_scenes_never_panic() {
         load_text(&path, &text[..i]);
     }
     // Deterministic byte mutations (xorshift).
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state
-    };
+    let mut rng = kepler_testkit::Rng::new(0x2545_f491_4f6c_dd1d);
+    let mut next = || rng.next_u64();
     let replacements = b"0-9.#{}\";=/ \n\xffe";
     for _ in 0..300 {
         let mut t = text.clone();

@@ -3,22 +3,14 @@
 //! triple of planes solved, points kept when they satisfy all 18 inequalities), on random and
 //! degenerate bound sets; inputs lie inside; at most 18 faces; volumes below the CBOX's.
 
-use kepler_hsr::geom::{Box3, M4, P3, V3};
-use kepler_hsr::tribox::bounds::face_normal;
-use kepler_hsr::tribox::{Case, Tribox};
+use crate::geom::{Box3, M4, P3, V3};
+use crate::tribox::bounds::face_normal;
+use crate::tribox::{Case, Tribox};
+use kepler_testkit::Rng;
 
-/// xorshift64*: a tiny deterministic generator.
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545F4914F6CDD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn int(&mut self, n: u32) -> f64 {
-        (self.f() * f64::from(n)).floor()
-    }
+/// A whole number in 0..n, as a float.
+fn int(rng: &mut Rng, n: u32) -> f64 {
+    (rng.unit() * f64::from(n)).floor()
 }
 
 /// The polytope of 18 half-spaces, computed by brute force.
@@ -191,7 +183,7 @@ fn pts(rng: &mut Rng, n: usize, f: impl Fn(&mut Rng) -> P3) -> Vec<P3> {
 
 #[test]
 fn boundary_equals_half_space_intersection() {
-    let mut rng = Rng(0x9E3779B97F4A7C15);
+    let mut rng = Rng::new(0x9E3779B97F4A7C15);
     let mut seen = std::collections::BTreeMap::<Case, usize>::new();
     let mut count = |cases: Vec<Case>| {
         for c in cases {
@@ -202,13 +194,13 @@ fn boundary_equals_half_space_intersection() {
         // Random points, anisotropic and offset.
         let n = 1 + (i % 12);
         let s = V3::new(
-            0.2 + rng.f() * 3.0,
-            0.2 + rng.f() * 3.0,
-            0.2 + rng.f() * 3.0,
+            0.2 + rng.unit() * 3.0,
+            0.2 + rng.unit() * 3.0,
+            0.2 + rng.unit() * 3.0,
         );
-        let o = V3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5) * 100.0;
+        let o = V3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5) * 100.0;
         let p = pts(&mut rng, n, |r| {
-            P3::new(r.f() * s.x, r.f() * s.y, r.f() * s.z) + o
+            P3::new(r.unit() * s.x, r.unit() * s.y, r.unit() * s.z) + o
         });
         count(check(
             &Tribox::from_points(p.iter()),
@@ -217,7 +209,7 @@ fn boundary_equals_half_space_intersection() {
         ));
         // Small integer grids: coincident planes, chamfers meeting exactly on principal planes.
         let p = pts(&mut rng, 2 + i % 6, |r| {
-            P3::new(r.int(3), r.int(3), r.int(3))
+            P3::new(int(r, 3), int(r, 3), int(r, 3))
         });
         count(check(
             &Tribox::from_points(p.iter()),
@@ -227,9 +219,9 @@ fn boundary_equals_half_space_intersection() {
         // 18 random bounds, tightened (not from points).
         let mut t = Tribox::empty();
         for k in 0..9 {
-            let c = rng.f() * 4.0 - 2.0;
-            t.lo[k] = c - rng.f() * 3.0;
-            t.hi[k] = c + rng.f() * 3.0;
+            let c = rng.unit() * 4.0 - 2.0;
+            t.lo[k] = c - rng.unit() * 3.0;
+            t.hi[k] = c + rng.unit() * 3.0;
         }
         if !t.tightened().is_empty() {
             count(check(&t, &[], &format!("random bounds {i}")));
@@ -238,11 +230,11 @@ fn boundary_equals_half_space_intersection() {
     // Degenerate sets.
     let single = [P3::new(1.5, -2.0, 7.0)];
     check(&Tribox::from_points(single.iter()), &single, "single point");
-    let flat = pts(&mut rng, 9, |r| P3::new(r.f(), r.f(), 0.25));
+    let flat = pts(&mut rng, 9, |r| P3::new(r.unit(), r.unit(), 0.25));
     check(&Tribox::from_points(flat.iter()), &flat, "flat set");
     let diagonal_plane = pts(&mut rng, 9, |r| {
-        let x = r.f();
-        P3::new(x, 1.0 - x, r.f())
+        let x = r.unit();
+        P3::new(x, 1.0 - x, r.unit())
     });
     check(
         &Tribox::from_points(diagonal_plane.iter()),
@@ -250,7 +242,7 @@ fn boundary_equals_half_space_intersection() {
         "set in x+y=1",
     );
     let line = pts(&mut rng, 5, |r| {
-        let u = r.f();
+        let u = r.unit();
         P3::new(u, 2.0 * u, -u)
     });
     check(&Tribox::from_points(line.iter()), &line, "collinear set");
@@ -285,10 +277,10 @@ fn flat_and_point_sets_clean_up_to_polygons_and_nothing() {
 
 #[test]
 fn simplification_contains_the_original_and_drops_small_faces() {
-    let mut rng = Rng(77);
+    let mut rng = Rng::new(77);
     for i in 0..100 {
         let p = pts(&mut rng, 30, |r| {
-            let v = V3::new(r.f() - 0.5, r.f() - 0.5, r.f() - 0.5);
+            let v = V3::new(r.unit() - 0.5, r.unit() - 0.5, r.unit() - 0.5);
             P3::from(v.normalize())
         });
         let t = Tribox::from_points(p.iter());
@@ -316,13 +308,15 @@ fn simplification_contains_the_original_and_drops_small_faces() {
 
 #[test]
 fn transformed_tribox_holds_the_transformed_points() {
-    let mut rng = Rng(5);
+    let mut rng = Rng::new(5);
     for _ in 0..50 {
-        let p = pts(&mut rng, 20, |r| P3::new(r.f(), r.f() * 2.0, r.f() * 0.5));
-        let axis = nalgebra::Unit::new_normalize(V3::new(rng.f(), rng.f(), rng.f() + 0.1));
+        let p = pts(&mut rng, 20, |r| {
+            P3::new(r.unit(), r.unit() * 2.0, r.unit() * 0.5)
+        });
+        let axis = nalgebra::Unit::new_normalize(V3::new(rng.unit(), rng.unit(), rng.unit() + 0.1));
         let m: M4 = nalgebra::Translation3::new(3.0, -1.0, 2.0).to_homogeneous()
-            * nalgebra::Rotation3::from_axis_angle(&axis, rng.f() * 6.0).to_homogeneous()
-            * M4::new_scaling(0.5 + rng.f());
+            * nalgebra::Rotation3::from_axis_angle(&axis, rng.unit() * 6.0).to_homogeneous()
+            * M4::new_scaling(0.5 + rng.unit());
         let t = Tribox::from_points(p.iter());
         let tt = t.transformed(&m);
         let exact = Tribox::from_points(
@@ -339,12 +333,12 @@ fn transformed_tribox_holds_the_transformed_points() {
 
 #[test]
 fn interference_never_misses_a_meeting() {
-    let mut rng = Rng(99);
+    let mut rng = Rng::new(99);
     let (mut meet, mut apart_boxes_meet) = (0, 0);
     for _ in 0..400 {
-        let c = V3::new(rng.f(), rng.f(), rng.f()) * 1.3;
-        let a = pts(&mut rng, 6, |r| P3::new(r.f(), r.f(), r.f()));
-        let b = pts(&mut rng, 6, |r| P3::new(r.f(), r.f(), r.f()) + c);
+        let c = V3::new(rng.unit(), rng.unit(), rng.unit()) * 1.3;
+        let a = pts(&mut rng, 6, |r| P3::new(r.unit(), r.unit(), r.unit()));
+        let b = pts(&mut rng, 6, |r| P3::new(r.unit(), r.unit(), r.unit()) + c);
         let (ta, tb) = (Tribox::from_points(a.iter()), Tribox::from_points(b.iter()));
         let both = Tribox {
             lo: std::array::from_fn(|k| ta.lo[k].max(tb.lo[k])),

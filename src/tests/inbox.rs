@@ -1,32 +1,16 @@
 //! Computed INBOXes: inside their objects (checked independently), optimal for convex solids,
 //! and never changing what is visible.
 
-mod common;
-
 use std::sync::Arc;
 
-use common::{cuboid, mesh, prim, top, translate};
-use kepler_hsr::geom::{Box3, PolyMesh, M4, P3, V3};
-use kepler_hsr::prepare::{compute_inboxes, mesh_inbox};
-use kepler_hsr::primitives;
-use kepler_hsr::scene::{Mesh, Object, Scene};
-use kepler_hsr::view::Camera;
-use kepler_hsr::{render, Outputs, RenderOptions};
-
-/// A small deterministic generator (xorshift64*).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-}
+use super::common::{cuboid, mesh, prim, top, translate};
+use crate::geom::{Box3, PolyMesh, M4, P3, V3};
+use crate::prepare::{compute_inboxes, mesh_inbox};
+use crate::primitives;
+use crate::scene::{Mesh, Object, Scene};
+use crate::view::Camera;
+use crate::{render, Outputs, RenderOptions};
+use kepler_testkit::Rng;
 
 /// Independent containment check: no fan triangle meets the box's interior (exact orient3d
 /// for convex meshes is not assumed), and sample points of the box have winding number 1.
@@ -34,7 +18,7 @@ fn assert_inside(m: &Mesh, b: &Box3, what: &str) {
     assert!(b.has_interior(), "{what}: empty inbox");
     let cbox = Box3::from_points(m.vertices.iter());
     assert!(cbox.contains_box(b), "{what}: inbox leaves the cbox");
-    let mut rng = Rng(7);
+    let mut rng = Rng::new(7);
     let c = b.center();
     let mut pts: Vec<P3> = b.corners().iter().map(|p| p + (c - p) * 1e-6).collect();
     pts.push(b.center());
@@ -134,7 +118,7 @@ fn pattern_search_volume(m: &Mesh, seed: u64) -> f64 {
     assert!(feasible(&x));
     let cb = Box3::from_points(m.vertices.iter());
     let mut step = cb.size().iter().fold(0.0f64, |a, &b| a.max(b)) * 0.25;
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let mut fails = 0;
     while step > 1e-7 {
         let mut d = [0.0; 6];
@@ -186,7 +170,7 @@ fn every_primitive_has_an_inbox_inside_it() {
 
 #[test]
 fn convex_inboxes_are_optimal_within_one_percent() {
-    let mut rng = Rng(12345);
+    let mut rng = Rng::new(12345);
     let names = primitives::names();
     for k in 0..12 {
         let base = prim(primitives::by_name(names[k % names.len()]).unwrap());
@@ -266,7 +250,7 @@ fn stairs() -> Mesh {
 
 #[test]
 fn non_convex_inboxes_are_inside_and_large() {
-    let mut rng = Rng(99);
+    let mut rng = Rng::new(99);
     for (name, m, best) in [
         ("L", l_shape(), 4.0),
         ("cross", cross(), 6.0),
@@ -290,7 +274,7 @@ fn non_convex_inboxes_are_inside_and_large() {
 
 #[test]
 fn open_meshes_have_no_inbox_and_groups_take_the_largest() {
-    let sq = common::square(0., 0., 1., 0.);
+    let sq = super::common::square(0., 0., 1., 0.);
     assert!(mesh_inbox(&sq).is_none());
     let mut g = Object::group(
         "g",
@@ -334,11 +318,11 @@ fn instance_inboxes_follow_the_transform() {
     assert!((rb.size()[2] - 2.0).abs() < 1e-5);
     // The prototype is prepared once and stays shared.
     let p0 = match &g.subobjects()[0].content {
-        kepler_hsr::scene::Content::Instance(i) => i.prototype.clone(),
+        crate::scene::Content::Instance(i) => i.prototype.clone(),
         _ => unreachable!(),
     };
     let p1 = match &g.subobjects()[1].content {
-        kepler_hsr::scene::Content::Instance(i) => i.prototype.clone(),
+        crate::scene::Content::Instance(i) => i.prototype.clone(),
         _ => unreachable!(),
     };
     assert!(Arc::ptr_eq(&p0, &p1));
@@ -423,7 +407,7 @@ fn inboxes_do_not_change_visibility() {
 /// change a visible polygon, and across the set it must actually cull.
 #[test]
 fn culling_random_scenes_changes_nothing() {
-    let mut rng = Rng(0x5eed_cafe);
+    let mut rng = Rng::new(0x5eed_cafe);
     let ico = Arc::new(Object::from_mesh(
         "ico",
         prim(primitives::by_name("icosahedron").unwrap()),
@@ -443,7 +427,7 @@ fn culling_random_scenes_changes_nothing() {
             let parts = (0..rng.range(1.0, 4.99) as usize)
                 .map(|k| {
                     let (x, y, z) = (rng.range(-5., 5.), rng.range(-5., 5.), rng.range(-4., 1.5));
-                    if rng.next() < 0.4 {
+                    if rng.unit() < 0.4 {
                         Object::instance(format!("i{k}"), ico.clone(), translate(x, y, z))
                     } else {
                         let s = rng.range(0.3, 2.);
@@ -455,7 +439,7 @@ fn culling_random_scenes_changes_nothing() {
         }
         let scene = Scene::new(Object::group("", objs), "random".into());
         let dir = V3::new(rng.range(-0.4, 0.4), rng.range(-0.4, 0.4), -1.);
-        let camera = if rng.next() < 0.5 {
+        let camera = if rng.unit() < 0.5 {
             Camera::orthographic(dir, V3::y()).unwrap()
         } else {
             let eye = P3::new(rng.range(-3., 3.), rng.range(-3., 3.), rng.range(15., 30.));
