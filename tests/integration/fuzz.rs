@@ -3,7 +3,7 @@
 //! panics, that every load error names the mutated file, and that every result is finite JSON.
 //!
 //! The normal test suite runs it for a few seconds (`KEPLER_FUZZ_SECS`, default 3); CI runs
-//! the ignored `fuzz_for_a_minute` (`cargo test --test fuzz -- --ignored`). Mutants are
+//! the ignored `fuzz_for_a_minute` (`cargo test --test integration fuzz -- --ignored`). Mutants are
 //! deterministic by case number; a failing one is written to `target/fuzz-found/` and belongs,
 //! with its expected message, in `tests/fixtures/bad/`.
 
@@ -13,6 +13,7 @@ use std::time::{Duration, Instant};
 
 use kepler_hsr::{load_scene_with, render, Camera, CameraRequest, LoadOptions, Outputs};
 use kepler_hsr::{LineOptions, RenderOptions};
+use kepler_testkit::Rng;
 
 /// Faces above which a mutant is loaded and prepared but not rendered (a mutant that turns
 /// `prism 8` into `prism 99999999` is refused by the face limit; this keeps the rest quick).
@@ -92,32 +93,15 @@ fn fixtures() -> Vec<PathBuf> {
     files
 }
 
-/// A deterministic xorshift stream.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    /// A number below `n` (`n` > 0).
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
-
 /// Mutant number `case` of `text`: one to three edits (overwrite, insert, delete, duplicate,
 /// truncate, splice from `other`).
 fn mutate(text: &[u8], other: &[u8], case: u64) -> Vec<u8> {
-    let mut rng = Rng(case.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+    let mut rng = Rng::new(case.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
     let mut t = text.to_vec();
     for _ in 0..1 + rng.below(3) {
         let at = rng.below(t.len() + 1);
         match rng.below(7) {
-            0 if at < t.len() => t[at] = rng.next() as u8,
+            0 if at < t.len() => t[at] = rng.next_u64() as u8,
             1 | 2 => {
                 let tok = TOKENS[rng.below(TOKENS.len())];
                 t.splice(at..at, tok.iter().copied());
