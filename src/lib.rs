@@ -44,6 +44,9 @@ pub mod tribox;
 pub mod view;
 pub mod visibility;
 
+#[cfg(test)]
+mod tests;
+
 pub use emit::{Drawing, EdgeKind, EdgeOptions, EdgeSet, LineOptions};
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
 pub use geom::{Box3, M4, P3, V3};

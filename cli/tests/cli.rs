@@ -9,10 +9,7 @@ f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\nf 9 10 11 12\n
 
 /// A fresh directory for one test.
 fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("kepler-test-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    kepler_testkit::temp_dir("test", name)
 }
 
 fn kepler(args: &[&str]) -> Output {
@@ -103,20 +100,6 @@ fn json_carries_lines_when_edges_are_asked_for() {
     assert!(!b["lines"]["hidden"].as_array().unwrap().is_empty());
 }
 
-/// The shared meshes directory, if present.
-fn shared_model(name: &str) -> Option<PathBuf> {
-    let dir = std::env::var_os("KEPLER_MODELS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/models"));
-    let p = dir.join(name);
-    if p.is_file() {
-        Some(p)
-    } else {
-        eprintln!("skipped: {} not found", p.display());
-        None
-    }
-}
-
 #[test]
 fn info_json_gives_every_mesh_a_hierarchy_and_both_trees_render_the_same_bytes() {
     let d = temp_dir("hierarchy");
@@ -128,7 +111,7 @@ fn info_json_gives_every_mesh_a_hierarchy_and_both_trees_render_the_same_bytes()
     for key in ["\"hierarchy\":{", "\"nodes\":", "\"depth\":", "\"leaves\":"] {
         assert!(text.contains(key), "{key} missing: {text}");
     }
-    let Some(cow) = shared_model("cow.obj") else {
+    let Some(cow) = kepler_testkit::model("cow.obj") else {
         return;
     };
     let o = kepler(&["info", s(&cow), "-q"]);

@@ -12,12 +12,9 @@ fn bad() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/fixtures/bad")
 }
 
-/// A fresh directory for one test's outputs.
+/// A fresh directory for one test.
 fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("kepler-hostile-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    kepler_testkit::temp_dir("hostile", name)
 }
 
 /// Runs kepler in the fixture directory.

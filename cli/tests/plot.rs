@@ -12,11 +12,9 @@ const CUBES: &str = "o a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\n
 f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n\
 o b\nv 2 0.2 0.3\nv 2.5 0.2 0.3\nv 2.5 0.7 0.3\nv 2 0.7 0.3\nf 9 10 11 12\n";
 
+/// A fresh directory for one test.
 fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("kepler-plot-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    kepler_testkit::temp_dir("plot", name)
 }
 
 fn kepler(args: &[&str]) -> Output {
@@ -41,14 +39,6 @@ fn render_svg(scene: &Path, svg: &Path, extra: &[&str]) {
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-/// The shared models directory, when present.
-fn models() -> Option<PathBuf> {
-    let dir = std::env::var_os("KEPLER_MODELS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root().join("../shared/models"));
-    dir.is_dir().then_some(dir)
 }
 
 /// A layer read back from the SVG: its label, stroke widths, and polylines (mm).
@@ -392,7 +382,8 @@ fn vpype_stat(out: &str) -> ((f64, f64), usize, f64) {
 #[test]
 fn vpype_reads_the_page_and_layers_and_cannot_shorten_the_travel() {
     if vpype(&["--help"]).is_none() {
-        eprintln!("skipped: vpype not installed (pip install vpype)");
+        let why = "vpype is not installed (pip install vpype)";
+        kepler_testkit::skip("KEPLER_REQUIRE_VPYPE", "the vpype test", why);
         return;
     }
     let d = temp_dir("vpype");
@@ -404,12 +395,13 @@ fn vpype_reads_the_page_and_layers_and_cannot_shorten_the_travel() {
             vec!["--hidden"],
         ));
     }
-    match models() {
-        Some(m) => {
-            cases.push(("bunny".into(), m.join("stanford-bunny.obj"), vec![]));
-            cases.push(("suzanne".into(), m.join("suzanne.obj"), vec!["--hidden"]));
+    for (name, file, extra) in [
+        ("bunny", "stanford-bunny.obj", vec![]),
+        ("suzanne", "suzanne.obj", vec!["--hidden"]),
+    ] {
+        if let Some(path) = kepler_testkit::model(file) {
+            cases.push((name.into(), path, extra));
         }
-        None => eprintln!("skipped bunny and suzanne: no models (set KEPLER_MODELS)"),
     }
     const PX_PER_MM: f64 = 96.0 / 25.4;
     for (name, path, extra) in cases {

@@ -1,0 +1,21 @@
+//! Unit tests that reach into the library's internals (geometry, cleanup, the stages' own
+//! functions), one module per former integration-test file; what the public API alone can
+//! test lives in tests/integration/.
+
+mod common;
+
+mod bad_mesh_input;
+mod caps;
+mod exact_cases;
+mod exact_check;
+mod flatten;
+mod inbox;
+mod invariants;
+mod lines;
+mod load_mesh_files;
+mod long_faces;
+mod rng;
+mod scene_files;
+mod shared_meshes;
+mod tribox;
+mod tribox_uses;
