@@ -1,10 +1,14 @@
 //! The paper's object: a name, a CBOX, an INBOX, and either subobjects or vertices and faces.
 
+use std::path::Path;
 use std::sync::Arc;
 
-use crate::geom::{Box3, M4, P3};
+use crate::error::{Result, Warning};
+use crate::geom::{Box3, PolyMesh, M4, P3};
 use crate::prepare::bvtree::ObjectTree;
+use crate::primitives;
 
+use super::cleanup::{cleanup, Origin};
 use super::solidity::{ProvenPieces, Solidity};
 use super::texture::Texture;
 
@@ -66,6 +70,70 @@ impl Mesh {
 }
 
 impl Mesh {
+    /// A clean mesh of polygons given by vertex indices (each counter-clockwise seen from
+    /// outside for a solid): the cleanup a loaded mesh gets (merged vertices, split
+    /// non-planar faces, dropped degenerate ones), its warnings appended to `warnings`.
+    ///
+    /// ```
+    /// use kepler_hsr::{Mesh, P3};
+    ///
+    /// let square = vec![
+    ///     P3::new(0., 0., 0.),
+    ///     P3::new(1., 0., 0.),
+    ///     P3::new(1., 1., 0.),
+    ///     P3::new(0., 1., 0.),
+    /// ];
+    /// let mesh = Mesh::from_polygons(square, vec![vec![0, 1, 2, 3]], &mut Vec::new())?;
+    /// assert_eq!(mesh.faces.len(), 1);
+    /// # Ok::<(), kepler_hsr::Error>(())
+    /// ```
+    pub fn from_polygons(
+        vertices: Vec<P3>,
+        faces: Vec<Vec<u32>>,
+        warnings: &mut Vec<Warning>,
+    ) -> Result<Mesh> {
+        let origin = Origin {
+            file: Path::new("polygons"),
+            face_pos: &[],
+        };
+        cleanup(&PolyMesh::new(vertices, faces), &origin, warnings)
+    }
+
+    /// The axis-aligned box between the corners `lo` and `hi`, as a clean closed mesh.
+    ///
+    /// ```
+    /// use kepler_hsr::{Mesh, P3};
+    ///
+    /// let cube = Mesh::cuboid(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
+    /// assert_eq!((cube.vertices.len(), cube.faces.len()), (8, 6));
+    /// ```
+    pub fn cuboid(lo: P3, hi: P3) -> Mesh {
+        Self::clean_solid(&primitives::cuboid(lo, hi))
+    }
+
+    /// The named Platonic or Archimedean solid (unit edges, centred at the origin) as a
+    /// clean closed mesh, or `None` for a name not in [`Mesh::solid_names`].
+    ///
+    /// ```
+    /// let ico = kepler_hsr::Mesh::solid("icosahedron").unwrap();
+    /// assert_eq!(ico.faces.len(), 20);
+    /// ```
+    pub fn solid(name: &str) -> Option<Mesh> {
+        primitives::by_name(name).map(|raw| Self::clean_solid(&raw))
+    }
+
+    /// The snake_case names [`Mesh::solid`] knows: the 5 Platonic then the 13 Archimedean
+    /// solids.
+    pub fn solid_names() -> Vec<&'static str> {
+        primitives::names()
+    }
+
+    /// A built-in solid after cleanup (they are clean by construction).
+    fn clean_solid(raw: &PolyMesh) -> Mesh {
+        Self::from_polygons(raw.vertices.clone(), raw.faces.clone(), &mut Vec::new())
+            .expect("built-in solids are clean")
+    }
+
     /// The generalized winding number of the faces around `p`
     /// ([`winding_number`](crate::geom::solid_angle::winding_number)): about 1 inside a
     /// closed outward solid, 0 outside.
