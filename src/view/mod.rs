@@ -85,8 +85,9 @@ impl View {
     /// let scene = Scene::new(Object::from_mesh("cube", cube), "cube".into());
     /// let camera = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
     /// let view = View::new(&scene, camera);
-    /// // The faces turned away are not culled: the scene was not prepared.
-    /// assert_eq!(view.screen_polygons().count(), 4);
+    /// // The front and the back: the sides are edge-on, and the back is not culled because
+    /// // the scene was not prepared.
+    /// assert_eq!(view.screen_polygons().count(), 2);
     /// ```
     pub fn screen_polygons(
         &self,
