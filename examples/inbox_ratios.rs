@@ -1,14 +1,16 @@
-//! Prints INBOX/CBOX volume ratios and inbox times for the shared closed meshes, when present.
+//! Prints INBOX/CBOX volume ratios and prepare times for the shared closed meshes, when present.
 //! Usage: `cargo run --release --example inbox_ratios [MODEL_DIR]` (default /work/shared/models).
 
 use std::time::Instant;
 
-use kepler_hsr::prepare::mesh_inbox;
-use kepler_hsr::scene::Object;
+use kepler_hsr::{Box3, Object};
 
-fn first_mesh(o: &Object) -> Option<&kepler_hsr::scene::Mesh> {
-    o.mesh()
-        .or_else(|| o.subobjects().iter().find_map(first_mesh))
+/// The first object below `o` (or `o` itself) that holds a mesh.
+fn first_mesh_object(o: &Object) -> Option<&Object> {
+    if o.mesh().is_some() {
+        return Some(o);
+    }
+    o.subobjects().iter().find_map(first_mesh_object)
 }
 
 fn main() {
@@ -30,21 +32,22 @@ fn main() {
             println!("{name}: absent, skipped");
             continue;
         }
-        let scene = match kepler_hsr::load::load_scene(&path, &mut Vec::new()) {
+        let mut scene = match kepler_hsr::load_scene(&path, &mut Vec::new()) {
             Ok(s) => s,
             Err(e) => {
                 println!("{name}: {e}");
                 continue;
             }
         };
-        let Some(mesh) = first_mesh(&scene.root) else {
+        let t = Instant::now();
+        kepler_hsr::prepare(&mut scene);
+        let ms = t.elapsed().as_secs_f64() * 1e3;
+        let Some(object) = first_mesh_object(&scene.root) else {
             println!("{name}: no mesh");
             continue;
         };
-        let t = Instant::now();
-        let inbox = mesh_inbox(mesh);
-        let ms = t.elapsed().as_secs_f64() * 1e3;
-        let cbox = kepler_hsr::geom::Box3::from_points(mesh.vertices.iter());
+        let (mesh, inbox) = (object.mesh().expect("a mesh object"), object.inbox);
+        let cbox = Box3::from_points(mesh.vertices.iter());
         match inbox {
             Some(b) => println!(
                 "{name}: {} faces, closed {}, inbox/cbox = {:.4} ({ms:.1} ms)",

@@ -15,21 +15,15 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+use super::boolean::{multipolygon_area, ring_area, union, xor_area, MultiPolygon};
 use super::coverage::Coverage;
-use super::rays;
+use super::rays::{self, Edge, Interval};
 use super::suite::ms_since;
 use super::zbuffer::{self, IdBuffer};
-use kepler_hsr::emit::lines::clip_segment::Interval;
-use kepler_hsr::emit::lines::edges::{mesh_edges, Edge, EdgeOptions};
-use kepler_hsr::emit::lines::intersect::intersection_edges;
-use kepler_hsr::emit::lines::visible_intervals;
-use kepler_hsr::emit::lines::world::WorldFaces;
-use kepler_hsr::geom::boolean::{union, xor_area};
-use kepler_hsr::geom::poly2::{multipolygon_area, MultiPolygon};
-use kepler_hsr::scene::Scene;
-use kepler_hsr::view::{Camera, LodOptions, View};
-use kepler_hsr::visibility::Visibility;
-use kepler_hsr::{render, Outputs, RenderOptions};
+use kepler_hsr::lines::EdgeOptions;
+use kepler_hsr::{
+    render, Camera, FaceId, LodOptions, Outputs, RenderOptions, Scene, View, Visibility,
+};
 
 /// What produced a point of the time-against-accuracy chart. Each method is one variant: an
 /// approximate kepler mode (tribox `--lod PX`) joins as another.
@@ -100,14 +94,13 @@ pub struct Reference {
     pub drawn_length: f64,
 }
 
-/// The drawing's edges, exactly as `emit::draw` selects them with default options.
+/// The drawing's edges, exactly as a drawing with default options selects them.
 pub fn edges(scene: &Scene, view: &View) -> Vec<Edge> {
-    let world = WorldFaces::build(scene);
-    let mut e = mesh_edges(&world, view, &EdgeOptions::default());
-    e.extend(intersection_edges(&world, |f| {
-        view.screen.face_is_occluder(f)
-    }));
-    e
+    EdgeOptions::default()
+        .edges(scene, view)
+        .into_iter()
+        .map(|(ends, faces, _)| (ends, faces))
+        .collect()
 }
 
 /// Length of a sorted list of disjoint intervals.
@@ -151,7 +144,8 @@ impl Reference {
             .par_iter()
             .zip(&segs)
             .map(|(e, s)| match s {
-                Some([a, b]) => visible_intervals([a[0], a[1]], [b[0], b[1]], &e.faces, &vis)
+                Some([a, b]) => vis
+                    .segment_intervals([a[0], a[1]], [b[0], b[1]], &e.1)
                     .into_iter()
                     .filter(|iv| iv[1] > iv[0])
                     .collect(),
@@ -163,9 +157,7 @@ impl Reference {
             .zip(&segs)
             .map(|(iv, s)| measure(iv) * len(s))
             .sum();
-        let drawn = r
-            .drawing
-            .map_or(0.0, |d| kepler_hsr::emit::lines::total_length(&d.visible));
+        let drawn = r.drawing.map_or(0.0, |d| d.visible_length());
         Reference {
             visible_area: vis.total_area(),
             drawn_length: drawn,
@@ -229,7 +221,7 @@ pub fn area_error(r: &Reference, buf: &IdBuffer) -> Error {
     let per_face: Vec<(f64, f64)> = (0..r.vis.face_count())
         .into_par_iter()
         .map(|f| {
-            let fv = r.vis.face(kepler_hsr::FaceId(f as u32));
+            let fv = r.vis.face(FaceId(f as u32));
             let p = counts[f] as f64 * px;
             let inside = if counts[f] > 0 && fv.area > 0.0 {
                 covered_inside(buf, f as u32, &fv.visible) * px
@@ -243,7 +235,7 @@ pub fn area_error(r: &Reference, buf: &IdBuffer) -> Error {
 }
 
 /// Exact area (pixel units) of a face's visible region inside the pixels labelled with it.
-fn covered_inside(buf: &IdBuffer, f: u32, visible: &kepler_hsr::geom::poly2::MultiPolygon) -> f64 {
+fn covered_inside(buf: &IdBuffer, f: u32, visible: &MultiPolygon) -> f64 {
     let g = &buf.grid;
     let rings: Vec<Vec<[f64; 2]>> = visible
         .iter()
@@ -289,14 +281,22 @@ pub fn line_error(r: &Reference, sampled: &[Vec<Interval>]) -> Error {
 /// union of every drawable face's projection taken in one boolean call (not the per-face
 /// subtraction the renderer does). Zero up to f64 rounding when the VTPs tile the picture.
 pub fn union_residual(r: &Reference) -> f64 {
-    let sf = &r.view.screen;
-    let rings: Vec<Vec<[f64; 2]>> = sf
-        .piece_ids()
-        .filter(|&p| sf.piece(p).is_occluder())
-        .map(|p| sf.ring_ccw(p))
+    let rings: Vec<Vec<[f64; 2]>> = r
+        .view
+        .screen_polygons()
+        .map(|(_, corners, _)| ccw(corners.iter().map(|q| [q[0], q[1]]).collect()))
         .collect();
     let union = multipolygon_area(&union(rings.iter(), &zbuffer::scene_rect(&r.view)));
     (r.visible_area - union).abs() / union.max(f64::MIN_POSITIVE)
+}
+
+/// A ring made counter-clockwise (a projected face turned away from the viewer runs
+/// clockwise).
+fn ccw(mut ring: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
+    if ring_area(&ring) < 0.0 {
+        ring.reverse();
+    }
+    ring
 }
 
 /// One timed run of a method from a prepared scene: milliseconds, and what it computed.
@@ -370,7 +370,7 @@ pub fn error(r: &Reference, out: &Output) -> Error {
 /// its faces' VTPs; an original leaf belongs to the substitute at its own path or the nearest
 /// enclosing one), summed |exact Δ substituted| over Σ|V_f|.
 pub fn substitute_error(r: &Reference, view: &View, vis: &Visibility) -> Error {
-    let drawn: BTreeSet<&str> = view.screen.leaves.iter().map(|l| l.path.as_str()).collect();
+    let drawn: BTreeSet<&str> = view.object_paths().collect();
     let key = |path: &str| -> String {
         let mut p = path;
         while !drawn.contains(p) {
@@ -384,7 +384,7 @@ pub fn substitute_error(r: &Reference, view: &View, vis: &Visibility) -> Error {
     let mut regions: BTreeMap<String, [MultiPolygon; 2]> = BTreeMap::new();
     for (k, (v, vw)) in [(&r.vis, &r.view), (vis, view)].into_iter().enumerate() {
         for (id, fv) in v.iter().filter(|f| !f.1.visible.is_empty()) {
-            let path = key(&vw.screen.leaf_of_face(id).path);
+            let path = key(vw.face_path(id));
             regions.entry(path).or_default()[k].extend(fv.visible.iter().cloned());
         }
     }
@@ -405,8 +405,7 @@ mod tests {
         buf.ids.iter().filter(|&&i| i == NONE).count()
     }
     use crate::zbuffer::Grid;
-    use kepler_hsr::geom::V3;
-    use kepler_hsr::scene::Object;
+    use kepler_hsr::{Mesh, Object, P3, V3};
 
     #[test]
     fn interval_differences_by_hand() {
@@ -449,20 +448,14 @@ mod tests {
     fn zbuffer_error_shrinks_with_resolution_and_exact_checks_out() {
         // Two unit squares, one over the other's corner, seen from the front.
         let sq = |x: f64, y: f64, z: f64| {
-            kepler_hsr::scene::cleanup::cleanup(
-                &kepler_hsr::geom::PolyMesh::new(
-                    vec![
-                        kepler_hsr::geom::P3::new(x, y, z),
-                        kepler_hsr::geom::P3::new(x + 1., y, z),
-                        kepler_hsr::geom::P3::new(x + 1., y + 1., z),
-                        kepler_hsr::geom::P3::new(x, y + 1., z),
-                    ],
-                    vec![vec![0, 1, 2, 3]],
-                ),
-                &kepler_hsr::scene::cleanup::Origin {
-                    file: std::path::Path::new("t"),
-                    face_pos: &[],
-                },
+            Mesh::from_polygons(
+                vec![
+                    P3::new(x, y, z),
+                    P3::new(x + 1., y, z),
+                    P3::new(x + 1., y + 1., z),
+                    P3::new(x, y + 1., z),
+                ],
+                vec![vec![0, 1, 2, 3]],
                 &mut Vec::new(),
             )
             .unwrap()
@@ -498,22 +491,14 @@ mod tests {
 
     #[test]
     fn lod_error_is_zero_for_itself_and_grows_with_the_pixel_size() {
-        let ico = kepler_hsr::scene::cleanup::cleanup(
-            &kepler_hsr::primitives::by_name("icosahedron").unwrap(),
-            &kepler_hsr::scene::cleanup::Origin {
-                file: std::path::Path::new("t"),
-                face_pos: &[],
-            },
-            &mut Vec::new(),
-        )
-        .unwrap();
+        let ico = Mesh::solid("icosahedron").unwrap();
         let at = |x: f64| nalgebra::Translation3::new(x, 0., 0.).to_homogeneous();
         let proto = std::sync::Arc::new(Object::from_mesh("ico", ico));
         let objs = (0..3)
             .map(|k| Object::instance(format!("i{k}"), proto.clone(), at(3. * k as f64)))
             .collect();
         let mut scene = Scene::new(Object::group("", objs), "t".into());
-        kepler_hsr::prepare::prepare(&mut scene);
+        kepler_hsr::prepare(&mut scene);
         let cam = Camera::orthographic(V3::new(0.3, -0.2, -1.), V3::y()).unwrap();
         let r = Reference::new(&scene, cam);
         let err = |px| match run(&scene, cam, Method::Lod(px)).1 {

@@ -3,13 +3,9 @@
 //! Every generator is a pure function of its arguments (a fixed splitmix64 sequence stands in
 //! for randomness), so the same call builds the same scene, face for face, on any machine.
 
-use std::path::Path;
 use std::sync::Arc;
 
-use kepler_hsr::geom::{PolyMesh, M4, P3};
-
-use kepler_hsr::scene::cleanup::{cleanup, Origin};
-use kepler_hsr::scene::{Mesh, Object, Scene};
+use kepler_hsr::{Mesh, Object, Scene, M4, P3};
 
 /// Spacing of the town's building grid.
 pub const TOWN_PITCH: f64 = 16.0;
@@ -19,20 +15,9 @@ pub const TOWN_PITCH: f64 = 16.0;
 /// behind its farthest corner.
 pub const TOWN_VIEW_DIR: [f64; 3] = [0.02, 0.03, -1.0];
 
-/// A cleaned mesh of a generated polygon mesh (generated meshes are clean by construction).
-fn clean(raw: &PolyMesh, what: &str) -> Mesh {
-    let origin = Origin {
-        file: Path::new(what),
-        face_pos: &[],
-    };
-    cleanup(raw, &origin, &mut Vec::new()).expect("generated meshes are clean")
-}
-
 /// An axis-aligned box mesh.
 fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Mesh {
-    let raw =
-        kepler_hsr::primitives::cuboid(P3::new(lo[0], lo[1], lo[2]), P3::new(hi[0], hi[1], hi[2]));
-    clean(&raw, "cuboid")
+    Mesh::cuboid(P3::new(lo[0], lo[1], lo[2]), P3::new(hi[0], hi[1], hi[2]))
 }
 
 /// A building: a body of w × w × h with a window ledge per floor and bay on all 4 facades.
@@ -172,10 +157,7 @@ fn field_transform(rng: &mut Rng, at: [f64; 3], size: f64) -> M4 {
 pub fn field(target_faces: usize, seed: u64) -> Scene {
     let protos: Vec<Arc<Object>> = FIELD_SOLIDS
         .iter()
-        .map(|n| {
-            let raw = kepler_hsr::primitives::by_name(n).expect("known solid");
-            Arc::new(Object::from_mesh(*n, clean(&raw, n)))
-        })
+        .map(|n| Arc::new(Object::from_mesh(*n, Mesh::solid(n).expect("known solid"))))
         .collect();
     let mut rng = Rng::new(seed);
     let mut objs = Vec::new();
@@ -240,7 +222,7 @@ pub fn terrain(target_faces: usize) -> Scene {
             faces.push(vec![at(i, j), at(i + 1, j + 1), at(i + 1, j)]);
         }
     }
-    let mesh = clean(&PolyMesh::new(vertices, faces), "terrain");
+    let mesh = Mesh::from_polygons(vertices, faces, &mut Vec::new()).expect("terrains are clean");
     Scene::new(
         Object::group("", vec![Object::from_mesh("terrain", mesh)]),
         "terrain".into(),

@@ -3,11 +3,13 @@
 //! written as CSV and SVG charts, with a table on standard output.
 
 pub mod accuracy;
+pub mod boolean;
 pub mod chart;
 pub mod coverage;
 pub mod generate;
 pub mod hostile;
 pub mod rays;
+pub mod rect;
 pub mod report;
 pub mod suite;
 pub mod town;
@@ -414,7 +416,7 @@ fn time_accuracy(
 ) -> Result<Vec<AccuracyRow>> {
     bar.update(*done, &format!("{} exact reference", case.name));
     let mut scene = case.load()?;
-    kepler_hsr::prepare::prepare(&mut scene);
+    kepler_hsr::prepare(&mut scene);
     let camera = ViewKind::ThreeQuarter.camera(&scene)?;
     let reference = Reference::new(&scene, camera);
     let check = accuracy::union_residual(&reference);

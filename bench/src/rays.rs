@@ -8,12 +8,16 @@
 
 use rayon::prelude::*;
 
-use kepler_hsr::emit::lines::clip_segment::Interval;
-use kepler_hsr::emit::lines::edges::Edge;
-use kepler_hsr::geom::{Rect, P3};
-use kepler_hsr::view::{Camera, View};
+use kepler_hsr::{Camera, FaceId, View, P3};
 
 use super::zbuffer::{plane, scene_rect};
+use crate::rect::Rect;
+
+/// A part [t0, t1] of a segment, by parameter (0 at its start, 1 at its end).
+pub type Interval = [f64; 2];
+
+/// An edge of the drawing: world end points and the faces it lies on.
+pub type Edge = ([P3; 2], Vec<FaceId>);
 
 /// A face as the ray test needs it: screen polygon, depth plane z = a·x + b·y + c, rectangle.
 #[derive(Debug, Clone)]
@@ -40,27 +44,23 @@ pub struct Index {
 impl Index {
     /// Buckets the drawable faces of a view (about one face per cell on average).
     pub fn build(view: &View) -> Index {
-        let sf = &view.screen;
-        let occ: Vec<Occluder> = sf
-            .piece_ids()
-            .filter(|&f| sf.piece(f).is_occluder())
-            .filter_map(|f| {
-                let p = sf.pts(f);
-                let plane = plane(sf.piece(f).refs.map(|k| p[k as usize]))?;
+        let mut zlo_hi = (f64::INFINITY, f64::NEG_INFINITY);
+        let occ: Vec<Occluder> = view
+            .screen_polygons()
+            .filter_map(|(_, corners, refs)| {
+                zlo_hi = corners
+                    .iter()
+                    .fold(zlo_hi, |(lo, hi), q| (lo.min(q[2]), hi.max(q[2])));
+                let plane = plane(refs.map(|k| corners[k]))?;
+                let pts: Vec<[f64; 2]> = corners.iter().map(|q| [q[0], q[1]]).collect();
                 Some(Occluder {
-                    pts: p.iter().map(|q| [q[0], q[1]]).collect(),
+                    rect: Rect::of_points(&pts),
+                    pts,
                     plane,
-                    rect: sf.piece(f).rect,
                 })
             })
             .collect();
-        let (zlo, zhi) = sf
-            .pieces
-            .iter()
-            .filter(|f| f.is_occluder())
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), f| {
-                (lo.min(f.zmin), hi.max(f.zmax))
-            });
+        let (zlo, zhi) = zlo_hi;
         let rect = scene_rect(view);
         let n = (occ.len() as f64).sqrt().ceil().max(1.0) as usize;
         let cell = [
@@ -166,7 +166,7 @@ fn inside(r: &[[f64; 2]], p: [f64; 2]) -> bool {
 /// The screen segment (x, y, depth) of the world segment a → b, cut at the near plane
 /// (perspective) exactly as the drawing cuts it; None when nothing of it is in front.
 pub fn segment(camera: &Camera, a: &P3, b: &P3) -> Option<[[f64; 3]; 2]> {
-    kepler_hsr::emit::lines::project_segment_depth(camera, a, b)
+    camera.project_segment(a, b)
 }
 
 /// The visible intervals of one screen segment sampled every `step`: it is cut into
@@ -200,7 +200,7 @@ pub fn sample_segment(index: &Index, s: &[[f64; 3]; 2], step: f64) -> Vec<Interv
 pub fn segments(view: &View, edges: &[Edge]) -> Vec<Option<[[f64; 3]; 2]>> {
     edges
         .iter()
-        .map(|e| segment(&view.camera, &e.ends[0], &e.ends[1]))
+        .map(|e| segment(&view.camera, &e.0[0], &e.0[1]))
         .collect()
 }
 

@@ -5,10 +5,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
-use kepler_hsr::geom::V3;
-use kepler_hsr::scene::{CameraSpec, Scene};
-use kepler_hsr::view::Camera;
-use kepler_hsr::{render, Outputs, PictureOptions, RenderOptions, Stage};
+use kepler_hsr::plot::PictureOptions;
+use kepler_hsr::stats::Stage;
+use kepler_hsr::{render, Camera, CameraRequest, Outputs, RenderOptions, Scene, V3};
 
 use crate::generate;
 
@@ -40,7 +39,7 @@ impl Case {
         Ok(match &self.source {
             Source::Field(n) => generate::field(*n, 1),
             Source::Terrain(n) => generate::terrain(*n),
-            Source::Model(p) => kepler_hsr::load::load_scene(p, &mut Vec::new())
+            Source::Model(p) => kepler_hsr::load_scene(p, &mut Vec::new())
                 .with_context(|| format!("{}", p.display()))?,
         })
     }
@@ -88,12 +87,13 @@ impl ViewKind {
                 let b = scene.cbox();
                 let c = b.center();
                 let r = (b.hi - b.lo).norm();
-                Camera::from_spec(&CameraSpec::Perspective {
-                    eye: c + V3::new(0.6, 0.4, 1.0) * r,
-                    target: c,
-                    up: V3::y(),
-                    fov_deg: 40.0,
-                })?
+                let request = CameraRequest {
+                    eye: Some(c + V3::new(0.6, 0.4, 1.0) * r),
+                    target: Some(c),
+                    fov_deg: Some(40.0),
+                    ..CameraRequest::default()
+                };
+                Camera::for_scene(scene, &request)?
             }
         })
     }

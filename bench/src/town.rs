@@ -7,9 +7,8 @@
 use std::fmt::Write as _;
 use std::time::Instant;
 
-use kepler_hsr::geom::V3;
-use kepler_hsr::view::Camera;
-use kepler_hsr::{render, RenderOptions, Stage};
+use kepler_hsr::stats::Stage;
+use kepler_hsr::{render, Camera, RenderOptions, V3};
 
 use crate::chart::{Chart, Series, Style};
 use crate::generate::{town, TownLayout, TOWN_VIEW_DIR};

@@ -8,11 +8,11 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
-use kepler_hsr::geom::{Box3, M4, V3};
 use kepler_hsr::prepare::trees::bvtree::TopDown;
-use kepler_hsr::prepare::{HierarchyKind, ObjectTree};
-use kepler_hsr::scene::{Face, Mesh, Scene};
+use kepler_hsr::prepare::ObjectTree;
 use kepler_hsr::tribox::collide::{collide, collide_brute, CollideStats, FaceTriangles, Placed};
+
+use kepler_hsr::{Box3, Face, HierarchyKind, Mesh, Scene, M4, V3};
 
 use crate::generate::Rng;
 
@@ -339,12 +339,7 @@ mod tests {
 
     /// The closed octahedron of the primitives, cleaned.
     fn octahedron() -> Mesh {
-        let raw = kepler_hsr::primitives::by_name("octahedron").unwrap();
-        let origin = kepler_hsr::scene::cleanup::Origin {
-            file: Path::new("octahedron"),
-            face_pos: &[],
-        };
-        kepler_hsr::scene::cleanup::cleanup(&raw, &origin, &mut Vec::new()).unwrap()
+        Mesh::solid("octahedron").unwrap()
     }
 
     #[test]

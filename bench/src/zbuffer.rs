@@ -10,8 +10,9 @@
 
 use rayon::prelude::*;
 
-use kepler_hsr::geom::Rect;
-use kepler_hsr::view::View;
+use kepler_hsr::View;
+
+use crate::rect::Rect;
 
 /// Label of a pixel no face covers.
 pub const NONE: u32 = u32::MAX;
@@ -91,25 +92,21 @@ pub fn plane(p: [[f64; 3]; 3]) -> Option<[f64; 3]> {
 
 /// The drawable faces of a view as shapes on `grid`, in global order.
 pub fn shapes(view: &View, grid: &Grid) -> Vec<Shape> {
-    let sf = &view.screen;
-    sf.piece_ids()
-        .filter(|&f| sf.piece(f).is_occluder())
-        .filter_map(|f| {
-            let face = sf.piece(f);
-            let pts3: Vec<[f64; 3]> = sf
-                .pts(f)
+    view.screen_polygons()
+        .filter_map(|(face, corners, refs)| {
+            let pts3: Vec<[f64; 3]> = corners
                 .iter()
                 .map(|p| {
                     let q = grid.pixel_coords([p[0], p[1]]);
                     [q[0], q[1], p[2]]
                 })
                 .collect();
-            let plane = plane(face.refs.map(|k| pts3[k as usize]))?;
+            let plane = plane(refs.map(|k| pts3[k]))?;
             let pts: Vec<[f64; 2]> = pts3.iter().map(|p| [p[0], p[1]]).collect();
             let lo = pts.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
             let hi = pts.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
             Some(Shape {
-                id: face.face.0,
+                id: face.0,
                 pts,
                 plane,
                 v_range: [lo, hi],
@@ -227,7 +224,7 @@ pub fn visible_areas(view: &View, size: u32) -> (Vec<f64>, IdBuffer) {
     let grid = Grid::fit(scene_rect(view), size);
     let buf = rasterise(&grid, &shapes(view, &grid));
     let areas = buf
-        .counts(view.screen.face_count())
+        .counts(view.face_count())
         .iter()
         .map(|&c| c as f64 * grid.pixel_area())
         .collect();
@@ -236,11 +233,9 @@ pub fn visible_areas(view: &View, size: u32) -> (Vec<f64>, IdBuffer) {
 
 /// The screen rectangle of every drawable face.
 pub fn scene_rect(view: &View) -> Rect {
-    view.screen
-        .pieces
-        .iter()
-        .filter(|p| p.is_occluder())
-        .fold(Rect::EMPTY, |acc, p| acc.union(&p.rect))
+    view.screen_polygons()
+        .flat_map(|(_, corners, _)| corners)
+        .fold(Rect::EMPTY, |acc, p| acc.with([p[0], p[1]]))
 }
 
 #[cfg(test)]

@@ -5,6 +5,43 @@
 //! polygon listed counter-clockwise seen from outside, and no vertex is repeated.
 
 mod archimedean;
+impl Mesh {
+    /// The axis-aligned box between the corners `lo` and `hi`, as a clean closed mesh.
+    ///
+    /// ```
+    /// use kepler_hsr::{Mesh, P3};
+    ///
+    /// let cube = Mesh::cuboid(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
+    /// assert_eq!((cube.vertices.len(), cube.faces.len()), (8, 6));
+    /// ```
+    pub fn cuboid(lo: P3, hi: P3) -> Mesh {
+        Self::clean_solid(&cuboid(lo, hi))
+    }
+
+    /// The named Platonic or Archimedean solid (unit edges, centred at the origin) as a
+    /// clean closed mesh, or `None` for a name not in [`Mesh::solid_names`].
+    ///
+    /// ```
+    /// let ico = kepler_hsr::Mesh::solid("icosahedron").unwrap();
+    /// assert_eq!(ico.faces.len(), 20);
+    /// ```
+    pub fn solid(name: &str) -> Option<Mesh> {
+        by_name(name).map(|raw| Self::clean_solid(&raw))
+    }
+
+    /// The snake_case names [`Mesh::solid`] knows: the 5 Platonic then the 13 Archimedean
+    /// solids.
+    pub fn solid_names() -> Vec<&'static str> {
+        names()
+    }
+
+    /// A built-in solid after cleanup (they are clean by construction).
+    fn clean_solid(raw: &PolyMesh) -> Mesh {
+        Self::from_polygons(raw.vertices.clone(), raw.faces.clone(), &mut Vec::new())
+            .expect("built-in solids are clean")
+    }
+}
+
 #[cfg(test)]
 mod checks;
 mod hull;
@@ -15,6 +52,7 @@ mod prism;
 pub use prism::{antiprism, cuboid, prism, MAX_SIDES};
 
 use crate::geom::{PolyMesh, P3};
+use crate::scene::Mesh;
 
 /// Builds one named solid.
 type Build = fn() -> PolyMesh;

@@ -1,10 +1,13 @@
 //! The paper's object: a name, a CBOX, an INBOX, and either subobjects or vertices and faces.
 
+use std::path::Path;
 use std::sync::Arc;
 
 use super::object_tree::ObjectTree;
-use crate::geom::{Box3, M4, P3};
+use crate::error::{Result, Warning};
+use crate::geom::{Box3, PolyMesh, M4, P3};
 
+use super::cleanup::{cleanup, Origin};
 use super::proof::{ProvenPieces, Solidity};
 use super::texture::Texture;
 
@@ -66,6 +69,35 @@ impl Mesh {
 }
 
 impl Mesh {
+    /// A clean mesh of polygons given by vertex indices (each counter-clockwise seen from
+    /// outside for a solid): the cleanup a loaded mesh gets (merged vertices, split
+    /// non-planar faces, dropped degenerate ones), its warnings appended to `warnings`.
+    ///
+    /// ```
+    /// use kepler_hsr::{Mesh, P3};
+    ///
+    /// let square = vec![
+    ///     P3::new(0., 0., 0.),
+    ///     P3::new(1., 0., 0.),
+    ///     P3::new(1., 1., 0.),
+    ///     P3::new(0., 1., 0.),
+    /// ];
+    /// let mesh = Mesh::from_polygons(square, vec![vec![0, 1, 2, 3]], &mut Vec::new())?;
+    /// assert_eq!(mesh.faces.len(), 1);
+    /// # Ok::<(), kepler_hsr::Error>(())
+    /// ```
+    pub fn from_polygons(
+        vertices: Vec<P3>,
+        faces: Vec<Vec<u32>>,
+        warnings: &mut Vec<Warning>,
+    ) -> Result<Mesh> {
+        let origin = Origin {
+            file: Path::new("polygons"),
+            face_pos: &[],
+        };
+        cleanup(&PolyMesh::new(vertices, faces), &origin, warnings)
+    }
+
     /// The generalized winding number of the faces around `p`
     /// ([`winding_number`](crate::geom::solid_angle::winding_number)): about 1 inside a
     /// closed outward solid, 0 outside.

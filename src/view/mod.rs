@@ -31,7 +31,7 @@ pub use tree::{ObjectNode, ViewTree};
 pub use turntable::{turntable, turntable_frame};
 
 use crate::progress::{Phase, Progress, Stage};
-use crate::scene::Scene;
+use crate::scene::{FaceId, Scene};
 
 /// Everything visibility needs about one view of one scene.
 #[derive(Debug, Clone)]
@@ -66,6 +66,51 @@ impl View {
     /// Culls `scene` with its inboxes, then projects what is left.
     pub fn culled(scene: &Scene, camera: Camera) -> View {
         Self::from_cull(scene, camera, &Cull::new(scene, &camera))
+    }
+
+    /// Number of faces of the scene (face ids run from 0 below it), culled ones included.
+    pub fn face_count(&self) -> usize {
+        self.screen.face_count()
+    }
+
+    /// The projected faces that can hide something, as a z-buffer or a ray caster needs
+    /// them, in face order: for each planar piece of a face (one for a planar face), the
+    /// face, its screen corners (x, y, depth; depth grows toward the viewer) and three of
+    /// those corners, by index, that span its plane well.
+    ///
+    /// ```
+    /// use kepler_hsr::{Camera, Mesh, Object, Scene, View, P3, V3};
+    ///
+    /// let cube = Mesh::cuboid(P3::new(0., 0., 0.), P3::new(1., 1., 1.));
+    /// let scene = Scene::new(Object::from_mesh("cube", cube), "cube".into());
+    /// let camera = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
+    /// let view = View::new(&scene, camera);
+    /// // The front and the back: the sides are edge-on, and the back is not culled because
+    /// // the scene was not prepared.
+    /// assert_eq!(view.screen_polygons().count(), 2);
+    /// ```
+    pub fn screen_polygons(
+        &self,
+    ) -> impl Iterator<Item = (FaceId, Vec<[f64; 3]>, [usize; 3])> + '_ {
+        let sf = &self.screen;
+        sf.piece_ids()
+            .filter(|&p| sf.piece(p).is_occluder())
+            .map(|p| {
+                let piece = sf.piece(p);
+                let corners = sf.pts(p).iter().copied().collect();
+                (piece.face, corners, piece.refs.map(|k| k as usize))
+            })
+    }
+
+    /// The path of the leaf object face `f` belongs to (`f` must have been projected: not
+    /// culled by an inbox).
+    pub fn face_path(&self, f: FaceId) -> &str {
+        &self.screen.leaf_of_face(f).path
+    }
+
+    /// The paths of the leaf objects this view projected, in order.
+    pub fn object_paths(&self) -> impl Iterator<Item = &str> + '_ {
+        self.screen.leaves.iter().map(|l| l.path.as_str())
     }
 
     /// Projects the faces a cull of `scene` kept: hidden subtrees are left out of the screen

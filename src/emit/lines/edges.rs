@@ -11,9 +11,10 @@ use rayon::prelude::*;
 use crate::geom::{P3, V3};
 use crate::progress::{Progress, Share};
 use crate::scene::topology::{sort_by_key, sort_by_pair};
-use crate::scene::FaceId;
+use crate::scene::{FaceId, Scene};
 use crate::view::{Facing, View};
 
+use super::intersect::intersection_edges;
 use super::world::WorldFaces;
 
 /// What a line of the drawing is.
@@ -78,6 +79,23 @@ impl Default for EdgeOptions {
             set: EdgeSet::Feature,
             crease_deg: 30.0,
         }
+    }
+}
+
+impl EdgeOptions {
+    /// The edges a drawing with these options clips in `view` of `scene`: for each, its
+    /// world end points, the faces it lies on and its kind; mesh edges first (in order of
+    /// first appearance), then the intersection curves of faces that can hide something.
+    pub fn edges(&self, scene: &Scene, view: &View) -> Vec<([P3; 2], Vec<FaceId>, EdgeKind)> {
+        let world = WorldFaces::build(scene);
+        let mut edges = mesh_edges(&world, view, self);
+        edges.extend(intersection_edges(&world, |f| {
+            view.screen.face_is_occluder(f)
+        }));
+        edges
+            .into_iter()
+            .map(|e| (e.ends, e.faces, e.kind))
+            .collect()
     }
 }
 

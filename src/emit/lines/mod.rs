@@ -83,6 +83,30 @@ impl Drawing {
     }
 }
 
+impl Drawing {
+    /// Total screen length of the visible strokes.
+    pub fn visible_length(&self) -> f64 {
+        total_length(&self.visible)
+    }
+}
+
+impl Camera {
+    /// The screen segment (x, y, depth) of the world segment a → b, cut at the near plane
+    /// (perspective) exactly as a drawing cuts it; None when nothing of it is in front.
+    pub fn project_segment(&self, a: &P3, b: &P3) -> Option<[[f64; 3]; 2]> {
+        project_segment_depth(self, a, b)
+    }
+}
+
+impl Visibility {
+    /// The visible parts of the screen segment a → b lying on `faces`, as sorted disjoint
+    /// parameter intervals [t0, t1] of [0, 1]: where it is on the closed visible region of
+    /// any of them (as a drawing clips an edge).
+    pub fn segment_intervals(&self, a: [f64; 2], b: [f64; 2], faces: &[FaceId]) -> Vec<[f64; 2]> {
+        visible_intervals(a, b, faces, self)
+    }
+}
+
 /// The line drawing of a solved view: mesh edges and intersection curves.
 pub fn draw(scene: &Scene, view: &View, vis: &Visibility, opts: &LineOptions) -> Drawing {
     draw_counted(scene, view, vis, opts, &Progress::new())
