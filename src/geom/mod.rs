@@ -5,6 +5,7 @@ pub mod boolean;
 pub mod box3;
 pub mod box_pairs;
 pub mod box_tree;
+pub mod convexity;
 pub mod corners;
 pub mod hull2;
 pub(crate) mod key_hash;

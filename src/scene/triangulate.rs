@@ -1,6 +1,7 @@
 //! Ear-clipping triangulation of a simple polygon in space (used to split non-planar faces).
 
-use crate::geom::poly2::{half_changes, ring_area};
+use crate::geom::convexity::{is_convex_ccw, Strictness};
+use crate::geom::poly2::ring_area;
 use crate::geom::{P3, V3};
 
 /// Polygons of up to this many corners are clipped by the plain search with exact
@@ -60,8 +61,14 @@ pub fn ear_clip_simple(pts: &[P3], normal: &V3) -> Option<Vec<[usize; 3]>> {
 /// projects it, is a strictly convex ring winding the way `normal` says.
 pub fn strictly_convex_face(pts: &[P3], normal: &V3) -> bool {
     let (ax, ay, flip) = projection_axes(normal);
-    let p2: Vec<[f64; 2]> = pts.iter().map(|p| [p[ax], p[ay]]).collect();
-    strictly_convex(&p2, flip)
+    let project = |p: &P3| [p[ax], p[ay]];
+    // Counter-clockwise in projection: reversed where the projection flips.
+    let p2: Vec<[f64; 2]> = if flip {
+        pts.iter().rev().map(project).collect()
+    } else {
+        pts.iter().map(project).collect()
+    };
+    is_convex_ccw(&p2, Strictness::Strict)
 }
 
 /// Coordinate axes to project on (dropping the normal's dominant axis), and whether the
@@ -162,18 +169,16 @@ fn tiles_exactly(p: &[[f64; 2]], tris: &[[usize; 3]], flip: bool) -> bool {
 }
 
 /// Exact: the ring turns strictly the ring's way (left, or right when `flip`) at every
-/// corner and winds once. Each turn is then less than half a turn, so the edge directions
-/// rotate monotonically; they cross the half-plane boundary (direction (1, 0), half-open)
-/// twice per winding, so two changes of half mean one winding: the ring is strictly convex,
-/// and any three of its corners make a proper triangle. Signs of coordinate differences of
-/// floats are exact, so the count is too.
+/// corner and winds once ([`Strictness::Strict`]; a clockwise ring is tested reversed, which
+/// reverses every turn and keeps the winding count). Any three of its corners then make a
+/// proper triangle.
 fn strictly_convex(p: &[[f64; 2]], flip: bool) -> bool {
-    let n = p.len();
-    let want = if flip { -1.0 } else { 1.0 };
-    // Strict turns leave no zero-length edge; reflected (clockwise) rings rotate the other
-    // way, which changes half-plane as often.
-    (0..n).all(|i| orient(p[i], p[(i + 1) % n], p[(i + 2) % n]) * want > 0.0)
-        && half_changes(p) == 2
+    if flip {
+        let back: Vec<[f64; 2]> = p.iter().rev().copied().collect();
+        is_convex_ccw(&back, Strictness::Strict)
+    } else {
+        is_convex_ccw(p, Strictness::Strict)
+    }
 }
 
 /// A triangulation of a strictly convex ring whose triangles are balanced: the triangle of
