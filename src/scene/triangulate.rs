@@ -2,7 +2,7 @@
 
 use crate::geom::convexity::{is_convex_ccw, Strictness};
 use crate::geom::poly2::ring_area;
-use crate::geom::{P3, V3};
+use crate::geom::{orient2d, P3, V3};
 
 /// Polygons of up to this many corners are clipped by the plain search with exact
 /// predicates; larger ones by earcut's ear clipping over a z-order index, near-linear in
@@ -86,19 +86,11 @@ pub fn projection_axes(n: &V3) -> (usize, usize, bool) {
     (ax, ay, n[drop] < 0.0)
 }
 
-fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    robust::orient2d(
-        robust::Coord { x: a[0], y: a[1] },
-        robust::Coord { x: b[0], y: b[1] },
-        robust::Coord { x: c[0], y: c[1] },
-    )
-}
-
 fn find_ear(p: &[[f64; 2]], ring: &[usize]) -> Option<usize> {
     let n = ring.len();
     (0..n).find(|&i| {
         let (a, b, c) = (p[ring[(i + n - 1) % n]], p[ring[i]], p[ring[(i + 1) % n]]);
-        if orient(a, b, c) <= 0.0 {
+        if orient2d(a, b, c) <= 0.0 {
             return false;
         }
         ring.iter().all(|&k| {
@@ -106,7 +98,9 @@ fn find_ear(p: &[[f64; 2]], ring: &[usize]) -> Option<usize> {
             q == a
                 || q == b
                 || q == c
-                || !(orient(a, b, q) >= 0.0 && orient(b, c, q) >= 0.0 && orient(c, a, q) >= 0.0)
+                || !(orient2d(a, b, q) >= 0.0
+                    && orient2d(b, c, q) >= 0.0
+                    && orient2d(c, a, q) >= 0.0)
         })
     })
 }
@@ -122,7 +116,7 @@ fn earcut_checked(p: &[[f64; 2]], flip: bool) -> Option<Vec<[usize; 3]>> {
     let mut sum = 0.0;
     for t in idx.chunks_exact(3) {
         let mut t = [t[0] as usize, t[1] as usize, t[2] as usize];
-        let o = orient(p[t[0]], p[t[1]], p[t[2]]);
+        let o = orient2d(p[t[0]], p[t[1]], p[t[2]]);
         if o * want < 0.0 {
             t.swap(1, 2);
         }
@@ -144,7 +138,7 @@ fn tiles_exactly(p: &[[f64; 2]], tris: &[[usize; 3]], flip: bool) -> bool {
     let want = if flip { -1.0 } else { 1.0 };
     let mut edges: HashMap<(usize, usize), i32> = HashMap::with_capacity(3 * tris.len());
     for t in tris {
-        if orient(p[t[0]], p[t[1]], p[t[2]]) * want <= 0.0 {
+        if orient2d(p[t[0]], p[t[1]], p[t[2]]) * want <= 0.0 {
             return false;
         }
         for k in 0..3 {
@@ -347,10 +341,10 @@ mod tests {
             (flat[0][0] + flat[2][0]) / 2.0,
             (flat[0][1] + flat[2][1]) / 2.0,
         ];
-        let exact_mid = orient(flat[0], flat[1], flat[2]) == 0.0;
+        let exact_mid = orient2d(flat[0], flat[1], flat[2]) == 0.0;
         assert_eq!(
             strictly_convex(&flat, false),
-            !exact_mid && orient(flat[0], flat[1], flat[2]) > 0.0
+            !exact_mid && orient2d(flat[0], flat[1], flat[2]) > 0.0
         );
         // Through ear_clip_simple, seen from either side.
         let pts: Vec<P3> = ring(500, 1)
