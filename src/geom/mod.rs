@@ -8,6 +8,7 @@ pub mod box_tree;
 pub mod convexity;
 pub mod corners;
 pub mod hull2;
+pub mod hull3;
 pub(crate) mod key_hash;
 pub mod normal;
 pub mod poly2;
