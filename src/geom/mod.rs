@@ -7,6 +7,7 @@ pub mod box_pairs;
 pub mod box_tree;
 pub mod convexity;
 pub mod corners;
+pub mod grid;
 pub mod hull2;
 pub mod hull3;
 pub(crate) mod key_hash;
