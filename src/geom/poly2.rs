@@ -1,7 +1,7 @@
 //! Planar polygons in screen space: rings, polygons with holes, multipolygons; their areas,
 //! point location and canonical form.
 
-use super::predicates::{orient2d, winding};
+use super::predicates::winding;
 
 /// A point of the screen plane.
 pub type Pt2 = [f64; 2];
@@ -78,34 +78,6 @@ pub fn locate(m: &MultiPolygon, p: Pt2) -> Side {
     }
 }
 
-/// True when a counter-clockwise ring is convex (no right turn; collinear runs allowed).
-pub fn is_convex_ccw(r: &[Pt2]) -> bool {
-    let n = r.len();
-    (0..n).all(|i| orient2d(r[i], r[(i + 1) % n], r[(i + 2) % n]) >= 0.0) && half_changes(r) <= 2
-}
-
-/// How often the direction of the ring's edges (zero-length edges skipped) passes between
-/// the upper half-turn of directions (y > 0, or y = 0 and x > 0) and the lower one, round
-/// the ring. Exact (signs of differences of floats). A ring that turns one way at every
-/// corner, each turn less than half a turn, winds round once exactly when this is 2: the
-/// edge directions then rotate monotonically and pass each half's boundary once per turn.
-pub fn half_changes(r: &[Pt2]) -> usize {
-    let n = r.len();
-    let mut upper = (0..n).filter_map(|i| {
-        let (a, b) = (r[i], r[(i + 1) % n]);
-        (a != b).then(|| b[1] > a[1] || (b[1] == a[1] && b[0] > a[0]))
-    });
-    let Some(first) = upper.next() else {
-        return 0;
-    };
-    let (mut last, mut changes) = (first, 0);
-    for u in upper {
-        changes += usize::from(u != last);
-        last = u;
-    }
-    changes + usize::from(last != first)
-}
-
 /// Canonical form: every ring starts at its lexicographically smallest point (x, then y),
 /// holes sorted after the outer ring, polygons sorted by their outer ring's start.
 pub fn canonicalize(m: &mut MultiPolygon) {
@@ -155,17 +127,5 @@ mod tests {
         assert_eq!(m[0][0][0], [0., 0.]);
         assert_eq!(m[0][0], vec![[0., 0.], [1., 0.], [1., 1.]]);
         assert_eq!(m[1][0][0], [5., 5.]);
-    }
-
-    #[test]
-    fn convexity() {
-        assert!(is_convex_ccw(&square(0., 0., 1.)));
-        assert!(!is_convex_ccw(&[
-            [0., 0.],
-            [2., 0.],
-            [1., 0.5],
-            [2., 2.],
-            [0., 2.]
-        ]));
     }
 }

@@ -44,7 +44,6 @@ impl Mesh {
 
 #[cfg(test)]
 mod checks;
-mod hull;
 mod orbit;
 mod platonic;
 mod prism;
@@ -83,7 +82,7 @@ fn golden_ratio() -> f64 {
 /// The solid whose vertices are `vertices` (in convex position, centred at the origin): the
 /// facets of their hull, with everything scaled so that edges have unit length.
 fn unit_solid(mut vertices: Vec<P3>) -> PolyMesh {
-    let faces = hull::hull_facets(&vertices);
+    let faces = crate::geom::hull3::hull_facets(&vertices);
     let (a, b) = (faces[0][0] as usize, faces[0][1] as usize);
     let edge = (vertices[a] - vertices[b]).norm();
     for v in &mut vertices {

@@ -1,7 +1,8 @@
 //! Ear-clipping triangulation of a simple polygon in space (used to split non-planar faces).
 
-use crate::geom::poly2::{half_changes, ring_area};
-use crate::geom::{P3, V3};
+use crate::geom::convexity::{is_convex_ccw, Strictness};
+use crate::geom::poly2::ring_area;
+use crate::geom::{orient2d, P3, V3};
 
 /// Polygons of up to this many corners are clipped by the plain search with exact
 /// predicates; larger ones by earcut's ear clipping over a z-order index, near-linear in
@@ -60,8 +61,14 @@ pub fn ear_clip_simple(pts: &[P3], normal: &V3) -> Option<Vec<[usize; 3]>> {
 /// projects it, is a strictly convex ring winding the way `normal` says.
 pub fn strictly_convex_face(pts: &[P3], normal: &V3) -> bool {
     let (ax, ay, flip) = projection_axes(normal);
-    let p2: Vec<[f64; 2]> = pts.iter().map(|p| [p[ax], p[ay]]).collect();
-    strictly_convex(&p2, flip)
+    let project = |p: &P3| [p[ax], p[ay]];
+    // Counter-clockwise in projection: reversed where the projection flips.
+    let p2: Vec<[f64; 2]> = if flip {
+        pts.iter().rev().map(project).collect()
+    } else {
+        pts.iter().map(project).collect()
+    };
+    is_convex_ccw(&p2, Strictness::Strict)
 }
 
 /// Coordinate axes to project on (dropping the normal's dominant axis), and whether the
@@ -79,19 +86,11 @@ pub fn projection_axes(n: &V3) -> (usize, usize, bool) {
     (ax, ay, n[drop] < 0.0)
 }
 
-fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    robust::orient2d(
-        robust::Coord { x: a[0], y: a[1] },
-        robust::Coord { x: b[0], y: b[1] },
-        robust::Coord { x: c[0], y: c[1] },
-    )
-}
-
 fn find_ear(p: &[[f64; 2]], ring: &[usize]) -> Option<usize> {
     let n = ring.len();
     (0..n).find(|&i| {
         let (a, b, c) = (p[ring[(i + n - 1) % n]], p[ring[i]], p[ring[(i + 1) % n]]);
-        if orient(a, b, c) <= 0.0 {
+        if orient2d(a, b, c) <= 0.0 {
             return false;
         }
         ring.iter().all(|&k| {
@@ -99,7 +98,9 @@ fn find_ear(p: &[[f64; 2]], ring: &[usize]) -> Option<usize> {
             q == a
                 || q == b
                 || q == c
-                || !(orient(a, b, q) >= 0.0 && orient(b, c, q) >= 0.0 && orient(c, a, q) >= 0.0)
+                || !(orient2d(a, b, q) >= 0.0
+                    && orient2d(b, c, q) >= 0.0
+                    && orient2d(c, a, q) >= 0.0)
         })
     })
 }
@@ -115,7 +116,7 @@ fn earcut_checked(p: &[[f64; 2]], flip: bool) -> Option<Vec<[usize; 3]>> {
     let mut sum = 0.0;
     for t in idx.chunks_exact(3) {
         let mut t = [t[0] as usize, t[1] as usize, t[2] as usize];
-        let o = orient(p[t[0]], p[t[1]], p[t[2]]);
+        let o = orient2d(p[t[0]], p[t[1]], p[t[2]]);
         if o * want < 0.0 {
             t.swap(1, 2);
         }
@@ -137,7 +138,7 @@ fn tiles_exactly(p: &[[f64; 2]], tris: &[[usize; 3]], flip: bool) -> bool {
     let want = if flip { -1.0 } else { 1.0 };
     let mut edges: HashMap<(usize, usize), i32> = HashMap::with_capacity(3 * tris.len());
     for t in tris {
-        if orient(p[t[0]], p[t[1]], p[t[2]]) * want <= 0.0 {
+        if orient2d(p[t[0]], p[t[1]], p[t[2]]) * want <= 0.0 {
             return false;
         }
         for k in 0..3 {
@@ -162,18 +163,16 @@ fn tiles_exactly(p: &[[f64; 2]], tris: &[[usize; 3]], flip: bool) -> bool {
 }
 
 /// Exact: the ring turns strictly the ring's way (left, or right when `flip`) at every
-/// corner and winds once. Each turn is then less than half a turn, so the edge directions
-/// rotate monotonically; they cross the half-plane boundary (direction (1, 0), half-open)
-/// twice per winding, so two changes of half mean one winding: the ring is strictly convex,
-/// and any three of its corners make a proper triangle. Signs of coordinate differences of
-/// floats are exact, so the count is too.
+/// corner and winds once ([`Strictness::Strict`]; a clockwise ring is tested reversed, which
+/// reverses every turn and keeps the winding count). Any three of its corners then make a
+/// proper triangle.
 fn strictly_convex(p: &[[f64; 2]], flip: bool) -> bool {
-    let n = p.len();
-    let want = if flip { -1.0 } else { 1.0 };
-    // Strict turns leave no zero-length edge; reflected (clockwise) rings rotate the other
-    // way, which changes half-plane as often.
-    (0..n).all(|i| orient(p[i], p[(i + 1) % n], p[(i + 2) % n]) * want > 0.0)
-        && half_changes(p) == 2
+    if flip {
+        let back: Vec<[f64; 2]> = p.iter().rev().copied().collect();
+        is_convex_ccw(&back, Strictness::Strict)
+    } else {
+        is_convex_ccw(p, Strictness::Strict)
+    }
 }
 
 /// A triangulation of a strictly convex ring whose triangles are balanced: the triangle of
@@ -342,10 +341,10 @@ mod tests {
             (flat[0][0] + flat[2][0]) / 2.0,
             (flat[0][1] + flat[2][1]) / 2.0,
         ];
-        let exact_mid = orient(flat[0], flat[1], flat[2]) == 0.0;
+        let exact_mid = orient2d(flat[0], flat[1], flat[2]) == 0.0;
         assert_eq!(
             strictly_convex(&flat, false),
-            !exact_mid && orient(flat[0], flat[1], flat[2]) > 0.0
+            !exact_mid && orient2d(flat[0], flat[1], flat[2]) > 0.0
         );
         // Through ear_clip_simple, seen from either side.
         let pts: Vec<P3> = ring(500, 1)

@@ -6,7 +6,7 @@
 //! - [`boundary`]: section 3's boundary evaluation (corner classification, the four cases).
 //! - [`combos`]: tight bounds and outward simplification from the bounds alone.
 //! - [`hierarchy`]: section 4's hierarchical triboxes and levels of detail.
-//! - [`hull`]: convex hulls, to compare tribox volumes with.
+//! - [`hull`]: convex hulls, to compare tribox volumes with (the one 3D hull, in geom).
 //! - [`interfere`]: exact face-face intersection of objects whose triboxes meet.
 //! - [`collide`]: the same question by walking two object trees at once (paper 002).
 
@@ -15,9 +15,10 @@ pub mod bounds;
 pub mod collide;
 pub mod combos;
 pub mod hierarchy;
-pub mod hull;
 pub mod interfere;
 mod table;
+
+pub use crate::geom::hull3 as hull;
 
 pub use boundary::{Boundary, Case};
 pub use bounds::{Tribox, DIRECTIONS};

@@ -3,6 +3,7 @@
 //! or those of the proven pieces of a mesh that is not a solid as a whole, away from their
 //! caps ([`mod@crate::prepare::solidity::pieces`]).
 
+use crate::geom::grid::{per_side, Cells};
 use crate::geom::{orient2d, orient3d, Rect, P3};
 use crate::scene::Leaf;
 
@@ -81,8 +82,8 @@ impl<'a> BackCull<'a> {
 pub struct CapWindows {
     /// Union of the windows.
     frame: Rect,
-    /// Cells per side.
-    n: usize,
+    /// The grid's cells over the frame.
+    grid: Cells,
     /// Window rectangles.
     rects: Vec<Rect>,
     /// Windows by cell, row-major.
@@ -130,37 +131,31 @@ impl CapWindows {
     /// The grid over `rects`.
     fn binned(rects: Vec<Rect>) -> CapWindows {
         let frame = rects.iter().fold(Rect::EMPTY, |f, r| f.union(r));
-        let n = ((rects.len() as f64).sqrt().ceil() as usize).clamp(1, 64);
+        let grid = Cells::square(&frame, per_side(rects.len() as f64, 64));
         let mut w = CapWindows {
             frame,
-            n,
+            grid,
             rects,
-            cells: vec![Vec::new(); n * n],
+            cells: vec![Vec::new(); grid.len()],
         };
         for (k, r) in w.rects.iter().enumerate() {
-            let ((x0, x1), (y0, y1)) = (w.span(r, 0), w.span(r, 1));
+            let ((x0, y0), (x1, y1)) = w.span(r);
             for y in y0..=y1 {
                 for x in x0..=x1 {
-                    w.cells[y * n + x].push(k as u32);
+                    w.cells[y * grid.nx + x].push(k as u32);
                 }
             }
         }
         w
     }
 
-    /// The cells a rectangle covers along `axis` (clamped to the grid; the cell of a
-    /// coordinate is monotone in it, so two rectangles sharing a point share a cell).
-    fn span(&self, r: &Rect, axis: usize) -> (usize, usize) {
-        let (lo, hi) = (self.frame.bound(axis, false), self.frame.bound(axis, true));
-        let cell = |v: f64| {
-            let t = ((v - lo) / (hi - lo) * self.n as f64).floor();
-            if t.is_nan() {
-                0
-            } else {
-                t.clamp(0.0, (self.n - 1) as f64) as usize
-            }
-        };
-        (cell(r.bound(axis, false)), cell(r.bound(axis, true)))
+    /// The cells a rectangle covers, least and greatest (clamped to the grid; the cell of a
+    /// point is monotone in its coordinates, so two rectangles sharing a point share a cell).
+    fn span(&self, r: &Rect) -> ((usize, usize), (usize, usize)) {
+        (
+            self.grid.coords([r.xmin, r.ymin]),
+            self.grid.coords([r.xmax, r.ymax]),
+        )
     }
 
     /// True when `r` touches some window (closed test).
@@ -168,10 +163,10 @@ impl CapWindows {
         if !self.frame.overlaps_closed(r) {
             return false;
         }
-        let ((x0, x1), (y0, y1)) = (self.span(r, 0), self.span(r, 1));
+        let ((x0, y0), (x1, y1)) = self.span(r);
         (y0..=y1).any(|y| {
             (x0..=x1).any(|x| {
-                self.cells[y * self.n + x]
+                self.cells[y * self.grid.nx + x]
                     .iter()
                     .any(|&k| self.rects[k as usize].overlaps_closed(r))
             })

@@ -1,5 +1,7 @@
 //! Boxes over runs of a long ring's points, to cut the ring down to what matters inside a
 //! window: a 65536-gon against a small face costs the face's neighbourhood, not the ring.
+//! Its own structure, not geom's grid: its boxes bound runs of consecutive points, which the
+//! cut replaces by their chords, and a spatial index of single points cannot say that.
 //!
 //! Why the cut ring is as good as the ring inside the window. A run of consecutive points
 //! whose box is strictly outside the closed window on one side (every box disjoint from a

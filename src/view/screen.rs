@@ -3,7 +3,8 @@
 
 use std::ops::Range;
 
-use crate::geom::poly2::{is_convex_ccw, ring_area, Pt2};
+use crate::geom::convexity::{is_convex_ccw, Strictness};
+use crate::geom::poly2::{ring_area, Pt2};
 use crate::geom::{newell, orient2d, orient3d_refs, Corners, Rect, P3};
 use crate::progress::Progress;
 use crate::scene::{FaceId, Leaf, Scene};
@@ -510,7 +511,7 @@ fn describe(face: FaceId, p: &[[f64; 3]], start: u32, leaf: u32) -> Piece {
         if f.facing == Facing::Back {
             r.reverse();
         }
-        f.convex = is_convex_ccw(&r);
+        f.convex = is_convex_ccw(&r, Strictness::AllowDegenerate);
     }
     f
 }

@@ -17,65 +17,14 @@
 //! where a second layer's boundary crosses F the regions making that part of the boundary are
 //! left out, and the layer in front is tested alone ([`regions_cover`]).
 
-use crate::geom::hull2::has_turn;
+use crate::geom::convexity::{is_convex_ccw, Strictness::AllowCollinear};
 use crate::geom::orient2d;
-use crate::geom::poly2::{half_changes, Pt2};
+use crate::geom::poly2::Pt2;
 
 use super::occlusion::separated_convex;
 
 /// A directed boundary segment, its orientation (+1 as stored, -1 reversed) and its region.
 type Seg = (Pt2, Pt2, i32, u32);
-
-/// True when `r` is a convex counter-clockwise ring with area (exact): it makes a proper
-/// turn and every point lies on the closed left side of every edge.
-///
-/// In O(n): with repeated points dropped, every corner turns left or goes straight on (never
-/// back: a spike is a half turn), some corner turns, and the edge directions wind round once
-/// ([`half_changes`]); the ring then bounds a convex region, which is the closed-left-side
-/// condition (the quadratic definition is the test below's reference).
-pub fn is_convex_ccw_exact(r: &[Pt2]) -> bool {
-    // A triangle: its one orientation (a repeated point makes it 0).
-    if let [a, b, c] = r {
-        return orient2d(*a, *b, *c) > 0.0;
-    }
-    let mut buf = [[0.0; 2]; SHORT];
-    let mut long = Vec::new();
-    let d: &mut [Pt2] = if r.len() <= SHORT {
-        &mut buf[..r.len()]
-    } else {
-        long.resize(r.len(), [0.0; 2]);
-        &mut long
-    };
-    let mut n = 0;
-    for &p in r {
-        if n == 0 || d[n - 1] != p {
-            d[n] = p;
-            n += 1;
-        }
-    }
-    while n > 1 && d[0] == d[n - 1] {
-        n -= 1;
-    }
-    let d = &d[..n];
-    n >= 3
-        && has_turn(d)
-        && (0..n).all(|i| {
-            let (a, b, c) = (d[i], d[(i + 1) % n], d[(i + 2) % n]);
-            let o = orient2d(a, b, c);
-            o > 0.0 || (o == 0.0 && !reverses(a, b, c))
-        })
-        && half_changes(d) == 2
-}
-
-/// Rings up to this length are checked in a buffer on the stack.
-const SHORT: usize = 16;
-
-/// For collinear a, b, c (a ≠ b, b ≠ c): true when c lies back toward a from b (exact: the
-/// signs of coordinate differences along an axis where a and b differ).
-fn reverses(a: Pt2, b: Pt2, c: Pt2) -> bool {
-    let k = if a[0] != b[0] { 0 } else { 1 };
-    (b[k] > a[k]) != (c[k] > b[k])
-}
 
 /// Reusable buffers of the cover test.
 #[derive(Debug, Default)]
@@ -111,10 +60,12 @@ pub fn regions_cover<'a>(
     f: &[Pt2],
     b: &mut CoverScratch,
 ) -> bool {
-    if !is_convex_ccw_exact(f) {
+    if !is_convex_ccw(f, AllowCollinear) {
         return false;
     }
-    let usable: Vec<&[Pt2]> = regions.filter(|r| is_convex_ccw_exact(r)).collect();
+    let usable: Vec<&[Pt2]> = regions
+        .filter(|r| is_convex_ccw(r, AllowCollinear))
+        .collect();
     // A seed: a region whose interior meets F's (for convex rings with area, "not separated").
     // The regions before the first seed are known not to be seeds.
     let is_seed = |k: usize| !separated_convex(usable[k], f);
@@ -251,44 +202,6 @@ mod tests {
     use crate::geom::boolean::subtract;
     use crate::geom::poly2::Ring;
     use crate::geom::Rect;
-
-    /// The definition: a turn, and every point on the closed left side of every edge.
-    fn convex_by_definition(r: &[Pt2]) -> bool {
-        let n = r.len();
-        n >= 3
-            && has_turn(r)
-            && (0..n).all(|i| {
-                let (p, q) = (r[i], r[(i + 1) % n]);
-                p == q || r.iter().all(|&x| orient2d(p, q, x) >= 0.0)
-            })
-    }
-
-    #[test]
-    fn the_linear_convexity_test_agrees_with_the_definition() {
-        let mut rng = crate::geom::rng::XorShift::new(11);
-        let grid =
-            |rng: &mut crate::geom::rng::XorShift| [rng.below(4) as f64, rng.below(4) as f64];
-        let mut agree_convex = 0;
-        for k in 0..20000 {
-            let n = 3 + k % 6;
-            let r: Vec<Pt2> = (0..n).map(|_| grid(&mut rng)).collect();
-            let (fast, slow) = (is_convex_ccw_exact(&r), convex_by_definition(&r));
-            assert_eq!(fast, slow, "{r:?}");
-            agree_convex += usize::from(fast);
-        }
-        assert!(agree_convex > 100, "{agree_convex}");
-        // A pentagram turns left at every corner but winds twice; a spike goes back.
-        let star: Vec<Pt2> = (0..5)
-            .map(|k| {
-                let a = std::f64::consts::TAU * (2 * k) as f64 / 5.0;
-                [a.cos(), a.sin()]
-            })
-            .collect();
-        assert!(!is_convex_ccw_exact(&star) && !convex_by_definition(&star));
-        assert!(!crate::geom::poly2::is_convex_ccw(&star));
-        let spike = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]];
-        assert!(!is_convex_ccw_exact(&spike) && !convex_by_definition(&spike));
-    }
 
     fn covers(regions: &[Ring], f: &[Pt2]) -> bool {
         regions_cover(

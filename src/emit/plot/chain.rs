@@ -2,6 +2,7 @@
 //! greedily (nearest next start, reversal allowed) so that a pen plotter lifts the pen little.
 //! The drawing's own per-object order; pictures refine it across whole layers ([`super::tour`]).
 
+use crate::geom::grid::{per_side, Cells};
 use crate::geom::key_hash::{point_key as key, KeyMap};
 use crate::geom::poly2::Pt2;
 
@@ -95,67 +96,48 @@ pub fn greedy(ends: &[[Pt2; 2]], first: usize) -> Vec<(usize, bool)> {
 
 /// A uniform grid over stroke end points.
 struct Grid {
-    origin: Pt2,
-    cell: f64,
-    n: usize,
+    frame: Cells,
     cells: Vec<Vec<(usize, bool)>>,
 }
 
 impl Grid {
     fn new(ends: &[[Pt2; 2]]) -> Grid {
         let b = crate::geom::Rect::of_points(ends.iter().flatten());
-        let n = ((ends.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
-        let size = b.longer_side();
-        let cell = if size > 0.0 && size.is_finite() {
-            size / n as f64
-        } else {
-            1.0
-        };
+        let frame = Cells::square(&b, per_side(ends.len() as f64, 1024));
         let mut g = Grid {
-            origin: [b.xmin, b.ymin],
-            cell,
-            n,
-            cells: vec![Vec::new(); n * n],
+            frame,
+            cells: vec![Vec::new(); frame.len()],
         };
         for (i, [s, e]) in ends.iter().enumerate() {
-            let c = g.index(*s);
+            let c = g.frame.index(*s);
             g.cells[c].push((i, false));
-            let c = g.index(*e);
+            let c = g.frame.index(*e);
             g.cells[c].push((i, true));
         }
         g
     }
 
-    fn coords(&self, p: Pt2) -> (usize, usize) {
-        let f = |v: f64, o: f64| (((v - o) / self.cell).floor().max(0.0) as usize).min(self.n - 1);
-        (f(p[0], self.origin[0]), f(p[1], self.origin[1]))
-    }
-
-    fn index(&self, p: Pt2) -> usize {
-        let (x, y) = self.coords(p);
-        y * self.n + x
-    }
-
     /// Nearest unused end point: (stroke, true when it is the stroke's end). Entries of used
     /// strokes are dropped lazily.
     fn nearest(&mut self, p: Pt2, ends: &[[Pt2; 2]], used: &[bool]) -> Option<(usize, bool)> {
-        let (cx, cy) = self.coords(p);
+        let (cx, cy) = self.frame.coords(p);
+        let (n, side) = (self.frame.nx, self.frame.cell);
         let mut best: Option<(f64, usize, bool)> = None;
-        for r in 0..self.n {
+        for r in 0..n {
             // Every point in ring r is at least (r - 1) cells away.
             if let Some((d, _, _)) = best {
-                if r > 1 && d < ((r - 1) as f64 * self.cell).powi(2) {
+                if r > 1 && d < ((r - 1) as f64 * side).powi(2) {
                     break;
                 }
             }
             let mut any_cell = false;
-            for y in cy.saturating_sub(r)..=(cy + r).min(self.n - 1) {
-                for x in cx.saturating_sub(r)..=(cx + r).min(self.n - 1) {
+            for y in cy.saturating_sub(r)..=(cy + r).min(n - 1) {
+                for x in cx.saturating_sub(r)..=(cx + r).min(n - 1) {
                     if x.abs_diff(cx) != r && y.abs_diff(cy) != r {
                         continue;
                     }
                     any_cell = true;
-                    let cell = &mut self.cells[y * self.n + x];
+                    let cell = &mut self.cells[y * n + x];
                     cell.retain(|&(i, _)| !used[i]);
                     for &(i, rev) in cell.iter() {
                         let q = ends[i][usize::from(rev)];

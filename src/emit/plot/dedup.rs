@@ -8,6 +8,7 @@
 //! end point, so the pieces meet their neighbours exactly and chain without gaps. A uniform
 //! grid over sampled cells finds candidates, so the work follows the drawing's length.
 
+use crate::geom::grid::{per_side, Cells};
 use crate::geom::poly2::{dist, Pt2};
 use crate::geom::Rect;
 use crate::progress::{Progress, Share, Span};
@@ -157,7 +158,7 @@ impl SegmentIndex {
         // Neighbouring cells' neighbourhoods overlap: each cell is read once, in the order
         // the walk round the cells first meets it (so the segments in the same order).
         self.around.clear();
-        let (nx, ny) = (self.grid.nx, self.grid.ny);
+        let (nx, ny) = (self.grid.frame.nx, self.grid.frame.ny);
         for &c in &self.cells {
             let (x, y) = (c % nx, c / nx);
             for v in y.saturating_sub(1)..=(y + 1).min(ny - 1) {
@@ -245,59 +246,30 @@ fn overlap(a: Pt2, b: Pt2, len: f64, c: Pt2, d: Pt2, eps: f64) -> Option<Cover> 
 /// sampled along it at most half a cell apart, and a query looks at those cells' neighbours
 /// too, so two segments within a fraction of a cell of each other always meet in the grid.
 struct CellGrid {
-    origin: Pt2,
-    cell: f64,
-    nx: usize,
-    ny: usize,
+    frame: Cells,
     cells: Vec<Vec<usize>>,
 }
 
 impl CellGrid {
     fn new(segs: &[[Pt2; 2]]) -> CellGrid {
         let b = Rect::of_points(segs.iter().flatten());
-        let n = ((segs.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
-        let side = b.longer_side();
-        let cell = if side > 0.0 && side.is_finite() {
-            side / n as f64
-        } else {
-            1.0
-        };
-        let count = |w: f64| ((w / cell).ceil() as usize).clamp(1, n);
-        let (nx, ny) = if b.is_empty() {
-            (1, 1)
-        } else {
-            (count(b.width()), count(b.height()))
-        };
+        let frame = Cells::fitted(&b, per_side(segs.len() as f64, 1024));
         CellGrid {
-            origin: if b.is_empty() {
-                [0.0, 0.0]
-            } else {
-                [b.xmin, b.ymin]
-            },
-            cell,
-            nx,
-            ny,
-            cells: vec![Vec::new(); nx * ny],
+            frame,
+            cells: vec![Vec::new(); frame.len()],
         }
-    }
-
-    fn coords(&self, p: Pt2) -> (usize, usize) {
-        let f =
-            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
-        (
-            f(p[0], self.origin[0], self.nx),
-            f(p[1], self.origin[1], self.ny),
-        )
     }
 
     /// Cells of points sampled along a → b at most half a cell apart (sorted, unique).
     fn cells_of(&self, a: Pt2, b: Pt2, out: &mut Vec<usize>) {
         out.clear();
-        let steps = ((2.0 * dist(a, b) / self.cell).ceil() as usize).clamp(1, 1 << 20);
+        let steps = ((2.0 * dist(a, b) / self.frame.cell).ceil() as usize).clamp(1, 1 << 20);
         for s in 0..=steps {
             let t = s as f64 / steps as f64;
-            let (x, y) = self.coords([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
-            out.push(y * self.nx + x);
+            let (x, y) = self
+                .frame
+                .coords([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+            out.push(y * self.frame.nx + x);
         }
         out.sort_unstable();
         out.dedup();

@@ -16,6 +16,7 @@
 //! of moves and kicks. Counting the work done for a progress bar (`plan_counted`) reads
 //! nothing the search decides by.
 
+use crate::geom::grid::{per_side, Cells};
 use crate::geom::poly2::{dist, Pt2};
 use crate::progress::{Progress, Share, Span, Steps};
 
@@ -582,18 +583,9 @@ impl Nearest {
 fn neighbours(ends: &[[Pt2; 2]], span: Span) -> Near {
     let pts: Vec<Pt2> = ends.iter().flatten().copied().collect();
     let b = crate::geom::Rect::of_points(pts.iter());
-    let side = b.longer_side();
-    let g = ((pts.len() as f64 / 2.0).sqrt().ceil() as usize).clamp(1, 2048);
-    let cell = if side > 0.0 && side.is_finite() {
-        side / g as f64
-    } else {
-        1.0
-    };
-    let coord = |v: f64, o: f64| (((v - o) / cell).floor().max(0.0) as usize).min(g - 1);
-    let cell_of: Vec<u32> = pts
-        .iter()
-        .map(|p| (coord(p[1], b.ymin) * g + coord(p[0], b.xmin)) as u32)
-        .collect();
+    let grid = Cells::square(&b, per_side(pts.len() as f64 / 2.0, 2048));
+    let (g, cell) = (grid.nx, grid.cell);
+    let cell_of: Vec<u32> = pts.iter().map(|&p| grid.index(p) as u32).collect();
     // The cells' slots side by side, in slot order within a cell (a counting sort).
     let mut start = vec![0u32; g * g + 1];
     for &c in &cell_of {
@@ -616,7 +608,7 @@ fn neighbours(ends: &[[Pt2; 2]], span: Span) -> Near {
     let searched = span.steps(pts.len());
     for (s, p) in pts.iter().enumerate() {
         searched.tick(s);
-        let (cx, cy) = (coord(p[0], b.xmin), coord(p[1], b.ymin));
+        let (cx, cy) = grid.coords(*p);
         let mut found = Nearest {
             found: [(0.0, 0); NEIGHBOURS],
             len: 0,

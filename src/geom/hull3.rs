@@ -1,9 +1,10 @@
-//! Convex hulls of large point sets (quickhull with conflict lists and exact `orient3d`), to
-//! compare tribox volumes with: the paper's H(S), the tightest convex bound.
+//! The one 3D convex hull (quickhull with conflict lists and exact `orient3d`): its outward
+//! triangles, its volume (tribox's H(S), the tightest convex bound) and its facets as
+//! polygons (the named solids of `primitives`).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
-use crate::geom::{orient3d, P3};
+use crate::geom::{orient3d, P3, V3};
 
 /// A hull triangle: corners counter-clockwise from outside, the neighbour across each edge
 /// (v\[i\], v\[i+1\]), and the points still outside it.
@@ -50,6 +51,88 @@ pub fn hull_volume(points: &[P3]) -> f64 {
         })
         .sum::<f64>()
         / 6.0
+}
+
+/// Points within this fraction of the set's radius of a plane count as lying on it (for
+/// [`hull_facets`]).
+const RELATIVE_TOLERANCE: f64 = 1e-9;
+
+/// The facets of the convex hull of `points`, each a single polygon holding every point on its
+/// plane (within a tolerance relative to the set's radius), counter-clockwise seen from
+/// outside; ordered by their three least point indices.
+///
+/// Meant for the vertex sets of convex uniform solids: every point must be a hull vertex (no
+/// point inside a facet or the solid). Each facet is taken from the plane through its three
+/// least points, so that the coplanar triangles of the exact hull, whose planes differ by
+/// rounding, give one polygon.
+pub fn hull_facets(points: &[P3]) -> Vec<Vec<u32>> {
+    let radius = points.iter().map(|p| p.coords.norm()).fold(0.0, f64::max);
+    let tolerance = RELATIVE_TOLERANCE * radius;
+    let mut triples: Vec<[usize; 3]> = convex_hull(points)
+        .iter()
+        .filter_map(|t| {
+            let (on, _) = supporting_plane(points, t.map(|i| i as usize), tolerance)?;
+            (on.len() >= 3).then(|| [on[0], on[1], on[2]].map(|i| i as usize))
+        })
+        .collect();
+    triples.sort_unstable();
+    triples.dedup();
+    let mut seen = HashSet::new();
+    let mut facets = Vec::new();
+    for triple in triples {
+        let Some((on, outward)) = supporting_plane(points, triple, tolerance) else {
+            continue;
+        };
+        if seen.insert(on.clone()) {
+            facets.push(counter_clockwise(points, on, &outward));
+        }
+    }
+    facets
+}
+
+/// The points on the plane through the three points (in index order) and its outward normal,
+/// if that plane supports the set.
+fn supporting_plane(
+    points: &[P3],
+    [a, b, c]: [usize; 3],
+    tolerance: f64,
+) -> Option<(Vec<u32>, V3)> {
+    let normal = (points[b] - points[a])
+        .cross(&(points[c] - points[a]))
+        .try_normalize(0.0)?;
+    let offset = normal.dot(&points[a].coords);
+    let (mut above, mut below) = (false, false);
+    let mut on_plane = Vec::new();
+    for (i, p) in points.iter().enumerate() {
+        let height = normal.dot(&p.coords) - offset;
+        if height > tolerance {
+            above = true;
+        } else if height < -tolerance {
+            below = true;
+        } else {
+            on_plane.push(i as u32);
+        }
+        if above && below {
+            return None;
+        }
+    }
+    Some((on_plane, if above { -normal } else { normal }))
+}
+
+/// The coplanar `corners` sorted counter-clockwise around their centroid, seen from the side
+/// `outward` points to.
+fn counter_clockwise(points: &[P3], mut corners: Vec<u32>, outward: &V3) -> Vec<u32> {
+    let at = |i: u32| points[i as usize];
+    let sum: V3 = corners.iter().map(|&i| at(i).coords).sum();
+    let centroid = P3::from(sum / corners.len() as f64);
+    let u = at(corners[0]) - centroid;
+    let w = outward.cross(&u);
+    let angle = |i: u32| {
+        let d = at(i) - centroid;
+        w.dot(&d).atan2(u.dot(&d))
+    };
+    corners.sort_by(|&i, &j| angle(i).total_cmp(&angle(j)));
+    corners
 }
 
 /// Four points spanning a volume, ordered so that (0, 1, 2) is counter-clockwise from outside.
@@ -257,6 +340,22 @@ mod tests {
         let ball = 4.0 / 3.0 * std::f64::consts::PI;
         assert!(v < ball && v > 0.99 * ball, "{v}");
         assert_eq!(convex_hull(&pts).len(), 2 * n - 4);
+    }
+
+    #[test]
+    fn cube_facets_are_outward_squares() {
+        let corners: Vec<P3> = (0..8)
+            .map(|i| P3::new((i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64))
+            .collect();
+        let facets = hull_facets(&corners);
+        assert_eq!(facets.len(), 6);
+        let centre = P3::new(0.5, 0.5, 0.5);
+        for facet in &facets {
+            assert_eq!(facet.len(), 4);
+            let p: Vec<P3> = facet.iter().map(|&i| corners[i as usize]).collect();
+            let normal = (p[1] - p[0]).cross(&(p[2] - p[0]));
+            assert!(normal.dot(&(p[0] - centre)) > 0.0, "{facet:?} faces inward");
+        }
     }
 
     #[test]

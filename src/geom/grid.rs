@@ -1,0 +1,116 @@
+//! The cell geometry of uniform grids of square cells in the plane: how many cells, how big,
+//! and which cell a point falls in. The callers keep their own buckets and search orders
+//! (the stroke order of the plot output depends on them).
+
+use super::poly2::Pt2;
+use super::Rect;
+
+/// Square cells of side `cell` from `origin`, `nx` by `ny` of them (row-major index).
+#[derive(Debug, Clone, Copy)]
+pub struct Cells {
+    /// The corner of cell (0, 0).
+    pub origin: Pt2,
+    /// The side of a cell.
+    pub cell: f64,
+    /// Cells along x.
+    pub nx: usize,
+    /// Cells along y.
+    pub ny: usize,
+}
+
+impl Cells {
+    /// `n` by `n` cells over `b`: the side is `b`'s longer side over `n` (1 where that side is
+    /// 0 or not finite), from `b`'s least corner.
+    pub fn square(b: &Rect, n: usize) -> Cells {
+        Cells {
+            origin: [b.xmin, b.ymin],
+            cell: side(b, n),
+            nx: n,
+            ny: n,
+        }
+    }
+
+    /// Cells of [`Cells::square`]'s side over `b`, only as many along each axis as cover `b`
+    /// (one where `b` is empty, from the origin).
+    pub fn fitted(b: &Rect, n: usize) -> Cells {
+        let cell = side(b, n);
+        if b.is_empty() {
+            return Cells {
+                origin: [0.0, 0.0],
+                cell,
+                nx: 1,
+                ny: 1,
+            };
+        }
+        let count = |w: f64| ((w / cell).ceil() as usize).clamp(1, n);
+        Cells {
+            origin: [b.xmin, b.ymin],
+            cell,
+            nx: count(b.width()),
+            ny: count(b.height()),
+        }
+    }
+
+    /// Number of cells.
+    pub fn len(&self) -> usize {
+        self.nx * self.ny
+    }
+
+    /// True when there are no cells.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The cell column and row of `p`, clamped to the grid.
+    #[inline]
+    pub fn coords(&self, p: Pt2) -> (usize, usize) {
+        let f =
+            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
+        (
+            f(p[0], self.origin[0], self.nx),
+            f(p[1], self.origin[1], self.ny),
+        )
+    }
+
+    /// The row-major index of `p`'s cell.
+    #[inline]
+    pub fn index(&self, p: Pt2) -> usize {
+        let (x, y) = self.coords(p);
+        y * self.nx + x
+    }
+}
+
+/// Cells per side for about `items` entries, one a cell: √items rounded up, from 1 to `max`.
+pub fn per_side(items: f64, max: usize) -> usize {
+    (items.sqrt().ceil() as usize).clamp(1, max)
+}
+
+/// The side of `n` cells along `b`'s longer side (1 where that side is 0 or not finite).
+fn side(b: &Rect, n: usize) -> f64 {
+    let size = b.longer_side();
+    if size > 0.0 && size.is_finite() {
+        size / n as f64
+    } else {
+        1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn points_fall_in_their_cells_clamped_to_the_grid() {
+        let b = Rect::of_points([[0.0, 0.0], [4.0, 1.0]].iter());
+        let sq = Cells::square(&b, 4);
+        assert_eq!((sq.cell, sq.len()), (1.0, 16));
+        assert_eq!(sq.coords([2.5, 0.5]), (2, 0));
+        assert_eq!(sq.coords([4.0, 1.0]), (3, 1));
+        assert_eq!(sq.coords([-3.0, 9.0]), (0, 3));
+        let fit = Cells::fitted(&b, 4);
+        assert_eq!((fit.nx, fit.ny), (4, 1));
+        assert_eq!(fit.index([3.5, 1.0]), 3);
+        assert_eq!(per_side(10.0, 1024), 4);
+        assert_eq!(per_side(0.0, 1024), 1);
+    }
+}
