@@ -9,7 +9,7 @@ use crate::scene::cleanup::{cleanup, Origin};
 use crate::scene::{Mesh, Object, Scene};
 
 use super::hierarchy::{Hierarchy, HierarchyOptions};
-use super::hull::hull_volume;
+use crate::geom::hull3::hull_volume;
 
 /// What [`table`] builds.
 #[derive(Debug, Clone, PartialEq)]
