@@ -30,7 +30,12 @@ fn main() {
             println!("{name}: absent, skipped");
             continue;
         }
-        let scene = match kepler_hsr::load::load_scene(&path, &mut Vec::new()) {
+        let scene = match kepler_hsr::load::load_scene(
+            &path,
+            &kepler_hsr::LoadOptions::default(),
+            &mut Vec::new(),
+            &kepler_hsr::Progress::default(),
+        ) {
             Ok(s) => s,
             Err(e) => {
                 println!("{name}: {e}");

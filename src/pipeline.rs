@@ -36,7 +36,7 @@ pub struct RenderOptions {
     /// Replace small objects by their triboxes first ("model no more than a scene needs").
     pub lod: Option<LodOptions>,
     /// The object tree the substitutes of `lod` are prepared with (the caller prepares the
-    /// scene itself: [`crate::prepare::prepare_with`]); None: the default choice.
+    /// scene itself: [`crate::prepare()`]); None: the default choice.
     pub hierarchy: Option<HierarchyKind>,
 }
 
@@ -176,61 +176,56 @@ impl Rendered<'_> {
 /// Renders `scene` (loaded, and best prepared: without INBOXes nothing is culled, the result
 /// is the same) from `camera`.
 ///
-/// ```
-/// use kepler_hsr::{load_scene, render, Camera, Outputs, RenderOptions};
-///
-/// let scene = load_scene("scenes/polyhedra.kdl".as_ref(), &mut Vec::new()).unwrap();
-/// let outputs = Outputs { json: true, ..Outputs::default() };
-/// let r = render(&scene, &Camera::three_quarter(), &RenderOptions { outputs, ..Default::default() }).unwrap();
-/// assert!(r.json.unwrap().starts_with("{\"format\":\"kepler-visible/1\""));
-/// ```
-pub fn render<'s>(scene: &'s Scene, camera: &Camera, opts: &RenderOptions) -> Result<Rendered<'s>> {
-    render_with(scene, camera, opts, None)
-}
-
-/// [`render`], reporting its stages, their phases and their counts to `progress` as it
-/// goes ([`Progress::phases`] lists them afterwards). The result is the same with or
-/// without it.
-///
+/// Its stages, their phases and their counts go to `progress` as it goes
+/// ([`Progress::phases`] lists them afterwards); the result is the same whatever watches it.
 /// The emit stage writes the JSON and builds the picture side by side, and the progress
 /// shows one phase at a time: the JSON's ([`Phase::Json`], faces) first, then the picture's
 /// ([`Phase::Dedup`] and [`Phase::Join`] by segments, [`Phase::Order`] by strokes) from the
 /// moment the JSON is done, the phase the picture is in then counted from there with what it
 /// has left (so its rate and time left are those of the work still to do). A picture that is
 /// done before the JSON does not show; without JSON, its phases show from the start.
-pub fn render_with<'s>(
+///
+/// ```
+/// use kepler_hsr::{load_scene, render, Camera, LoadOptions, Outputs, Progress, RenderOptions};
+///
+/// let path = "scenes/polyhedra.kdl".as_ref();
+/// let scene = load_scene(path, &LoadOptions::default(), &mut Vec::new(), &Progress::default()).unwrap();
+/// let outputs = Outputs { json: true, ..Outputs::default() };
+/// let opts = RenderOptions { outputs, ..Default::default() };
+/// let r = render(&scene, &Camera::three_quarter(), &opts, &Progress::default()).unwrap();
+/// assert!(r.json.unwrap().starts_with("{\"format\":\"kepler-visible/1\""));
+/// ```
+pub fn render<'s>(
     scene: &'s Scene,
     camera: &Camera,
     opts: &RenderOptions,
-    progress: Option<&Progress>,
+    progress: &Progress,
 ) -> Result<Rendered<'s>> {
-    render_json_to(scene, camera, opts, progress, None)
+    render_json_to(scene, camera, opts, None, progress)
 }
 
-/// [`render_with`], the JSON (when `opts.outputs.json`) written to `json` as it is made
-/// instead of kept in [`Rendered::json`]: the text of a big scene (over a gigabyte at ten
-/// million faces) is never held whole. The bytes are those [`render_with`] keeps. A write
-/// that fails ends the render with [`Error::Write`].
+/// [`render`], the JSON (when `opts.outputs.json`) written to `json` as it is made instead
+/// of kept in [`Rendered::json`]: the text of a big scene (over a gigabyte at ten million
+/// faces) is never held whole. The bytes are those [`render`] keeps. A write that fails
+/// ends the render with [`Error::Write`].
 pub fn render_to<'s>(
     scene: &'s Scene,
     camera: &Camera,
     opts: &RenderOptions,
-    progress: Option<&Progress>,
-    json: &mut (dyn Write + Send),
+    json: &mut dyn Write,
+    progress: &Progress,
 ) -> Result<Rendered<'s>> {
-    render_json_to(scene, camera, opts, progress, Some(json))
+    render_json_to(scene, camera, opts, Some(json), progress)
 }
 
-/// [`render_with`] and [`render_to`]: the JSON kept (`json` None) or written to `json`.
+/// [`render`] and [`render_to`]: the JSON kept (`json` None) or written to `json`.
 fn render_json_to<'s>(
     scene: &'s Scene,
     camera: &Camera,
     opts: &RenderOptions,
-    progress: Option<&Progress>,
-    json: Option<&mut (dyn Write + Send)>,
+    json: Option<&mut dyn Write>,
+    progress: &Progress,
 ) -> Result<Rendered<'s>> {
-    let sink = Progress::new();
-    let progress = progress.unwrap_or(&sink);
     let mut stats = RenderStats::default();
     let scene = match &opts.lod {
         Some(lod) => {
@@ -241,7 +236,7 @@ fn render_json_to<'s>(
                 hierarchy: opts.hierarchy,
             };
             stats.timed(Stage::Prepare, || {
-                crate::prepare::prepare_counted(&mut s, &prep, Some(progress))
+                crate::prepare::prepare(&mut s, &prep, progress)
             });
             Cow::Owned(s)
         }
@@ -314,30 +309,31 @@ fn render_json_to<'s>(
     };
     stats.timed(Stage::Emit, || -> Result<()> {
         // The JSON and the picture (with its SVG and PNG) read the same solved view: made
-        // side by side.
-        let (kept, pic) = rayon::join(
-            || {
-                let kept = match (out.json, json) {
-                    (false, _) => Ok(None),
-                    (true, None) => Ok(Some(r.to_json_counted(out.json_lines, progress))),
-                    (true, Some(w)) => r
-                        .write_json_counted(out.json_lines, w, progress)
-                        .map(|()| None),
-                };
-                lane.release();
-                kept
-            },
-            || -> Result<_> {
-                if !pictures {
-                    return Ok(None);
-                }
-                let pic = r.picture_counted(&out.picture, &lane)?;
-                let svg = out.svg.then(|| to_svg_counted(&pic, &lane));
-                let (size, dpi) = (out.picture.size, out.picture.dpi);
-                let png = out.png.then(|| to_png_counted(&pic, size, dpi, &lane));
-                Ok(Some((pic.stats, svg, png.transpose()?)))
-            },
-        );
+        // side by side, the picture on the pool, the JSON here (its writer need not be
+        // `Send`).
+        let mut pic = Ok(None);
+        let kept = rayon::in_place_scope(|s| {
+            if pictures {
+                let (r, lane, pic) = (&r, &lane, &mut pic);
+                s.spawn(move |_| {
+                    *pic = r.picture_counted(&out.picture, lane).and_then(|pic| {
+                        let svg = out.svg.then(|| to_svg_counted(&pic, lane));
+                        let (size, dpi) = (out.picture.size, out.picture.dpi);
+                        let png = out.png.then(|| to_png_counted(&pic, size, dpi, lane));
+                        Ok(Some((pic.stats, svg, png.transpose()?)))
+                    });
+                });
+            }
+            let kept = match (out.json, json) {
+                (false, _) => Ok(None),
+                (true, None) => Ok(Some(r.to_json_counted(out.json_lines, progress))),
+                (true, Some(w)) => r
+                    .write_json_counted(out.json_lines, w, progress)
+                    .map(|()| None),
+            };
+            lane.release();
+            kept
+        });
         r.json = kept?;
         if let Some((stats, svg, png)) = pic? {
             (r.svg, r.png, plot) = (svg, png, Some(stats));
@@ -354,8 +350,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn render_to_writes_the_bytes_render_with_keeps() {
-        let scene = crate::load_scene("scenes/town.kdl".as_ref(), &mut Vec::new()).unwrap();
+    fn render_to_writes_the_bytes_render_keeps() {
+        let path = "scenes/town.kdl".as_ref();
+        let scene = crate::load_scene(
+            path,
+            &Default::default(),
+            &mut Vec::new(),
+            &Progress::default(),
+        )
+        .unwrap();
         let opts = RenderOptions {
             outputs: Outputs {
                 json: true,
@@ -365,15 +368,16 @@ mod tests {
             ..RenderOptions::default()
         };
         let camera = Camera::three_quarter();
-        let kept = render_with(&scene, &camera, &opts, None).unwrap();
+        let none = Progress::default();
+        let kept = render(&scene, &camera, &opts, &none).unwrap();
         let mut w: Vec<u8> = Vec::new();
-        let written = render_to(&scene, &camera, &opts, None, &mut w).unwrap();
+        let written = render_to(&scene, &camera, &opts, &mut w, &none).unwrap();
         assert_eq!(written.json, None);
         assert_eq!(Some(String::from_utf8(w).unwrap()), kept.json);
         assert_eq!(written.svg, kept.svg);
         // A writer that takes nothing ends the render with the write's error.
         let mut full: &mut [u8] = &mut [];
-        let e = render_to(&scene, &camera, &opts, None, &mut full).unwrap_err();
+        let e = render_to(&scene, &camera, &opts, &mut full, &none).unwrap_err();
         assert!(matches!(e, Error::Write(_)), "{e}");
     }
 }

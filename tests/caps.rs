@@ -38,7 +38,11 @@ fn open_box(h: f64) -> Mesh {
 
 fn prepared(s: &Scene) -> Scene {
     let mut p = s.clone();
-    kepler_hsr::prepare::prepare(&mut p);
+    kepler_hsr::prepare::prepare(
+        &mut p,
+        &kepler_hsr::PrepareOptions::default(),
+        &kepler_hsr::Progress::default(),
+    );
     p
 }
 

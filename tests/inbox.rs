@@ -383,7 +383,7 @@ fn assert_same_visibility(mut scene: Scene, camera: Camera, expect_pruning: bool
             outputs,
             ..RenderOptions::default()
         };
-        render(&scene, &camera, &opts).unwrap()
+        render(&scene, &camera, &opts, &kepler_hsr::Progress::default()).unwrap()
     };
     let (culled, full) = (json(false), json(true));
     let (with, without) = (&culled.visibility, &full.visibility);

@@ -183,7 +183,11 @@ fn random_closed_solids() {
     for _ in 0..3 {
         let mut s = random_solids(&mut rng, 14);
         // Prepared: each primitive is proven solid, so its back faces are culled.
-        kepler_hsr::prepare::prepare(&mut s);
+        kepler_hsr::prepare::prepare(
+            &mut s,
+            &kepler_hsr::PrepareOptions::default(),
+            &kepler_hsr::Progress::default(),
+        );
         for (ci, cam) in cameras(&mut rng, P3::new(1.0, 1.0, 1.0))
             .into_iter()
             .enumerate()
@@ -260,7 +264,13 @@ fn shared_meshes_from_several_views() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let s = kepler_hsr::load::load_scene(&path, &mut Vec::new()).unwrap();
+        let s = kepler_hsr::load::load_scene(
+            &path,
+            &kepler_hsr::LoadOptions::default(),
+            &mut Vec::new(),
+            &kepler_hsr::Progress::default(),
+        )
+        .unwrap();
         let b = s.cbox();
         let c = b.center();
         let r = (b.hi - b.lo).norm();

@@ -42,7 +42,13 @@ fn model(name: &str) -> Option<PathBuf> {
 }
 
 fn load(path: &std::path::Path) -> Scene {
-    kepler_hsr::load::load_scene(path, &mut Vec::new()).unwrap()
+    kepler_hsr::load::load_scene(
+        path,
+        &kepler_hsr::LoadOptions::default(),
+        &mut Vec::new(),
+        &kepler_hsr::Progress::default(),
+    )
+    .unwrap()
 }
 
 /// Icosphere: an icosahedron subdivided `n` times, pushed onto the unit sphere.
@@ -277,7 +283,11 @@ fn example_drawings_have_no_zero_length_strokes() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes");
     for name in ["assembly", "town", "polyhedra"] {
         let mut scene = load(&root.join(format!("{name}.kdl")));
-        kepler_hsr::prepare(&mut scene);
+        kepler_hsr::prepare(
+            &mut scene,
+            &kepler_hsr::PrepareOptions::default(),
+            &kepler_hsr::Progress::default(),
+        );
         let camera = Camera::for_scene(&scene, &CameraRequest::default()).unwrap();
         let opts = RenderOptions {
             lines: LineOptions {
@@ -290,7 +300,7 @@ fn example_drawings_have_no_zero_length_strokes() {
             },
             ..Default::default()
         };
-        let r = render(&scene, &camera, &opts).unwrap();
+        let r = render(&scene, &camera, &opts, &kepler_hsr::Progress::default()).unwrap();
         let d = r.drawing.as_ref().expect("drawing asked for");
         assert!(!d.visible.is_empty(), "{name}");
         for s in d.visible.iter().chain(&d.hidden) {

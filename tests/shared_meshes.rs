@@ -44,8 +44,18 @@ fn shared_meshes_emit_valid_rings_and_stroke_each_line_once() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let mut scene = kepler_hsr::load_scene(&path, &mut Vec::new()).unwrap();
-        kepler_hsr::prepare(&mut scene);
+        let mut scene = kepler_hsr::load_scene(
+            &path,
+            &kepler_hsr::LoadOptions::default(),
+            &mut Vec::new(),
+            &kepler_hsr::Progress::default(),
+        )
+        .unwrap();
+        kepler_hsr::prepare(
+            &mut scene,
+            &kepler_hsr::PrepareOptions::default(),
+            &kepler_hsr::Progress::default(),
+        );
         let cam = Camera::orthographic(V3::new(-1., -2., -3.), V3::y()).unwrap();
         let opts = RenderOptions {
             lines: LineOptions {
@@ -61,7 +71,7 @@ fn shared_meshes_emit_valid_rings_and_stroke_each_line_once() {
             },
             ..RenderOptions::default()
         };
-        let r = render(&scene, &cam, &opts).unwrap();
+        let r = render(&scene, &cam, &opts, &kepler_hsr::Progress::default()).unwrap();
         let mut bad = Vec::new();
         for (id, f) in r.visibility.iter() {
             for d in multipolygon_defects(&f.visible) {
@@ -102,7 +112,13 @@ fn teapot_seams_merge_and_leave_only_real_borders() {
     let Some(path) = model("teapot.obj") else {
         return;
     };
-    let scene = kepler_hsr::load_scene(&path, &mut Vec::new()).unwrap();
+    let scene = kepler_hsr::load_scene(
+        &path,
+        &kepler_hsr::LoadOptions::default(),
+        &mut Vec::new(),
+        &kepler_hsr::Progress::default(),
+    )
+    .unwrap();
     let mesh = scene.leaves()[0].mesh;
     let mut uses: HashMap<(u32, u32), usize> = HashMap::new();
     for f in &mesh.faces {

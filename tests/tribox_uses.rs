@@ -271,7 +271,13 @@ fn shared_meshes_tribox_between_hull_and_cbox() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let scene: Scene = kepler_hsr::load::load_scene(&p, &mut Vec::new()).unwrap();
+        let scene: Scene = kepler_hsr::load::load_scene(
+            &p,
+            &kepler_hsr::LoadOptions::default(),
+            &mut Vec::new(),
+            &kepler_hsr::Progress::default(),
+        )
+        .unwrap();
         let pts: Vec<P3> = scene
             .leaves()
             .iter()

@@ -414,7 +414,11 @@ fn time_accuracy(
 ) -> Result<Vec<AccuracyRow>> {
     bar.update(*done, &format!("{} exact reference", case.name));
     let mut scene = case.load()?;
-    kepler_hsr::prepare::prepare(&mut scene);
+    kepler_hsr::prepare::prepare(
+        &mut scene,
+        &kepler_hsr::PrepareOptions::default(),
+        &kepler_hsr::Progress::default(),
+    );
     let camera = ViewKind::ThreeQuarter.camera(&scene)?;
     let reference = Reference::new(&scene, camera);
     let check = accuracy::union_residual(&reference);

@@ -11,8 +11,8 @@ use kepler_hsr::geom::V3;
 use kepler_hsr::scene::{CameraSpec, Scene};
 use kepler_hsr::view::{turntable, turntable_frame};
 use kepler_hsr::{
-    render_to, render_with, Camera, EdgeOptions, EdgeSet, LineOptions, Outputs, Progress,
-    RenderOptions, Rendered, Stage,
+    render, render_to, Camera, EdgeOptions, EdgeSet, LineOptions, Outputs, Progress, RenderOptions,
+    Rendered, Stage,
 };
 
 use super::camera_args::parse_vec3;
@@ -153,12 +153,11 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     let mut warnings = Vec::new();
     let (scene, load, prepare) = follow(&progress, start, PROGRESS_AFTER, || -> Result<_> {
         let t = Instant::now();
-        let mut scene =
-            kepler_hsr::load_scene_counted(&a.scene, load_opts, &mut warnings, Some(&progress))?;
+        let mut scene = kepler_hsr::load_scene(&a.scene, load_opts, &mut warnings, &progress)?;
         let load = t.elapsed();
         let t = Instant::now();
         let prep = a.hierarchy.prepare();
-        kepler_hsr::prepare::prepare_counted(&mut scene, &prep, Some(&progress));
+        kepler_hsr::prepare::prepare(&mut scene, &prep, &progress);
         if scene.face_count() >= crate::memory::TRIM_ABOVE_FACES {
             crate::memory::trim();
         }
@@ -184,8 +183,8 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
             .map(|p| Staged::create(&name(p)))
             .transpose()?;
         let r = follow(&progress, start, PROGRESS_AFTER, || match json.as_mut() {
-            Some(f) => render_to(&scene, camera, &opts, Some(&progress), f),
-            None => render_with(&scene, camera, &opts, Some(&progress)),
+            Some(f) => render_to(&scene, camera, &opts, f, &progress),
+            None => render(&scene, camera, &opts, &progress),
         })
         .map_err(|e| match (e, &json) {
             (kepler_hsr::Error::Write(e), Some(f)) => f.named(e),

@@ -275,7 +275,11 @@ fn render_svg(parts: &[(String, PolyMesh)], original: &Scene, a: &TriboxArgs) ->
     let mut scene = Scene::new(Object::group("", objs), original.source.clone());
     scene.camera = original.camera.clone();
     let camera = a.camera.camera(&scene)?;
-    kepler_hsr::prepare(&mut scene);
+    kepler_hsr::prepare(
+        &mut scene,
+        &kepler_hsr::PrepareOptions::default(),
+        &kepler_hsr::Progress::default(),
+    );
     let opts = RenderOptions {
         lines: LineOptions {
             edges: EdgeOptions {
@@ -295,7 +299,11 @@ fn render_svg(parts: &[(String, PolyMesh)], original: &Scene, a: &TriboxArgs) ->
         },
         ..RenderOptions::default()
     };
-    Ok(render(&scene, &camera, &opts)?.svg.unwrap_or_default())
+    Ok(
+        render(&scene, &camera, &opts, &kepler_hsr::Progress::default())?
+            .svg
+            .unwrap_or_default(),
+    )
 }
 
 /// `kepler query --interfere`: the pairs of objects whose triboxes meet, each with whether

@@ -267,7 +267,13 @@ mod tests {
             .into_iter()
             .map(|name| {
                 let path = format!("scenes/{name}.kdl");
-                let scene = crate::load_scene(path.as_ref(), &mut Vec::new()).unwrap();
+                let scene = crate::load_scene(
+                    path.as_ref(),
+                    &crate::LoadOptions::default(),
+                    &mut Vec::new(),
+                    &crate::Progress::default(),
+                )
+                .unwrap();
                 let scene: &'static crate::Scene = Box::leak(Box::new(scene));
                 let opts = crate::RenderOptions {
                     lines: crate::LineOptions {
@@ -280,7 +286,13 @@ mod tests {
                     },
                     ..Default::default()
                 };
-                crate::render(scene, &crate::Camera::three_quarter(), &opts).unwrap()
+                crate::render(
+                    scene,
+                    &crate::Camera::three_quarter(),
+                    &opts,
+                    &crate::Progress::default(),
+                )
+                .unwrap()
             })
             .collect()
     }

@@ -329,7 +329,11 @@ mod tests {
         let raw = crate::geom::PolyMesh::new(pts, faces);
         let root = Object::group("", vec![crate::scene::testing::leaf("two", &raw)]);
         let mut scene = Scene::new(root, "t".into());
-        crate::prepare::prepare(&mut scene);
+        crate::prepare::prepare(
+            &mut scene,
+            &crate::PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
         scene
     }
 

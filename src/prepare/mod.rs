@@ -34,26 +34,16 @@ pub struct PrepareOptions {
     pub hierarchy: Option<HierarchyKind>,
 }
 
-/// The prepare stage for a whole scene with the default options.
-pub fn prepare(scene: &mut Scene) {
-    prepare_with(scene, &PrepareOptions::default());
-}
-
 /// The prepare stage for a whole scene: every mesh's solidity (once per prototype), INBOXes
 /// for every object lacking one, and an object tree for every large leaf mesh. A scene of one
 /// leaf object gets no inboxes: an inbox prunes only other objects, so there is nothing for it
 /// to do ("model no more than a scene needs").
-pub fn prepare_with(scene: &mut Scene, opts: &PrepareOptions) {
-    prepare_counted(scene, opts, None);
-}
-
-/// [`prepare_with`], reporting where it is to `progress` (stage [`crate::Stage::Prepare`]):
-/// the phases [`crate::Phase::Solidity`], [`crate::Phase::Inboxes`] and
-/// [`crate::Phase::Trees`], each counting the faces of the meshes it handles (a shared
-/// prototype's once). The prepared scene is the same with or without it.
-pub fn prepare_counted(scene: &mut Scene, opts: &PrepareOptions, progress: Option<&Progress>) {
-    let sink = Progress::new();
-    let progress = progress.unwrap_or(&sink);
+///
+/// Where it is goes to `progress` (stage [`crate::Stage::Prepare`]): the phases
+/// [`crate::Phase::Solidity`], [`crate::Phase::Inboxes`] and [`crate::Phase::Trees`], each
+/// counting the faces of the meshes it handles (a shared prototype's once). The prepared
+/// scene is the same whatever watches it.
+pub fn prepare(scene: &mut Scene, opts: &PrepareOptions, progress: &Progress) {
     solidity::mark_solids_counted(&mut scene.root, progress);
     let several = has_two_leaves(&scene.root);
     if several {

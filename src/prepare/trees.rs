@@ -187,7 +187,7 @@ mod tests {
     use super::*;
     use crate::geom::{PolyMesh, V3};
     use crate::pipeline::{render, Outputs, RenderOptions};
-    use crate::prepare::{prepare_with, PrepareOptions};
+    use crate::prepare::{prepare, PrepareOptions};
     use crate::scene::testing::leaf;
     use crate::scene::Scene;
     use crate::tribox::interfere::{interfere_with, Method};
@@ -241,11 +241,12 @@ mod tests {
 
     fn prepared(kind: HierarchyKind) -> Scene {
         let mut s = spheres();
-        prepare_with(
+        prepare(
             &mut s,
             &PrepareOptions {
                 hierarchy: Some(kind),
             },
+            &crate::Progress::default(),
         );
         s
     }
@@ -264,7 +265,11 @@ mod tests {
         assert!(leaf_trees(&median).iter().all(Option::is_none));
         // By default a mesh drawn once keeps the per-view median split.
         let mut auto = spheres();
-        prepare_with(&mut auto, &PrepareOptions::default());
+        prepare(
+            &mut auto,
+            &PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
         assert!(leaf_trees(&auto).iter().all(Option::is_none));
         let json = |s: &Scene| {
             let outputs = Outputs {
@@ -279,6 +284,7 @@ mod tests {
                     outputs,
                     ..Default::default()
                 },
+                &crate::Progress::default(),
             )
             .unwrap();
             assert!(r.stats.counters.nodes_visited > 0);
@@ -307,11 +313,12 @@ mod tests {
         let mut two = sphere(12, 1.0, V3::zeros());
         two.append(&sphere(12, 1.0, V3::new(10., 0., 0.)));
         let mut s = Scene::new(Object::group("", vec![leaf("two", &two)]), "t".into());
-        prepare_with(
+        prepare(
             &mut s,
             &PrepareOptions {
                 hierarchy: Some(HierarchyKind::Simplify),
             },
+            &crate::Progress::default(),
         );
         let cam = Camera::three_quarter();
         let (out, stats) =
@@ -323,11 +330,12 @@ mod tests {
         assert!(sub.vertices().iter().all(|v| v.x < 1.5 || v.x > 8.5));
         // Without a tree: one tribox.
         let mut bare = Scene::new(Object::group("", vec![leaf("two", &two)]), "t".into());
-        prepare_with(
+        prepare(
             &mut bare,
             &PrepareOptions {
                 hierarchy: Some(HierarchyKind::Median),
             },
+            &crate::Progress::default(),
         );
         let (_, one) =
             crate::view::substitute(&bare, &cam, &crate::view::LodOptions::new(1e9, 100));

@@ -303,7 +303,11 @@ mod tests {
     #[test]
     fn a_box_behind_the_wall_is_hidden_and_later_faces_keep_their_ids() {
         let mut scene = warped_scene();
-        crate::prepare::prepare(&mut scene);
+        crate::prepare::prepare(
+            &mut scene,
+            &crate::PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
         let camera = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
         let cull = Cull::new(&scene, &camera);
         assert_eq!(cull.hidden.len(), 1);

@@ -482,7 +482,11 @@ mod tests {
     fn faces_and_pieces_are_told_apart() {
         let mut scene = warped_scene();
         // Prepared: the wall is a proven solid, so its back faces are culled.
-        crate::prepare::prepare(&mut scene);
+        crate::prepare::prepare(
+            &mut scene,
+            &crate::PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
         let camera = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
         let sf = ScreenFaces::build(&scene, &camera);
         // The bent quad is one face but two planar pieces: every later face's piece is one on.

@@ -83,7 +83,8 @@ pub(crate) fn run(scene: &Scene, camera: Camera) -> (View, Visibility) {
         no_inbox: true,
         ..RenderOptions::default()
     };
-    let r = render(scene, &camera, &opts).expect("in-memory render");
+    let r =
+        render(scene, &camera, &opts, &kepler_hsr::Progress::default()).expect("in-memory render");
     (View::new(scene, camera), r.visibility)
 }
 
@@ -97,7 +98,8 @@ pub(crate) fn drawing(scene: &Scene, camera: Camera, lines: LineOptions) -> (Vie
         },
         ..RenderOptions::default()
     };
-    let r = render(scene, &camera, &opts).expect("in-memory render");
+    let r =
+        render(scene, &camera, &opts, &kepler_hsr::Progress::default()).expect("in-memory render");
     (
         View::new(scene, camera),
         r.drawing.expect("drawing asked for"),
