@@ -30,6 +30,7 @@
 //! [`visibility::visobj()`], [`visibility::include()`], CBOX and INBOX ([`scene::Object`]),
 //! [`tribox`].
 
+mod count;
 pub mod emit;
 pub mod error;
 pub mod exact;

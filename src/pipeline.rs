@@ -6,13 +6,14 @@ use std::borrow::Cow;
 use std::io::Write;
 use std::time::{Duration, Instant};
 
-use crate::emit::json::{to_json_counted, write_json_counted};
-use crate::emit::lines::{draw_counted, Drawing, LineOptions};
+use crate::count::Count;
+use crate::emit::json::{to_json, write_json};
+use crate::emit::lines::{draw, Drawing, LineOptions};
 use crate::emit::marks::face_marks;
 use crate::emit::picture::{Picture, PlotStats};
-use crate::emit::plot::picture_counted;
-use crate::emit::png::to_png_counted;
-use crate::emit::svg::to_svg_counted;
+use crate::emit::plot::picture;
+use crate::emit::png::to_png;
+use crate::emit::svg::to_svg;
 use crate::error::{Error, Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
 use crate::progress::{Lane, Phase};
@@ -20,7 +21,7 @@ pub use crate::progress::{Progress, Stage};
 use crate::scene::Scene;
 use crate::view::{substitute, Camera, Cull, LodOptions, LodStats, View};
 use crate::visibility::empty::why_empty;
-use crate::visibility::{solve_counted, Counters, PassOptions, Visibility};
+use crate::visibility::{solve, Counters, PassOptions, Visibility};
 
 /// What to render and how.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -125,52 +126,38 @@ impl Rendered<'_> {
     /// The `kepler-visible/1` JSON of the visible regions, with the drawing's polylines
     /// when `lines` (and a drawing was made).
     pub fn to_json(&self, lines: bool) -> String {
-        self.to_json_counted(lines, &Progress::new())
-    }
-
-    /// [`Rendered::to_json`], counting the faces written in `progress`.
-    fn to_json_counted(&self, lines: bool, progress: &Progress) -> String {
         let lines = self.drawing.as_ref().filter(|_| lines).map(Drawing::lines);
-        to_json_counted(&self.view, &self.visibility, lines.as_ref(), progress)
+        to_json(&self.view, &self.visibility, lines.as_ref(), Count::NONE)
     }
 
     /// [`Rendered::to_json`] written to `w` as it is made, never held whole.
     pub fn write_json(&self, lines: bool, w: &mut dyn Write) -> Result<()> {
-        self.write_json_counted(lines, w, &Progress::new())
-    }
-
-    /// [`Rendered::write_json`], counting the faces written in `progress`.
-    fn write_json_counted(
-        &self,
-        lines: bool,
-        w: &mut dyn Write,
-        progress: &Progress,
-    ) -> Result<()> {
         let lines = self.drawing.as_ref().filter(|_| lines).map(Drawing::lines);
-        write_json_counted(&self.view, &self.visibility, lines.as_ref(), w, progress)
+        write_json(&self.view, &self.visibility, lines.as_ref(), w, Count::NONE)
             .map_err(Error::Write)
     }
 
-    /// The picture both SVG and PNG draw (texture markings included).
-    pub fn picture(&self, opts: &PictureOptions) -> Result<Picture> {
-        self.picture_counted(opts, &Lane::open(&Progress::new()))
+    /// The picture both SVG and PNG draw (texture markings included), its phases going to
+    /// `progress`.
+    pub fn picture(&self, opts: &PictureOptions, progress: &Progress) -> Result<Picture> {
+        picture_of(self, opts, &Lane::open(progress))
     }
+}
 
-    /// [`Rendered::picture`], its phases entered and counted in `lane`.
-    fn picture_counted(&self, opts: &PictureOptions, lane: &Lane) -> Result<Picture> {
-        let empty = Drawing::default();
-        let drawing = self.drawing.as_ref().unwrap_or(&empty);
-        let marks = face_marks(&self.scene, &self.view, &self.visibility);
-        picture_counted(
-            &self.scene,
-            &self.view,
-            &self.visibility,
-            drawing,
-            &marks,
-            opts,
-            lane,
-        )
-    }
+/// The picture of `r`, its phases entered and counted in `lane`.
+fn picture_of(r: &Rendered, opts: &PictureOptions, lane: &Lane) -> Result<Picture> {
+    let empty = Drawing::default();
+    let drawing = r.drawing.as_ref().unwrap_or(&empty);
+    let marks = face_marks(&r.scene, &r.view, &r.visibility);
+    picture(
+        &r.scene,
+        &r.view,
+        &r.visibility,
+        drawing,
+        &marks,
+        opts,
+        lane,
+    )
 }
 
 /// Renders `scene` (loaded, and best prepared: without INBOXes nothing is culled, the result
@@ -252,7 +239,7 @@ fn render_json_to<'s>(
         }
     });
     let mut view = stats.timed(Stage::View, || {
-        View::from_cull_counted(&scene, *camera, &cull, progress)
+        View::from_cull(&scene, *camera, &cull, progress)
     });
     drop(cull);
     crate::view::finite::check_screen(&view.screen, &view.camera)?;
@@ -261,7 +248,7 @@ fn render_json_to<'s>(
     };
     progress.enter(Stage::Visibility, view.screen.pieces.len());
     let t = Instant::now();
-    let visibility = solve_counted(&view, pass, Some(progress.done_counter()));
+    let visibility = solve(&view, pass, progress.count());
     stats.times.push((Stage::Visibility, t.elapsed()));
     stats.counters = visibility.counters;
     let mut warnings = Vec::new();
@@ -277,7 +264,7 @@ fn render_json_to<'s>(
     let pictures = out.svg || out.png;
     let drawing = (pictures || out.drawing || (out.json && out.json_lines)).then(|| {
         stats.timed(Stage::Lines, || {
-            draw_counted(&scene, &view, &visibility, &opts.lines, progress)
+            draw(&scene, &view, &visibility, &opts.lines, progress)
         })
     });
     let mut r = Rendered {
@@ -316,20 +303,29 @@ fn render_json_to<'s>(
             if pictures {
                 let (r, lane, pic) = (&r, &lane, &mut pic);
                 s.spawn(move |_| {
-                    *pic = r.picture_counted(&out.picture, lane).and_then(|pic| {
-                        let svg = out.svg.then(|| to_svg_counted(&pic, lane));
+                    *pic = picture_of(r, &out.picture, lane).and_then(|pic| {
+                        let svg = out.svg.then(|| {
+                            lane.enter_phase(Stage::Emit, Phase::Svg, pic.polylines());
+                            to_svg(&pic, lane.count())
+                        });
                         let (size, dpi) = (out.picture.size, out.picture.dpi);
-                        let png = out.png.then(|| to_png_counted(&pic, size, dpi, lane));
+                        let png = out.png.then(|| {
+                            lane.enter_phase(Stage::Emit, Phase::Png, pic.polylines());
+                            to_png(&pic, size, dpi, lane.count())
+                        });
                         Ok(Some((pic.stats, svg, png.transpose()?)))
                     });
                 });
             }
+            let lines = r.drawing.as_ref().filter(|_| out.json_lines);
+            let lines = lines.map(Drawing::lines);
+            let (view, vis, done) = (&r.view, &r.visibility, progress.count());
             let kept = match (out.json, json) {
                 (false, _) => Ok(None),
-                (true, None) => Ok(Some(r.to_json_counted(out.json_lines, progress))),
-                (true, Some(w)) => r
-                    .write_json_counted(out.json_lines, w, progress)
-                    .map(|()| None),
+                (true, None) => Ok(Some(to_json(view, vis, lines.as_ref(), done))),
+                (true, Some(w)) => write_json(view, vis, lines.as_ref(), w, done)
+                    .map(|()| None)
+                    .map_err(Error::Write),
             };
             lane.release();
             kept

@@ -147,9 +147,9 @@ fn ico5_visible_length_is_analytic() {
 /// piece of screen line counted once: segments on one line (directions within 1e-9, offsets
 /// within 1e-9 of the extent) are merged as intervals along it, as a plotter strokes them.
 fn projected_total(scene: &Scene, view: &View) -> f64 {
-    let world = WorldFaces::build(scene);
-    let mut edges = mesh_edges(&world, view, &all_edges(true).edges);
-    edges.extend(intersection_edges(&world, |_| true));
+    let world = WorldFaces::build(scene, None, Default::default());
+    let mut edges = mesh_edges(&world, view, &all_edges(true).edges, Default::default());
+    edges.extend(intersection_edges(&world, |_| true, Default::default()));
     let segs: Vec<[[f64; 2]; 2]> = edges
         .iter()
         .filter_map(|e| project_segment(&view.camera, &e.ends[0], &e.ends[1]))

@@ -102,11 +102,13 @@ pub struct Reference {
 
 /// The drawing's edges, exactly as `emit::draw` selects them with default options.
 pub fn edges(scene: &Scene, view: &View) -> Vec<Edge> {
-    let world = WorldFaces::build(scene);
-    let mut e = mesh_edges(&world, view, &EdgeOptions::default());
-    e.extend(intersection_edges(&world, |f| {
-        view.screen.face_is_occluder(f)
-    }));
+    let world = WorldFaces::build(scene, None, Default::default());
+    let mut e = mesh_edges(&world, view, &EdgeOptions::default(), Default::default());
+    e.extend(intersection_edges(
+        &world,
+        |f| view.screen.face_is_occluder(f),
+        Default::default(),
+    ));
     e
 }
 
@@ -466,6 +468,7 @@ mod tests {
                     face_pos: &[],
                 },
                 &mut Vec::new(),
+                Default::default(),
             )
             .unwrap()
         };
@@ -507,6 +510,7 @@ mod tests {
                 face_pos: &[],
             },
             &mut Vec::new(),
+            Default::default(),
         )
         .unwrap();
         let at = |x: f64| nalgebra::Translation3::new(x, 0., 0.).to_homogeneous();

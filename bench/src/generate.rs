@@ -25,7 +25,7 @@ fn clean(raw: &PolyMesh, what: &str) -> Mesh {
         file: Path::new(what),
         face_pos: &[],
     };
-    cleanup(raw, &origin, &mut Vec::new()).expect("generated meshes are clean")
+    cleanup(raw, &origin, &mut Vec::new(), Default::default()).expect("generated meshes are clean")
 }
 
 /// An axis-aligned box mesh.

@@ -23,7 +23,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 
 use accuracy::{Method, Reference};
-use kepler_cli::progress::Progress;
+use kepler_cli::bar::Bar;
 use suite::{Case, Run, Source, ViewKind};
 
 /// Arguments of `kepler-bench`.
@@ -329,7 +329,7 @@ pub fn run(a: BenchArgs) -> Result<ExitCode> {
         .iter()
         .filter(|s| cases.iter().any(|c| &c.name == *s))
         .collect();
-    let mut bar = Progress::new(
+    let mut bar = Bar::new(
         "bench",
         job_count(&plan, cases.len(), subjects.len()),
         Duration::ZERO,
@@ -363,7 +363,7 @@ fn time_cases(
     plan: &Plan,
     cases: &[Case],
     models: &Path,
-    bar: &mut Progress,
+    bar: &mut Bar,
     done: &mut usize,
 ) -> Result<Vec<CaseRow>> {
     let mut rows = Vec::new();
@@ -409,7 +409,7 @@ fn time_cases(
 fn time_accuracy(
     plan: &Plan,
     case: &Case,
-    bar: &mut Progress,
+    bar: &mut Bar,
     done: &mut usize,
 ) -> Result<Vec<AccuracyRow>> {
     bar.update(*done, &format!("{} exact reference", case.name));

@@ -349,7 +349,8 @@ mod tests {
             file: Path::new("octahedron"),
             face_pos: &[],
         };
-        kepler_hsr::scene::cleanup::cleanup(&raw, &origin, &mut Vec::new()).unwrap()
+        kepler_hsr::scene::cleanup::cleanup(&raw, &origin, &mut Vec::new(), Default::default())
+            .unwrap()
     }
 
     #[test]

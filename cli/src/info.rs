@@ -40,7 +40,7 @@ pub(crate) struct InfoArgs {
 pub(crate) fn run(a: InfoArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
     let mut scene = load(&a.scene, a.quiet, opts)?;
     // The render skips INBOXes where they cannot help (one object); info always shows them.
-    kepler_hsr::prepare::compute_inboxes(&mut scene.root);
+    kepler_hsr::prepare::compute_inboxes(&mut scene.root, Default::default());
     if let Some(f) = &a.components {
         let camera = a.camera.camera(&scene)?;
         super::write(

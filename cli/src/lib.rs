@@ -1,6 +1,7 @@
 //! The `kepler` command line: argument definitions and a thin run of each subcommand over the
 //! library (`kepler_hsr`), which does all the work; errors become messages here (anyhow).
 
+pub mod bar;
 mod camera_args;
 mod check;
 mod components;
@@ -10,7 +11,6 @@ mod info;
 pub mod memory;
 mod output;
 mod plot_args;
-pub mod progress;
 mod query;
 mod render;
 mod tribox;

@@ -15,10 +15,10 @@ use kepler_hsr::{
     Rendered, Stage,
 };
 
+use super::bar::follow;
 use super::camera_args::parse_vec3;
 use super::output::Staged;
 use super::plot_args::PlotArgs;
-use super::progress::follow;
 use super::views::{numbered, read_views};
 use super::{print_warnings, write, CameraArgs};
 

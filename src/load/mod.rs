@@ -58,7 +58,7 @@ fn mesh_scene(
     warnings: &mut Warnings,
     progress: &Progress,
 ) -> Result<Scene> {
-    let file = mesh_file::load_mesh_at(path, None, progress)?;
+    let file = mesh_file::load_mesh(path, None, progress)?;
     let objects = geometry::mesh_file_objects(&file, warnings, progress)?;
     let root = Object::group("", objects);
     opts.check(&root, "the mesh", &crate::error::Location::file(path))?;

@@ -19,7 +19,7 @@ pub use bvtree::{HierarchyKind, ObjectTree};
 pub use inbox::{compute_inboxes, mesh_inbox};
 pub use solidity::{mark_solids, solidity};
 
-use crate::progress::Progress;
+use crate::progress::{Phase, Progress, Stage};
 use crate::scene::Scene;
 
 /// What the prepare stage builds.
@@ -44,10 +44,15 @@ pub struct PrepareOptions {
 /// counting the faces of the meshes it handles (a shared prototype's once). The prepared
 /// scene is the same whatever watches it.
 pub fn prepare(scene: &mut Scene, opts: &PrepareOptions, progress: &Progress) {
-    solidity::mark_solids_counted(&mut scene.root, progress);
-    let several = has_two_leaves(&scene.root);
+    let root = &mut scene.root;
+    let faces = root.distinct_faces_where(&|_, m| m.solidity.is_none());
+    progress.enter_phase(Stage::Prepare, Phase::Solidity, faces);
+    solidity::mark_solids(root, progress.count());
+    let several = has_two_leaves(root);
     if several {
-        inbox::compute_inboxes_counted(&mut scene.root, progress);
+        let faces = root.distinct_faces_where(&|obj, _| obj.inbox.is_none());
+        progress.enter_phase(Stage::Prepare, Phase::Inboxes, faces);
+        inbox::compute_inboxes(root, progress.count());
     }
     // Trees for every large mesh, for shared prototypes' only, or none.
     let shared_only = match opts.hierarchy {
@@ -57,7 +62,7 @@ pub fn prepare(scene: &mut Scene, opts: &PrepareOptions, progress: &Progress) {
     };
     if let Some(shared_only) = shared_only {
         let kind = HierarchyKind::Simplify;
-        trees::attach_trees_counted(&mut scene.root, kind, several, shared_only, progress);
+        trees::attach_trees(root, kind, several, shared_only, progress);
     }
 }
 

@@ -6,6 +6,7 @@
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
+use crate::count::Count;
 use crate::geom::{Box3, P3};
 use crate::progress::{Phase, Progress, Stage};
 use crate::scene::{Content, Mesh, Object};
@@ -24,13 +25,10 @@ pub const INBOX_SHARE: f64 = 1.0 / 64.0;
 /// Attaches a tree of `kind` to every leaf mesh of at least [`MIN_FACES`] faces that has none
 /// (with `shared_only`, only to meshes of prototypes placed more than once); with `inboxes`,
 /// closed meshes' large components get inboxes too.
-pub fn attach_trees(root: &mut Object, kind: HierarchyKind, inboxes: bool, shared_only: bool) {
-    attach_trees_counted(root, kind, inboxes, shared_only, &Progress::new());
-}
-
-/// [`attach_trees`] as the prepare stage's phase [`Phase::Trees`], counting the faces of
-/// each mesh as its tree is built.
-pub(crate) fn attach_trees_counted(
+///
+/// As the prepare stage's phase [`Phase::Trees`] in `progress`, counting the faces of each
+/// mesh as its tree is built.
+pub fn attach_trees(
     root: &mut Object,
     kind: HierarchyKind,
     inboxes: bool,
@@ -45,7 +43,7 @@ pub(crate) fn attach_trees_counted(
         shared_only,
         placements,
         done: HashMap::new(),
-        progress,
+        faces_done: progress.count(),
     };
     let faces = w.planned(root, false, &mut HashSet::new());
     progress.enter_phase(Stage::Prepare, Phase::Trees, faces);
@@ -74,7 +72,8 @@ struct Attach<'p> {
     shared_only: bool,
     placements: HashMap<usize, usize>,
     done: HashMap<usize, Arc<Object>>,
-    progress: &'p Progress,
+    /// The faces whose trees are built.
+    faces_done: Count<'p>,
 }
 
 impl Attach<'_> {
@@ -113,7 +112,7 @@ impl Attach<'_> {
                         component_inboxes(&mut t, m);
                     }
                     obj.tree = Some(Arc::new(t));
-                    self.progress.add(m.faces.len());
+                    self.faces_done.add(m.faces.len());
                 }
             }
             Content::Subobjects(subs) => {

@@ -318,7 +318,7 @@ mod tests {
         );
         assert_eq!(cull.leaves.len(), 3);
         assert_eq!(cull.face_count, 19);
-        let view = View::from_cull(&scene, camera, &cull);
+        let view = View::from_cull(&scene, camera, &cull, &crate::Progress::default());
         let sf = &view.screen;
         // The hidden box's faces have no pieces; the faces after it keep their global ids
         // while their pieces close up (2 for the bent quad + 6 for the wall = 8 before them).

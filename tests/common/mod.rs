@@ -24,6 +24,7 @@ pub(crate) fn mesh(pts: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
             face_pos: &[],
         },
         &mut Vec::new(),
+        Default::default(),
     )
     .unwrap()
 }
@@ -37,6 +38,7 @@ pub(crate) fn prim(raw: PolyMesh) -> Mesh {
             face_pos: &[],
         },
         &mut Vec::new(),
+        Default::default(),
     )
     .unwrap()
 }
