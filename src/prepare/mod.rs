@@ -62,7 +62,9 @@ pub fn prepare(scene: &mut Scene, opts: &PrepareOptions, progress: &Progress) {
     };
     if let Some(shared_only) = shared_only {
         let kind = HierarchyKind::Simplify;
-        trees::attach_trees(root, kind, several, shared_only, progress);
+        let faces = trees::planned_faces(root, shared_only);
+        progress.enter_phase(Stage::Prepare, Phase::Trees, faces);
+        trees::attach_trees(root, kind, several, shared_only, progress.count());
     }
 }
 

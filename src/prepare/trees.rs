@@ -8,7 +8,6 @@ use std::sync::Arc;
 
 use crate::count::Count;
 use crate::geom::{Box3, P3};
-use crate::progress::{Phase, Progress, Stage};
 use crate::scene::{Content, Mesh, Object};
 
 use super::bvtree::{HierarchyKind, ObjectTree};
@@ -26,28 +25,48 @@ pub const INBOX_SHARE: f64 = 1.0 / 64.0;
 /// (with `shared_only`, only to meshes of prototypes placed more than once); with `inboxes`,
 /// closed meshes' large components get inboxes too.
 ///
-/// As the prepare stage's phase [`Phase::Trees`] in `progress`, counting the faces of each
-/// mesh as its tree is built.
+/// The faces of each mesh go to `done` as its tree is built.
 pub fn attach_trees(
     root: &mut Object,
     kind: HierarchyKind,
     inboxes: bool,
     shared_only: bool,
-    progress: &Progress,
+    done: Count,
 ) {
+    attach_of(root, kind, inboxes, shared_only, done).attach(root, false);
+}
+
+/// The faces of the meshes [`attach_trees`] gives a tree (a shared prototype's once): the
+/// total of its count.
+pub(crate) fn planned_faces(root: &Object, shared_only: bool) -> usize {
+    let w = attach_of(
+        root,
+        HierarchyKind::Simplify,
+        false,
+        shared_only,
+        Count::NONE,
+    );
+    w.planned(root, false, &mut HashSet::new())
+}
+
+/// The walk that attaches trees below `root`.
+fn attach_of<'p>(
+    root: &Object,
+    kind: HierarchyKind,
+    inboxes: bool,
+    shared_only: bool,
+    done: Count<'p>,
+) -> Attach<'p> {
     let mut placements = HashMap::new();
     count_placements(root, &mut placements);
-    let mut w = Attach {
+    Attach {
         kind,
         inboxes,
         shared_only,
         placements,
         done: HashMap::new(),
-        faces_done: progress.count(),
-    };
-    let faces = w.planned(root, false, &mut HashSet::new());
-    progress.enter_phase(Stage::Prepare, Phase::Trees, faces);
-    w.attach(root, false);
+        faces_done: done,
+    }
 }
 
 /// How often each prototype (by address) is placed.
