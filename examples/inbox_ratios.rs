@@ -32,7 +32,12 @@ fn main() {
             println!("{name}: absent, skipped");
             continue;
         }
-        let mut scene = match kepler_hsr::load_scene(&path, &mut Vec::new()) {
+        let mut scene = match kepler_hsr::load_scene(
+            &path,
+            &kepler_hsr::LoadOptions::default(),
+            &mut Vec::new(),
+            &kepler_hsr::Progress::default(),
+        ) {
             Ok(s) => s,
             Err(e) => {
                 println!("{name}: {e}");
@@ -40,7 +45,11 @@ fn main() {
             }
         };
         let t = Instant::now();
-        kepler_hsr::prepare(&mut scene);
+        kepler_hsr::prepare(
+            &mut scene,
+            &kepler_hsr::PrepareOptions::default(),
+            &kepler_hsr::Progress::default(),
+        );
         let ms = t.elapsed().as_secs_f64() * 1e3;
         let Some(object) = first_mesh_object(&scene.root) else {
             println!("{name}: no mesh");

@@ -15,11 +15,20 @@ fn main() -> Result<(), Box<dyn Error>> {
         return Err("usage: mesh_to_svg MODEL.obj OUT.svg".into());
     };
     let mut warnings = Vec::new();
-    let mut scene = load_scene(&input, &mut warnings)?;
+    let mut scene = load_scene(
+        &input,
+        &kepler_hsr::LoadOptions::default(),
+        &mut warnings,
+        &kepler_hsr::Progress::default(),
+    )?;
     for w in &warnings {
         eprintln!("{w}");
     }
-    prepare(&mut scene);
+    prepare(
+        &mut scene,
+        &kepler_hsr::PrepareOptions::default(),
+        &kepler_hsr::Progress::default(),
+    );
     let camera = Camera::for_scene(&scene, &CameraRequest::default())?;
     let outputs = Outputs {
         svg: true,
@@ -29,7 +38,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         outputs,
         ..RenderOptions::default()
     };
-    let rendered = render(&scene, &camera, &opts)?;
+    let rendered = render(&scene, &camera, &opts, &kepler_hsr::Progress::default())?;
     std::fs::write(&output, rendered.svg.unwrap_or_default())?;
     eprintln!(
         "{}: {} faces, {:.1} ms",

@@ -8,14 +8,19 @@
 //! stages after `prepare` as one call:
 //!
 //! ```
-//! use kepler_hsr::{load_scene, prepare, render, Camera, CameraRequest, Outputs, RenderOptions};
+//! use kepler_hsr::{load_scene, prepare, render, Camera, CameraRequest, LoadOptions, Outputs};
+//! use kepler_hsr::{PrepareOptions, Progress, RenderOptions};
 //!
+//! let progress = Progress::default(); // observes nothing
 //! let mut warnings = Vec::new();
-//! let mut scene = load_scene("scenes/assembly.kdl".as_ref(), &mut warnings)?;
-//! prepare(&mut scene); // INBOXes: optional, they only make it faster
+//! let path = "scenes/assembly.kdl".as_ref();
+//! let mut scene = load_scene(path, &LoadOptions::default(), &mut warnings, &progress)?;
+//! // INBOXes: optional, they only make it faster
+//! prepare(&mut scene, &PrepareOptions::default(), &progress);
 //! let camera = Camera::for_scene(&scene, &CameraRequest::default())?;
 //! let outputs = Outputs { svg: true, json: true, ..Outputs::default() };
-//! let rendered = render(&scene, &camera, &RenderOptions { outputs, ..Default::default() })?;
+//! let opts = RenderOptions { outputs, ..Default::default() };
+//! let rendered = render(&scene, &camera, &opts, &progress)?;
 //! println!("{} faces visible", rendered.visibility.iter().filter(|(_, f)| f.area > 0.0).count());
 //! std::fs::write(std::env::temp_dir().join("assembly.svg"), rendered.svg.unwrap())?;
 //! # Ok::<(), Box<dyn std::error::Error>>(())
@@ -26,6 +31,7 @@
 //! [`tribox`].
 
 pub mod check;
+mod count;
 mod describe;
 pub mod emit;
 pub mod error;
@@ -50,9 +56,9 @@ mod tests;
 pub use emit::{Drawing, EdgeKind, EdgeOptions, EdgeSet, LineOptions};
 pub use error::{Error, Location, Pos, Result, Warning, Warnings};
 pub use geom::{Box3, M4, P3, V3};
-pub use load::{load_scene, load_scene_counted, load_scene_with, LoadOptions};
+pub use load::{load_scene, LoadOptions};
 pub use pipeline::{
-    render, render_to, render_with, Outputs, PictureOptions, RenderOptions, RenderStats, Rendered,
+    render, render_to, Outputs, PictureOptions, RenderOptions, RenderStats, Rendered,
 };
 pub use prepare::{prepare, HierarchyKind, PrepareOptions};
 pub use progress::{Phase, PhaseCount, Progress, Stage, Unit};

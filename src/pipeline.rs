@@ -6,13 +6,14 @@ use std::borrow::Cow;
 use std::io::Write;
 use std::time::{Duration, Instant};
 
+use crate::count::Count;
 use crate::emit::lines::marks::face_marks;
-use crate::emit::lines::{draw_counted, Drawing, LineOptions};
+use crate::emit::lines::{draw, Drawing, LineOptions};
+use crate::emit::plot::picture;
 use crate::emit::plot::picture::{Picture, PlotStats};
-use crate::emit::plot::picture_counted;
-use crate::emit::write::json::{to_json_counted, write_json_counted};
-use crate::emit::write::png::to_png_counted;
-use crate::emit::write::svg::to_svg_counted;
+use crate::emit::write::json::{to_json, write_json};
+use crate::emit::write::png::to_png;
+use crate::emit::write::svg::to_svg;
 use crate::error::{Error, Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
 use crate::progress::{Lane, Phase};
@@ -20,7 +21,7 @@ pub use crate::progress::{Progress, Stage};
 use crate::scene::Scene;
 use crate::view::{substitute, Camera, Cull, LodOptions, LodStats, View};
 use crate::visibility::empty::why_empty;
-use crate::visibility::{solve_counted, Counters, PassOptions, Visibility};
+use crate::visibility::{solve, Counters, PassOptions, Visibility};
 
 /// What to render and how.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -36,7 +37,7 @@ pub struct RenderOptions {
     /// Replace small objects by their triboxes first ("model no more than a scene needs").
     pub lod: Option<LodOptions>,
     /// The object tree the substitutes of `lod` are prepared with (the caller prepares the
-    /// scene itself: [`crate::prepare::prepare_with`]); None: the default choice.
+    /// scene itself: [`crate::prepare()`]); None: the default choice.
     pub hierarchy: Option<HierarchyKind>,
 }
 
@@ -125,112 +126,93 @@ impl Rendered<'_> {
     /// The `kepler-visible/1` JSON of the visible regions, with the drawing's polylines
     /// when `lines` (and a drawing was made).
     pub fn to_json(&self, lines: bool) -> String {
-        self.to_json_counted(lines, &Progress::new())
-    }
-
-    /// [`Rendered::to_json`], counting the faces written in `progress`.
-    fn to_json_counted(&self, lines: bool, progress: &Progress) -> String {
         let lines = self.drawing.as_ref().filter(|_| lines).map(Drawing::lines);
-        to_json_counted(&self.view, &self.visibility, lines.as_ref(), progress)
+        to_json(&self.view, &self.visibility, lines.as_ref(), Count::NONE)
     }
 
     /// [`Rendered::to_json`] written to `w` as it is made, never held whole.
     pub fn write_json(&self, lines: bool, w: &mut dyn Write) -> Result<()> {
-        self.write_json_counted(lines, w, &Progress::new())
-    }
-
-    /// [`Rendered::write_json`], counting the faces written in `progress`.
-    fn write_json_counted(
-        &self,
-        lines: bool,
-        w: &mut dyn Write,
-        progress: &Progress,
-    ) -> Result<()> {
         let lines = self.drawing.as_ref().filter(|_| lines).map(Drawing::lines);
-        write_json_counted(&self.view, &self.visibility, lines.as_ref(), w, progress)
+        write_json(&self.view, &self.visibility, lines.as_ref(), w, Count::NONE)
             .map_err(Error::Write)
     }
 
-    /// The picture both SVG and PNG draw (texture markings included).
-    pub fn picture(&self, opts: &PictureOptions) -> Result<Picture> {
-        self.picture_counted(opts, &Lane::open(&Progress::new()))
+    /// The picture both SVG and PNG draw (texture markings included), its phases going to
+    /// `progress`.
+    pub fn picture(&self, opts: &PictureOptions, progress: &Progress) -> Result<Picture> {
+        picture_of(self, opts, &Lane::open(progress))
     }
+}
 
-    /// [`Rendered::picture`], its phases entered and counted in `lane`.
-    fn picture_counted(&self, opts: &PictureOptions, lane: &Lane) -> Result<Picture> {
-        let empty = Drawing::default();
-        let drawing = self.drawing.as_ref().unwrap_or(&empty);
-        let marks = face_marks(&self.scene, &self.view, &self.visibility);
-        picture_counted(
-            &self.scene,
-            &self.view,
-            &self.visibility,
-            drawing,
-            &marks,
-            opts,
-            lane,
-        )
-    }
+/// The picture of `r`, its phases entered and counted in `lane`.
+fn picture_of(r: &Rendered, opts: &PictureOptions, lane: &Lane) -> Result<Picture> {
+    let empty = Drawing::default();
+    let drawing = r.drawing.as_ref().unwrap_or(&empty);
+    let marks = face_marks(&r.scene, &r.view, &r.visibility);
+    picture(
+        &r.scene,
+        &r.view,
+        &r.visibility,
+        drawing,
+        &marks,
+        opts,
+        lane,
+    )
 }
 
 /// Renders `scene` (loaded, and best prepared: without INBOXes nothing is culled, the result
 /// is the same) from `camera`.
 ///
-/// ```
-/// use kepler_hsr::{load_scene, render, Camera, Outputs, RenderOptions};
-///
-/// let scene = load_scene("scenes/polyhedra.kdl".as_ref(), &mut Vec::new()).unwrap();
-/// let outputs = Outputs { json: true, ..Outputs::default() };
-/// let r = render(&scene, &Camera::three_quarter(), &RenderOptions { outputs, ..Default::default() }).unwrap();
-/// assert!(r.json.unwrap().starts_with("{\"format\":\"kepler-visible/1\""));
-/// ```
-pub fn render<'s>(scene: &'s Scene, camera: &Camera, opts: &RenderOptions) -> Result<Rendered<'s>> {
-    render_with(scene, camera, opts, None)
-}
-
-/// [`render`], reporting its stages, their phases and their counts to `progress` as it
-/// goes ([`Progress::phases`] lists them afterwards). The result is the same with or
-/// without it.
-///
+/// Its stages, their phases and their counts go to `progress` as it goes
+/// ([`Progress::phases`] lists them afterwards); the result is the same whatever watches it.
 /// The emit stage writes the JSON and builds the picture side by side, and the progress
 /// shows one phase at a time: the JSON's ([`Phase::Json`], faces) first, then the picture's
 /// ([`Phase::Dedup`] and [`Phase::Join`] by segments, [`Phase::Order`] by strokes) from the
 /// moment the JSON is done, the phase the picture is in then counted from there with what it
 /// has left (so its rate and time left are those of the work still to do). A picture that is
 /// done before the JSON does not show; without JSON, its phases show from the start.
-pub fn render_with<'s>(
+///
+/// ```
+/// use kepler_hsr::{load_scene, render, Camera, LoadOptions, Outputs, Progress, RenderOptions};
+///
+/// let path = "scenes/polyhedra.kdl".as_ref();
+/// let scene = load_scene(path, &LoadOptions::default(), &mut Vec::new(), &Progress::default()).unwrap();
+/// let outputs = Outputs { json: true, ..Outputs::default() };
+/// let opts = RenderOptions { outputs, ..Default::default() };
+/// let r = render(&scene, &Camera::three_quarter(), &opts, &Progress::default()).unwrap();
+/// assert!(r.json.unwrap().starts_with("{\"format\":\"kepler-visible/1\""));
+/// ```
+pub fn render<'s>(
     scene: &'s Scene,
     camera: &Camera,
     opts: &RenderOptions,
-    progress: Option<&Progress>,
+    progress: &Progress,
 ) -> Result<Rendered<'s>> {
-    render_json_to(scene, camera, opts, progress, None)
+    render_json_to(scene, camera, opts, None, progress)
 }
 
-/// [`render_with`], the JSON (when `opts.outputs.json`) written to `json` as it is made
-/// instead of kept in [`Rendered::json`]: the text of a big scene (over a gigabyte at ten
-/// million faces) is never held whole. The bytes are those [`render_with`] keeps. A write
-/// that fails ends the render with [`Error::Write`].
+/// [`render`], the JSON (when `opts.outputs.json`) written to `json` as it is made instead
+/// of kept in [`Rendered::json`]: the text of a big scene (over a gigabyte at ten million
+/// faces) is never held whole. The bytes are those [`render`] keeps. A write that fails
+/// ends the render with [`Error::Write`].
 pub fn render_to<'s>(
     scene: &'s Scene,
     camera: &Camera,
     opts: &RenderOptions,
-    progress: Option<&Progress>,
-    json: &mut (dyn Write + Send),
+    json: &mut dyn Write,
+    progress: &Progress,
 ) -> Result<Rendered<'s>> {
-    render_json_to(scene, camera, opts, progress, Some(json))
+    render_json_to(scene, camera, opts, Some(json), progress)
 }
 
-/// [`render_with`] and [`render_to`]: the JSON kept (`json` None) or written to `json`.
+/// [`render`] and [`render_to`]: the JSON kept (`json` None) or written to `json`.
 fn render_json_to<'s>(
     scene: &'s Scene,
     camera: &Camera,
     opts: &RenderOptions,
-    progress: Option<&Progress>,
-    json: Option<&mut (dyn Write + Send)>,
+    json: Option<&mut dyn Write>,
+    progress: &Progress,
 ) -> Result<Rendered<'s>> {
-    let sink = Progress::new();
-    let progress = progress.unwrap_or(&sink);
     let mut stats = RenderStats::default();
     let scene = match &opts.lod {
         Some(lod) => {
@@ -242,7 +224,7 @@ fn render_json_to<'s>(
                 ..PrepareOptions::default()
             };
             stats.timed(Stage::Prepare, || {
-                crate::prepare::prepare_counted(&mut s, &prep, Some(progress))
+                crate::prepare::prepare(&mut s, &prep, progress)
             });
             Cow::Owned(s)
         }
@@ -258,7 +240,7 @@ fn render_json_to<'s>(
         }
     });
     let mut view = stats.timed(Stage::View, || {
-        View::from_cull_counted(&scene, *camera, &cull, progress)
+        View::from_cull(&scene, *camera, &cull, progress)
     });
     drop(cull);
     crate::view::finite::check_screen(&view.screen, &view.camera)?;
@@ -267,7 +249,7 @@ fn render_json_to<'s>(
     };
     progress.enter(Stage::Visibility, view.screen.pieces.len());
     let t = Instant::now();
-    let visibility = solve_counted(&view, pass, Some(progress.done_counter()));
+    let visibility = solve(&view, pass, progress.count());
     stats.times.push((Stage::Visibility, t.elapsed()));
     stats.counters = visibility.counters;
     let mut warnings = Vec::new();
@@ -283,7 +265,7 @@ fn render_json_to<'s>(
     let pictures = out.svg || out.png;
     let drawing = (pictures || out.drawing || (out.json && out.json_lines)).then(|| {
         stats.timed(Stage::Lines, || {
-            draw_counted(&scene, &view, &visibility, &opts.lines, progress)
+            draw(&scene, &view, &visibility, &opts.lines, progress)
         })
     });
     let mut r = Rendered {
@@ -315,30 +297,40 @@ fn render_json_to<'s>(
     };
     stats.timed(Stage::Emit, || -> Result<()> {
         // The JSON and the picture (with its SVG and PNG) read the same solved view: made
-        // side by side.
-        let (kept, pic) = rayon::join(
-            || {
-                let kept = match (out.json, json) {
-                    (false, _) => Ok(None),
-                    (true, None) => Ok(Some(r.to_json_counted(out.json_lines, progress))),
-                    (true, Some(w)) => r
-                        .write_json_counted(out.json_lines, w, progress)
-                        .map(|()| None),
-                };
-                lane.release();
-                kept
-            },
-            || -> Result<_> {
-                if !pictures {
-                    return Ok(None);
-                }
-                let pic = r.picture_counted(&out.picture, &lane)?;
-                let svg = out.svg.then(|| to_svg_counted(&pic, &lane));
-                let (size, dpi) = (out.picture.size, out.picture.dpi);
-                let png = out.png.then(|| to_png_counted(&pic, size, dpi, &lane));
-                Ok(Some((pic.stats, svg, png.transpose()?)))
-            },
-        );
+        // side by side, the picture on the pool, the JSON here (its writer need not be
+        // `Send`).
+        let mut pic = Ok(None);
+        let kept = rayon::in_place_scope(|s| {
+            if pictures {
+                let (r, lane, pic) = (&r, &lane, &mut pic);
+                s.spawn(move |_| {
+                    *pic = picture_of(r, &out.picture, lane).and_then(|pic| {
+                        let svg = out.svg.then(|| {
+                            lane.enter_phase(Stage::Emit, Phase::Svg, pic.polylines());
+                            to_svg(&pic, lane.count())
+                        });
+                        let (size, dpi) = (out.picture.size, out.picture.dpi);
+                        let png = out.png.then(|| {
+                            lane.enter_phase(Stage::Emit, Phase::Png, pic.polylines());
+                            to_png(&pic, size, dpi, lane.count())
+                        });
+                        Ok(Some((pic.stats, svg, png.transpose()?)))
+                    });
+                });
+            }
+            let lines = r.drawing.as_ref().filter(|_| out.json_lines);
+            let lines = lines.map(Drawing::lines);
+            let (view, vis, done) = (&r.view, &r.visibility, progress.count());
+            let kept = match (out.json, json) {
+                (false, _) => Ok(None),
+                (true, None) => Ok(Some(to_json(view, vis, lines.as_ref(), done))),
+                (true, Some(w)) => write_json(view, vis, lines.as_ref(), w, done)
+                    .map(|()| None)
+                    .map_err(Error::Write),
+            };
+            lane.release();
+            kept
+        });
         r.json = kept?;
         if let Some((stats, svg, png)) = pic? {
             (r.svg, r.png, plot) = (svg, png, Some(stats));
@@ -355,8 +347,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn render_to_writes_the_bytes_render_with_keeps() {
-        let scene = crate::load_scene("scenes/town.kdl".as_ref(), &mut Vec::new()).unwrap();
+    fn render_to_writes_the_bytes_render_keeps() {
+        let path = "scenes/town.kdl".as_ref();
+        let scene = crate::load_scene(
+            path,
+            &Default::default(),
+            &mut Vec::new(),
+            &Progress::default(),
+        )
+        .unwrap();
         let opts = RenderOptions {
             outputs: Outputs {
                 json: true,
@@ -366,15 +365,16 @@ mod tests {
             ..RenderOptions::default()
         };
         let camera = Camera::three_quarter();
-        let kept = render_with(&scene, &camera, &opts, None).unwrap();
+        let none = Progress::default();
+        let kept = render(&scene, &camera, &opts, &none).unwrap();
         let mut w: Vec<u8> = Vec::new();
-        let written = render_to(&scene, &camera, &opts, None, &mut w).unwrap();
+        let written = render_to(&scene, &camera, &opts, &mut w, &none).unwrap();
         assert_eq!(written.json, None);
         assert_eq!(Some(String::from_utf8(w).unwrap()), kept.json);
         assert_eq!(written.svg, kept.svg);
         // A writer that takes nothing ends the render with the write's error.
         let mut full: &mut [u8] = &mut [];
-        let e = render_to(&scene, &camera, &opts, None, &mut full).unwrap_err();
+        let e = render_to(&scene, &camera, &opts, &mut full, &none).unwrap_err();
         assert!(matches!(e, Error::Write(_)), "{e}");
     }
 }

@@ -8,11 +8,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use kepler_hsr::prepare::{prepare_counted, prepare_with, PrepareOptions};
 use kepler_hsr::{
-    load_scene_counted, load_scene_with, render, render_with, Camera, CameraRequest, EdgeOptions,
-    EdgeSet, LineOptions, LoadOptions, Outputs, Phase, PhaseCount, Progress, RenderOptions, Scene,
-    Stage,
+    load_scene, prepare, render, Camera, CameraRequest, EdgeOptions, EdgeSet, LineOptions,
+    LoadOptions, Outputs, Phase, PhaseCount, PrepareOptions, Progress, RenderOptions, Scene, Stage,
 };
 
 /// A fresh directory for this test's files.
@@ -126,10 +124,10 @@ fn every_phase_counts_to_its_total_and_changes_nothing() {
     let opts = LoadOptions::default();
     let progress = Progress::new();
     let mut warnings = Vec::new();
-    let mut scene = load_scene_counted(&path, &opts, &mut warnings, Some(&progress)).unwrap();
-    prepare_counted(&mut scene, &PrepareOptions::default(), Some(&progress));
-    let mut plain = load_scene_with(&path, &opts, &mut Vec::new()).unwrap();
-    prepare_with(&mut plain, &PrepareOptions::default());
+    let mut scene = load_scene(&path, &opts, &mut warnings, &progress).unwrap();
+    prepare(&mut scene, &PrepareOptions::default(), &progress);
+    let mut plain = load_scene(&path, &opts, &mut Vec::new(), &Progress::default()).unwrap();
+    prepare(&mut plain, &PrepareOptions::default(), &Progress::default());
     assert!(described(&scene) == described(&plain), "the scenes differ");
 
     let camera = Camera::for_scene(&scene, &CameraRequest::default()).unwrap();
@@ -143,8 +141,8 @@ fn every_phase_counts_to_its_total_and_changes_nothing() {
         ..RenderOptions::default()
     };
     let watched = Progress::new();
-    let r = render_with(&scene, &camera, &ropts, Some(&watched)).unwrap();
-    let bare = render(&plain, &camera, &ropts).unwrap();
+    let r = render(&scene, &camera, &ropts, &watched).unwrap();
+    let bare = render(&plain, &camera, &ropts, &Progress::default()).unwrap();
     assert_eq!(r.json, bare.json);
     assert_eq!(r.svg, bare.svg);
 
@@ -222,8 +220,14 @@ fn hidden_lines(outputs: Outputs) -> RenderOptions {
 /// The test scene loaded and prepared, with its default camera.
 fn prepared_scene() -> (Scene, Camera) {
     let path = scene_file();
-    let mut scene = load_scene_with(&path, &LoadOptions::default(), &mut Vec::new()).unwrap();
-    prepare_with(&mut scene, &PrepareOptions::default());
+    let mut scene = load_scene(
+        &path,
+        &LoadOptions::default(),
+        &mut Vec::new(),
+        &Progress::default(),
+    )
+    .unwrap();
+    prepare(&mut scene, &PrepareOptions::default(), &Progress::default());
     let camera = Camera::for_scene(&scene, &CameraRequest::default()).unwrap();
     (scene, camera)
 }
@@ -237,8 +241,8 @@ fn the_picture_counts_its_segments_and_strokes() {
         ..Outputs::default()
     });
     let watched = Progress::new();
-    let r = render_with(&scene, &camera, &ropts, Some(&watched)).unwrap();
-    let bare = render(&scene, &camera, &ropts).unwrap();
+    let r = render(&scene, &camera, &ropts, &watched).unwrap();
+    let bare = render(&scene, &camera, &ropts, &Progress::default()).unwrap();
     assert_eq!(r.svg, bare.svg);
     assert_eq!(r.png, bare.png);
 
@@ -281,8 +285,13 @@ fn hatching_and_fills_count_their_visible_faces() {
     ropts.outputs.picture.hatch = Some(kepler_hsr::emit::plot::hatch::HatchOptions::default());
     ropts.outputs.picture.fill = true;
     let watched = Progress::new();
-    let r = render_with(&scene, &camera, &ropts, Some(&watched)).unwrap();
-    assert_eq!(r.svg, render(&scene, &camera, &ropts).unwrap().svg);
+    let r = render(&scene, &camera, &ropts, &watched).unwrap();
+    assert_eq!(
+        r.svg,
+        render(&scene, &camera, &ropts, &Progress::default())
+            .unwrap()
+            .svg
+    );
     let log = watched.phases();
     assert_full(&log);
     // Every face with a visible part is hatched (its tone may draw no line) and filled, once.
@@ -318,12 +327,12 @@ fn the_picture_beside_the_json_shows_after_it() {
         svg: true,
         ..Outputs::default()
     });
-    let bare = render(&scene, &camera, &ropts).unwrap();
+    let bare = render(&scene, &camera, &ropts, &Progress::default()).unwrap();
     // Which of the picture's phases show depends on when the JSON ends: whatever shows
     // comes after the JSON and counts to its total.
     for _ in 0..3 {
         let watched = Progress::new();
-        let r = render_with(&scene, &camera, &ropts, Some(&watched)).unwrap();
+        let r = render(&scene, &camera, &ropts, &watched).unwrap();
         assert_eq!((&r.json, &r.svg), (&bare.json, &bare.svg));
         let log = watched.phases();
         assert_full(&log);
@@ -357,7 +366,7 @@ fn every_mesh_format_counts_its_bytes() {
         let path = dir.join(name);
         let progress = Progress::new();
         let opts = LoadOptions::default();
-        load_scene_counted(&path, &opts, &mut Vec::new(), Some(&progress)).unwrap();
+        load_scene(&path, &opts, &mut Vec::new(), &progress).unwrap();
         let log = progress.phases();
         assert_full(&log);
         let len = std::fs::metadata(&path).unwrap().len() as usize;

@@ -136,7 +136,8 @@ impl Reference {
             },
             ..RenderOptions::default()
         };
-        let r = render(scene, &camera, &opts).expect("in-memory render without outputs");
+        let r = render(scene, &camera, &opts, &kepler_hsr::Progress::default())
+            .expect("in-memory render without outputs");
         let (view, vis) = (r.view, r.visibility);
         let edges = edges(scene, &view);
         let segs = rays::segments(&view, &edges);
@@ -323,7 +324,8 @@ pub fn run(scene: &Scene, camera: Camera, m: Method) -> (f64, Output) {
             },
             ..RenderOptions::default()
         };
-        render(scene, &camera, &opts).expect("in-memory render without outputs")
+        render(scene, &camera, &opts, &kepler_hsr::Progress::default())
+            .expect("in-memory render without outputs")
     };
     if let Method::Lod(px) = m {
         // As `render --lod` does it: substitute, prepare the substitutes, cull, project, solve.
@@ -498,7 +500,11 @@ mod tests {
             .map(|k| Object::instance(format!("i{k}"), proto.clone(), at(3. * k as f64)))
             .collect();
         let mut scene = Scene::new(Object::group("", objs), "t".into());
-        kepler_hsr::prepare(&mut scene);
+        kepler_hsr::prepare(
+            &mut scene,
+            &kepler_hsr::PrepareOptions::default(),
+            &kepler_hsr::Progress::default(),
+        );
         let cam = Camera::orthographic(V3::new(0.3, -0.2, -1.), V3::y()).unwrap();
         let r = Reference::new(&scene, cam);
         let err = |px| match run(&scene, cam, Method::Lod(px)).1 {

@@ -117,7 +117,12 @@ pub fn cases(scenes: &Path) -> Result<Vec<HostileCase>> {
 /// the load time).
 pub fn child(path: &Path, render: bool) -> Result<ExitCode> {
     let t = Instant::now();
-    let loaded = kepler_hsr::load_scene_with(path, &LoadOptions::default(), &mut Vec::new());
+    let loaded = kepler_hsr::load_scene(
+        path,
+        &LoadOptions::default(),
+        &mut Vec::new(),
+        &kepler_hsr::Progress::default(),
+    );
     let load = t.elapsed();
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
     let mut scene = match loaded {
@@ -129,7 +134,11 @@ pub fn child(path: &Path, render: bool) -> Result<ExitCode> {
         }
     };
     let t = Instant::now();
-    kepler_hsr::prepare(&mut scene);
+    kepler_hsr::prepare(
+        &mut scene,
+        &kepler_hsr::PrepareOptions::default(),
+        &kepler_hsr::Progress::default(),
+    );
     let prepare = t.elapsed();
     let mut rendered = Duration::ZERO;
     if render {
@@ -142,7 +151,7 @@ pub fn child(path: &Path, render: bool) -> Result<ExitCode> {
             },
             ..Default::default()
         };
-        let r = kepler_hsr::render(&scene, &camera, &opts)?;
+        let r = kepler_hsr::render(&scene, &camera, &opts, &kepler_hsr::Progress::default())?;
         std::hint::black_box(r.json);
         rendered = t.elapsed();
     }
@@ -251,7 +260,13 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("tree.kdl");
         std::fs::write(&path, instancing_tree(5)).unwrap();
-        let s = kepler_hsr::load_scene(&path, &mut Vec::new()).unwrap();
+        let s = kepler_hsr::load_scene(
+            &path,
+            &kepler_hsr::LoadOptions::default(),
+            &mut Vec::new(),
+            &kepler_hsr::Progress::default(),
+        )
+        .unwrap();
         assert_eq!(s.face_count(), 6 * 32);
     }
 

@@ -25,7 +25,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 
 use accuracy::{Method, Reference};
-use kepler_cli::progress::Progress;
+use kepler_cli::bar::Bar;
 use suite::{Case, Run, Source, ViewKind};
 
 /// Arguments of `kepler-bench`.
@@ -331,7 +331,7 @@ pub fn run(a: BenchArgs) -> Result<ExitCode> {
         .iter()
         .filter(|s| cases.iter().any(|c| &c.name == *s))
         .collect();
-    let mut bar = Progress::new(
+    let mut bar = Bar::new(
         "bench",
         job_count(&plan, cases.len(), subjects.len()),
         Duration::ZERO,
@@ -365,7 +365,7 @@ fn time_cases(
     plan: &Plan,
     cases: &[Case],
     models: &Path,
-    bar: &mut Progress,
+    bar: &mut Bar,
     done: &mut usize,
 ) -> Result<Vec<CaseRow>> {
     let mut rows = Vec::new();
@@ -411,12 +411,16 @@ fn time_cases(
 fn time_accuracy(
     plan: &Plan,
     case: &Case,
-    bar: &mut Progress,
+    bar: &mut Bar,
     done: &mut usize,
 ) -> Result<Vec<AccuracyRow>> {
     bar.update(*done, &format!("{} exact reference", case.name));
     let mut scene = case.load()?;
-    kepler_hsr::prepare(&mut scene);
+    kepler_hsr::prepare(
+        &mut scene,
+        &kepler_hsr::PrepareOptions::default(),
+        &kepler_hsr::Progress::default(),
+    );
     let camera = ViewKind::ThreeQuarter.camera(&scene)?;
     let reference = Reference::new(&scene, camera);
     let check = accuracy::union_residual(&reference);

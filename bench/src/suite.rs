@@ -39,8 +39,13 @@ impl Case {
         Ok(match &self.source {
             Source::Field(n) => generate::field(*n, 1),
             Source::Terrain(n) => generate::terrain(*n),
-            Source::Model(p) => kepler_hsr::load_scene(p, &mut Vec::new())
-                .with_context(|| format!("{}", p.display()))?,
+            Source::Model(p) => kepler_hsr::load_scene(
+                p,
+                &kepler_hsr::LoadOptions::default(),
+                &mut Vec::new(),
+                &kepler_hsr::Progress::default(),
+            )
+            .with_context(|| format!("{}", p.display()))?,
         })
     }
 }
@@ -201,9 +206,18 @@ pub fn run(case: &Case, view: ViewKind) -> Result<Run> {
     let mut scene = case.load()?;
     ms[0] = ms_since(t);
     let t = Instant::now();
-    kepler_hsr::prepare(&mut scene);
+    kepler_hsr::prepare(
+        &mut scene,
+        &kepler_hsr::PrepareOptions::default(),
+        &kepler_hsr::Progress::default(),
+    );
     ms[1] = ms_since(t);
-    let r = render(&scene, &view.camera(&scene)?, &render_options())?;
+    let r = render(
+        &scene,
+        &view.camera(&scene)?,
+        &render_options(),
+        &kepler_hsr::Progress::default(),
+    )?;
     let st = |stages: &[Stage]| {
         stages
             .iter()

@@ -71,14 +71,19 @@ pub fn run(n: usize, layout: TownLayout, use_inbox: bool) -> ([f64; 5], usize) {
     let build = ms(t.elapsed());
     let t = Instant::now();
     if use_inbox {
-        kepler_hsr::prepare(&mut scene);
+        kepler_hsr::prepare(
+            &mut scene,
+            &kepler_hsr::PrepareOptions::default(),
+            &kepler_hsr::Progress::default(),
+        );
     }
     let prepare = ms(t.elapsed());
     let opts = RenderOptions {
         no_inbox: !use_inbox,
         ..RenderOptions::default()
     };
-    let r = render(&scene, &camera(), &opts).expect("in-memory render without outputs");
+    let r = render(&scene, &camera(), &opts, &kepler_hsr::Progress::default())
+        .expect("in-memory render without outputs");
     let visible = r.visibility.iter().filter(|f| f.1.area > 0.0).count();
     let st = |s| ms(r.stats.time(s));
     (

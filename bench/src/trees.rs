@@ -42,8 +42,13 @@ pub fn one_mesh(scene: &Scene) -> Mesh {
 
 /// Loads a model as one mesh.
 pub fn load_mesh(path: &Path) -> Result<Mesh> {
-    let scene = kepler_hsr::load_scene(path, &mut Vec::new())
-        .with_context(|| format!("loading {}", path.display()))?;
+    let scene = kepler_hsr::load_scene(
+        path,
+        &kepler_hsr::LoadOptions::default(),
+        &mut Vec::new(),
+        &kepler_hsr::Progress::default(),
+    )
+    .with_context(|| format!("loading {}", path.display()))?;
     Ok(one_mesh(&scene))
 }
 

@@ -63,7 +63,7 @@ pub(crate) fn run(a: CheckArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCo
         },
         ..RenderOptions::default()
     };
-    let r = render(&scene, &camera, &opts)?;
+    let r = render(&scene, &camera, &opts, &kepler_hsr::Progress::default())?;
     let mut failed = false;
     if a.exact {
         failed |= !exact(&scene, &camera, &r.visibility, &r.view);

@@ -13,7 +13,12 @@ use kepler_hsr::{render, RenderOptions};
 
 /// The SVG picture, `size` pixels along its longer side.
 pub(crate) fn components_svg(scene: &Scene, camera: &Camera, size: u32) -> Result<String> {
-    let r = render(scene, camera, &RenderOptions::default())?;
+    let r = render(
+        scene,
+        camera,
+        &RenderOptions::default(),
+        &kepler_hsr::Progress::default(),
+    )?;
     // The leaf component of every face in global order (u32::MAX: no tree).
     let mut colour_of = Vec::with_capacity(scene.face_count());
     for (leaf, tree) in scene.leaves().iter().zip(leaf_trees(scene)) {

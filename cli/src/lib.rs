@@ -1,6 +1,7 @@
 //! The `kepler` command line: argument definitions and a thin run of each subcommand over the
 //! library (`kepler_hsr`), which does all the work; errors become messages here (anyhow).
 
+pub mod bar;
 mod camera_args;
 mod check;
 mod components;
@@ -10,7 +11,6 @@ mod info;
 pub mod memory;
 mod output;
 mod plot_args;
-pub mod progress;
 mod query;
 mod render;
 mod tribox;
@@ -83,14 +83,15 @@ fn load_with(
     prepare: &kepler_hsr::PrepareOptions,
 ) -> Result<Scene> {
     let mut scene = load_only(path, quiet, opts)?;
-    kepler_hsr::prepare::prepare_with(&mut scene, prepare);
+    kepler_hsr::prepare::prepare(&mut scene, prepare, &kepler_hsr::Progress::default());
     Ok(scene)
 }
 
 /// Loads a scene without preparing it, printing its warnings to standard error.
 fn load_only(path: &Path, quiet: bool, opts: &LoadOptions) -> Result<Scene> {
     let mut warnings = Vec::new();
-    let scene = kepler_hsr::load_scene_with(path, opts, &mut warnings)?;
+    let scene =
+        kepler_hsr::load_scene(path, opts, &mut warnings, &kepler_hsr::Progress::default())?;
     if !quiet {
         print_warnings(&warnings);
     }

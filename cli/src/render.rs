@@ -11,13 +11,13 @@ use kepler_hsr::lines::{EdgeOptions, EdgeSet, LineOptions};
 use kepler_hsr::plot::Rect;
 use kepler_hsr::stats::Stage;
 use kepler_hsr::{
-    render_to, render_with, Camera, Outputs, Progress, RenderOptions, Rendered, Scene, V3,
+    render, render_to, Camera, Outputs, Progress, RenderOptions, Rendered, Scene, V3,
 };
 
+use super::bar::follow;
 use super::camera_args::parse_vec3;
 use super::output::Staged;
 use super::plot_args::PlotArgs;
-use super::progress::follow;
 use super::views::{numbered, read_views};
 use super::{print_warnings, write, CameraArgs};
 
@@ -152,12 +152,11 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     let mut warnings = Vec::new();
     let (scene, load, prepare) = follow(&progress, start, PROGRESS_AFTER, || -> Result<_> {
         let t = Instant::now();
-        let mut scene =
-            kepler_hsr::load_scene_counted(&a.scene, load_opts, &mut warnings, Some(&progress))?;
+        let mut scene = kepler_hsr::load_scene(&a.scene, load_opts, &mut warnings, &progress)?;
         let load = t.elapsed();
         let t = Instant::now();
         let prep = a.hierarchy.prepare();
-        kepler_hsr::prepare::prepare_counted(&mut scene, &prep, Some(&progress));
+        kepler_hsr::prepare::prepare(&mut scene, &prep, &progress);
         if scene.face_count() >= crate::memory::TRIM_ABOVE_FACES {
             crate::memory::trim();
         }
@@ -183,8 +182,8 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
             .map(|p| Staged::create(&name(p)))
             .transpose()?;
         let r = follow(&progress, start, PROGRESS_AFTER, || match json.as_mut() {
-            Some(f) => render_to(&scene, camera, &opts, Some(&progress), f),
-            None => render_with(&scene, camera, &opts, Some(&progress)),
+            Some(f) => render_to(&scene, camera, &opts, f, &progress),
+            None => render(&scene, camera, &opts, &progress),
         })
         .map_err(|e| match (e, &json) {
             (kepler_hsr::Error::Write(e), Some(f)) => f.named(e),

@@ -176,7 +176,11 @@ fn g(x: f64) -> String {
 fn render_svg(level: &TableRow, original: &Scene, a: &TriboxArgs) -> Result<String> {
     let mut scene = original.with_root(Object::group("", level.objects()));
     let camera = a.camera.camera(&scene)?;
-    kepler_hsr::prepare(&mut scene);
+    kepler_hsr::prepare(
+        &mut scene,
+        &kepler_hsr::PrepareOptions::default(),
+        &kepler_hsr::Progress::default(),
+    );
     let opts = RenderOptions {
         lines: LineOptions {
             edges: EdgeOptions {
@@ -196,7 +200,11 @@ fn render_svg(level: &TableRow, original: &Scene, a: &TriboxArgs) -> Result<Stri
         },
         ..RenderOptions::default()
     };
-    Ok(render(&scene, &camera, &opts)?.svg.unwrap_or_default())
+    Ok(
+        render(&scene, &camera, &opts, &kepler_hsr::Progress::default())?
+            .svg
+            .unwrap_or_default(),
+    )
 }
 
 /// `kepler query --interfere`: the pairs of objects whose triboxes meet, each with whether

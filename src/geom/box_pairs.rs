@@ -7,7 +7,7 @@
 
 use rayon::prelude::*;
 
-use crate::progress::{Progress, Share, Span};
+use crate::count::Span;
 
 /// A box as [min, max].
 pub type Bounds3 = [[f64; 3]; 2];
@@ -22,22 +22,16 @@ const MAX_CELLS_PER_BOX: f64 = 8.0;
 /// Indices `(i, j)`, `i < j`, of every pair of overlapping boxes among `boxes`, ascending.
 /// Boxes with a NaN or an empty extent are ignored.
 pub fn overlapping_pairs(boxes: &[Bounds3]) -> Vec<(u32, u32)> {
-    filter_map_pairs(boxes, |i, j| Some((i, j)))
+    filter_map_pairs(boxes, |i, j| Some((i, j)), Span::NONE)
 }
 
 /// `f(i, j)` of every pair of overlapping boxes (`i < j`), the `Some` results in ascending
 /// pair order, without keeping the pairs themselves (a mesh has many, few of which matter).
+///
+/// The work goes to `span` as it is done: the boxes entered in the grid and sorted first,
+/// then the cells by chunks (most of the work), then the results sorted (none:
+/// [`Span::NONE`]).
 pub fn filter_map_pairs<T: Send>(
-    boxes: &[Bounds3],
-    f: impl Fn(u32, u32) -> Option<T> + Sync,
-) -> Vec<T> {
-    let sink = Progress::new();
-    filter_map_pairs_counted(boxes, f, Share::new(&sink, 0).span(0.0, 1.0))
-}
-
-/// [`filter_map_pairs`], filling `span` as it goes: the boxes entered in the grid and sorted
-/// first, then the cells by chunks (most of the work), then the results sorted.
-pub(crate) fn filter_map_pairs_counted<T: Send>(
     boxes: &[Bounds3],
     f: impl Fn(u32, u32) -> Option<T> + Sync,
     span: Span,
@@ -45,7 +39,7 @@ pub(crate) fn filter_map_pairs_counted<T: Send>(
     filter_map_pairs_of(boxes.len(), |i| boxes[i as usize], f, span)
 }
 
-/// [`filter_map_pairs_counted`] of the `n` boxes `box_of(0..n)`, made when needed instead of
+/// [`filter_map_pairs`] of the `n` boxes `box_of(0..n)`, made when needed instead of
 /// kept: for callers whose boxes cost less to remake than to hold (a face's box from its
 /// corners, at ten million faces). `box_of` must give the same box every time.
 pub(crate) fn filter_map_pairs_of<T: Send>(

@@ -6,14 +6,15 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::args::{integer, quoted_list, Node};
-use super::mesh_file::{load_mesh_at, MeshFile};
+use super::mesh_file::{load_mesh, MeshFile};
 use super::transform::mirrors;
+use crate::count::Count;
 use crate::error::{Error, Location, Pos, Result, Warning, Warnings};
 use crate::geom::MAX_COORD;
 use crate::geom::{Box3, PolyMesh, M4, P3};
 use crate::primitives;
-use crate::progress::{Phase, Progress, Share, Stage};
-use crate::scene::cleanup::{cleanup, cleanup_counted, FaceShape, Origin};
+use crate::progress::{Phase, Progress, Stage};
+use crate::scene::cleanup::{cleanup, FaceShape, Origin};
 use crate::scene::{Mesh, Object, Texture, TextureFrame};
 
 /// The names of the geometry nodes (each may carry `name=`).
@@ -167,7 +168,7 @@ fn mesh_prototype(path: &Path, at: &Location, cx: &mut GeomCtx) -> Result<Arc<Ob
     if let Some(p) = cache.files.get(&canonical) {
         return Ok(p.clone());
     }
-    let file = load_mesh_at(path, Some(at), cx.progress).map_err(|e| e.via(at))?;
+    let file = load_mesh(path, Some(at), cx.progress).map_err(|e| e.via(at))?;
     let mut objects = mesh_file_objects(&file, cx.warnings, cx.progress).map_err(|e| e.via(at))?;
     // Back to the scene file's nodes.
     cx.progress.enter(Stage::Load, 0);
@@ -203,8 +204,7 @@ pub(super) fn mesh_file_objects(
             file: &file.path,
             face_pos: &g.face_pos,
         };
-        let share = Share::new(progress, g.mesh.faces.len());
-        let mesh = cleanup_counted(&g.mesh, &origin, warnings, &share)?;
+        let mesh = cleanup(&g.mesh, &origin, warnings, progress.count())?;
         let name = unique_name(&g.name.replace('/', "_"), &names);
         names.push(name.clone());
         out.push(Object::from_mesh(name, mesh));
@@ -260,7 +260,7 @@ fn clean_transformed(
         file: &n.src.path,
         face_pos,
     };
-    let mut mesh = cleanup(&raw, &origin, cx.warnings)?;
+    let mut mesh = cleanup(&raw, &origin, cx.warnings, Count::NONE)?;
     for (i, tex) in textures.iter().enumerate() {
         if let Some(t) = tex {
             attach(&local, &raw, i, t, &mut mesh, cx, &origin);

@@ -72,24 +72,18 @@ fn format_of(path: &Path) -> Result<Format> {
 /// # Errors
 /// [`Error::Usage`] for an unknown extension, [`Error::Io`] if the file cannot be read, and the
 /// format parser's [`Error::Parse`] or [`Error::Invalid`] (with the position) for bad contents.
-pub fn load_mesh(path: &Path) -> Result<MeshFile> {
-    load_mesh_at(path, None, &Progress::new())
-}
-
-/// [`load_mesh`] for the node at `at` (a scene file's `mesh` node): an unknown extension, a
-/// missing file, a directory or a device is reported there. The load's phases
-/// [`Phase::Read`] and [`Phase::Parse`] count bytes in `progress`.
-pub(crate) fn load_mesh_at(
-    path: &Path,
-    at: Option<&Location>,
-    progress: &Progress,
-) -> Result<MeshFile> {
+///
+/// `at` is the node that asked for it (a scene file's `mesh` node), where an unknown
+/// extension, a missing file, a directory or a device is reported (None: the file itself).
+/// The load's phases [`Phase::Read`] and [`Phase::Parse`] count bytes in `progress`.
+pub fn load_mesh(path: &Path, at: Option<&Location>, progress: &Progress) -> Result<MeshFile> {
     if let (Err(e), Some(at)) = (format_of(path), at) {
         return Err(Error::invalid(at.clone(), e.to_string()));
     }
     format_of(path)?;
-    let bytes = super::read::read_file_counted(path, at, progress)?;
-    parse_mesh_counted(path, &bytes, progress)
+    progress.enter_phase(Stage::Load, Phase::Read, super::read::file_len(path, at)?);
+    let bytes = super::read::read_file(path, at, progress.count())?;
+    parse_mesh(path, &bytes, progress)
 }
 
 /// Parses mesh file contents already in memory; `path` picks the format by its extension
@@ -97,25 +91,18 @@ pub(crate) fn load_mesh_at(
 ///
 /// # Errors
 /// As [`load_mesh`], without I/O errors; an empty input is [`Error::Invalid`].
-pub fn parse_mesh(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
-    parse_mesh_counted(path, bytes, &Progress::new())
-}
-
-/// [`parse_mesh`] as the load's phase [`Phase::Parse`], counting the bytes parsed.
-pub(crate) fn parse_mesh_counted(
-    path: &Path,
-    bytes: &[u8],
-    progress: &Progress,
-) -> Result<MeshFile> {
+///
+/// The load's phase [`Phase::Parse`], counting the bytes parsed in `progress`.
+pub fn parse_mesh(path: &Path, bytes: &[u8], progress: &Progress) -> Result<MeshFile> {
     let format = format_of(path)?;
     if bytes.is_empty() {
         return Err(Error::invalid(Location::file(path), "empty file"));
     }
     progress.enter_phase(Stage::Load, Phase::Parse, bytes.len());
     match format {
-        Format::Obj => super::obj::parse_obj_counted(path, bytes, progress),
-        Format::Stl => super::stl::parse_stl_counted(path, bytes, progress),
-        Format::Ply => super::ply::parse_ply_counted(path, bytes, progress),
+        Format::Obj => super::obj::parse_obj(path, bytes, progress.count()),
+        Format::Stl => super::stl::parse_stl(path, bytes, progress.count()),
+        Format::Ply => super::ply::parse_ply(path, bytes, progress.count()),
     }
 }
 
@@ -163,14 +150,20 @@ mod tests {
 
     #[test]
     fn load_unknown_extension_is_usage_error_naming_file() {
-        let e = parse_mesh(Path::new("dir/x.dxf"), b"abc").unwrap_err();
+        let e =
+            parse_mesh(Path::new("dir/x.dxf"), b"abc", &crate::Progress::default()).unwrap_err();
         assert!(matches!(e, Error::Usage(_)));
         assert!(
             e.to_string()
                 .starts_with("dir/x.dxf: unknown mesh file extension"),
             "{e}"
         );
-        let e = load_mesh(Path::new("no/such/file.3ds")).unwrap_err();
+        let e = load_mesh(
+            Path::new("no/such/file.3ds"),
+            None,
+            &crate::Progress::default(),
+        )
+        .unwrap_err();
         assert!(matches!(e, Error::Usage(_)));
     }
 
@@ -184,11 +177,16 @@ mod tests {
 
     #[test]
     fn load_missing_file_is_io_error() {
-        let e = load_mesh(Path::new("/no/such/dir/m.obj")).unwrap_err();
+        let e = load_mesh(
+            Path::new("/no/such/dir/m.obj"),
+            None,
+            &crate::Progress::default(),
+        )
+        .unwrap_err();
         assert!(matches!(e, Error::Io(..)));
         assert!(e.to_string().starts_with("/no/such/dir/m.obj: "), "{e}");
         let at = Location::line(Path::new("s.kdl"), 2, 7);
-        let e = load_mesh_at(Path::new("."), Some(&at), &Progress::new())
+        let e = load_mesh(Path::new("."), Some(&at), &Progress::default())
             .unwrap_err()
             .to_string();
         assert_eq!(
@@ -200,7 +198,7 @@ mod tests {
     #[test]
     fn load_empty_file_is_error() {
         for name in ["e.obj", "e.stl", "e.ply"] {
-            let e = parse_mesh(Path::new(name), b"").unwrap_err();
+            let e = parse_mesh(Path::new(name), b"", &crate::Progress::default()).unwrap_err();
             assert_eq!(e.to_string(), format!("{name}: empty file"));
         }
     }

@@ -19,7 +19,7 @@ use std::path::Path;
 
 pub use limits::{LoadOptions, DEFAULT_MAX_FACES};
 pub use mesh_file::{load_mesh, parse_mesh, MeshFile, MeshGroup};
-pub use scene_file::{load_scene_file, load_scene_file_with};
+pub use scene_file::load_scene_file;
 
 use crate::error::{Error, Result, Warnings};
 use crate::progress::Progress;
@@ -28,32 +28,21 @@ use crate::scene::{Object, Scene};
 /// Loads a scene: a `.kdl` scene file, or a mesh file (`.obj`, `.stl`, `.ply`) whose groups
 /// become the top-level objects (one object, named after its group, for a single group).
 /// The root object has the name "" (object paths leave it out). Repairs made on the way are
-/// appended to `warnings`.
-pub fn load_scene(path: &Path, warnings: &mut Warnings) -> Result<Scene> {
-    load_scene_with(path, &LoadOptions::default(), warnings)
-}
-
-/// [`load_scene`] with limits: a scene with more faces than `opts.max_faces` once its
-/// instances are placed is an error, found from counts before anything is expanded.
-pub fn load_scene_with(path: &Path, opts: &LoadOptions, warnings: &mut Warnings) -> Result<Scene> {
-    load_scene_counted(path, opts, warnings, None)
-}
-
-/// [`load_scene_with`], reporting where it is to `progress` (stage [`crate::Stage::Load`]):
-/// a mesh file's bytes read and parsed and its faces cleaned up, each as a phase of its own
-/// ([`crate::Phase::Read`], [`crate::Phase::Parse`], [`crate::Phase::Cleanup`]), for the
-/// scene file's meshes as for a mesh file given alone. The scene is the same with or
-/// without it.
-pub fn load_scene_counted(
+/// appended to `warnings`. A scene with more faces than `opts.max_faces` once its instances
+/// are placed is an error, found from counts before anything is expanded.
+///
+/// Where it is goes to `progress` (stage [`crate::Stage::Load`]): a mesh file's bytes read
+/// and parsed and its faces cleaned up, each as a phase of its own ([`crate::Phase::Read`],
+/// [`crate::Phase::Parse`], [`crate::Phase::Cleanup`]), for the scene file's meshes as for a
+/// mesh file given alone. The scene is the same whatever watches it.
+pub fn load_scene(
     path: &Path,
     opts: &LoadOptions,
     warnings: &mut Warnings,
-    progress: Option<&Progress>,
+    progress: &Progress,
 ) -> Result<Scene> {
-    let sink = Progress::new();
-    let progress = progress.unwrap_or(&sink);
     match mesh_file::extension(path).as_str() {
-        "kdl" => scene_file::load_scene_file_counted(path, opts, warnings, progress),
+        "kdl" => scene_file::load_scene_file(path, opts, warnings, progress),
         "obj" | "stl" | "ply" => mesh_scene(path, opts, warnings, progress),
         _ => Err(Error::Usage(format!(
             "{}: unknown scene file extension (expected .kdl, .obj, .stl or .ply)",
@@ -69,7 +58,7 @@ fn mesh_scene(
     warnings: &mut Warnings,
     progress: &Progress,
 ) -> Result<Scene> {
-    let file = mesh_file::load_mesh_at(path, None, progress)?;
+    let file = mesh_file::load_mesh(path, None, progress)?;
     let objects = geometry::mesh_file_objects(&file, warnings, progress)?;
     let root = Object::group("", objects);
     opts.check(&root, "the mesh", &crate::error::Location::file(path))?;

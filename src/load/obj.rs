@@ -4,9 +4,9 @@ use std::path::Path;
 
 use super::mesh_file::{coord_problem, finish, stem_name, MeshFile, MeshGroup};
 use super::text::{decode, Word, Words};
+use crate::count::{Count, Cursor};
 use crate::error::{Error, Result};
 use crate::geom::P3;
-use crate::progress::{Cursor, Progress};
 
 /// Statements that are read and ignored (texture coordinates, normals, materials, smoothing, lines, points).
 const IGNORED: [&str; 8] = ["vt", "vn", "vp", "usemtl", "mtllib", "s", "l", "p"];
@@ -19,21 +19,14 @@ const IGNORED: [&str; 8] = ["vt", "vn", "vp", "usemtl", "mtllib", "s", "l", "p"]
 /// [`Error::Parse`] for malformed text (bad numbers, unknown statements, invalid UTF-8) and
 /// [`Error::Invalid`] for bad values (index 0 or out of range, faces with fewer than 3
 /// vertices, NaN or huge coordinates, no faces at all), each at the offending `file:line:col`.
-pub fn parse_obj(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
-    parse_obj_counted(path, bytes, &Progress::new())
-}
-
-/// [`parse_obj`], adding the bytes parsed to `progress` as it goes.
-pub(crate) fn parse_obj_counted(
-    path: &Path,
-    bytes: &[u8],
-    progress: &Progress,
-) -> Result<MeshFile> {
+///
+/// The bytes parsed go to `done` as it goes, once per step of bytes.
+pub fn parse_obj(path: &Path, bytes: &[u8], done: Count) -> Result<MeshFile> {
     let text = decode(path, bytes, 1)?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut parser = ObjParser::new(path);
     let mut words = Words::new(text, 1).with_continuation().with_comment(b'#');
-    let mut cursor = Cursor::new(progress);
+    let mut cursor = Cursor::new(done);
     while words.next_line() {
         cursor.at(words.consumed());
         if let Some(keyword) = words.next_in_line() {
@@ -223,7 +216,7 @@ mod tests {
     use crate::error::Pos;
 
     fn parse(text: &str) -> Result<MeshFile> {
-        parse_obj(Path::new("dir/m.obj"), text.as_bytes())
+        parse_obj(Path::new("dir/m.obj"), text.as_bytes(), Count::NONE)
     }
 
     fn err(text: &str) -> String {
@@ -351,7 +344,12 @@ mod tests {
 
     #[test]
     fn load_obj_invalid_utf8_reports_line() {
-        let e = parse_obj(Path::new("g.obj"), b"v 0 0 0\nv 1 \xfe\xff 0\n").unwrap_err();
+        let e = parse_obj(
+            Path::new("g.obj"),
+            b"v 0 0 0\nv 1 \xfe\xff 0\n",
+            Count::NONE,
+        )
+        .unwrap_err();
         assert!(matches!(e, Error::Parse(..)));
         assert!(e.to_string().starts_with("g.obj:2:5: invalid UTF-8"), "{e}");
     }

@@ -4,9 +4,9 @@ use std::path::Path;
 
 use super::mesh_file::{coord_problem, finish, stem_name, MeshFile, MeshGroup};
 use super::text::{decode, Word, Words};
+use crate::count::{Count, Cursor};
 use crate::error::{Error, Location, Pos, Result};
 use crate::geom::P3;
-use crate::progress::{Cursor, Progress};
 
 /// Parses a PLY file into one group named after the file stem: vertices from element `vertex`
 /// (properties `x`, `y`, `z` of any numeric type), faces from the list property
@@ -17,17 +17,10 @@ use crate::progress::{Cursor, Progress};
 /// [`Error::Parse`] for a malformed header or body (at `file:line:col`, or at the byte offset
 /// in a binary body), truncated data and missing elements or properties; [`Error::Invalid`] for
 /// indices out of range, faces with fewer than 3 vertices and NaN or huge coordinates.
-pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
-    parse_ply_counted(path, bytes, &Progress::new())
-}
-
-/// [`parse_ply`], adding the bytes parsed to `progress` as it goes.
-pub(crate) fn parse_ply_counted(
-    path: &Path,
-    bytes: &[u8],
-    progress: &Progress,
-) -> Result<MeshFile> {
-    let mut cursor = Cursor::new(progress);
+///
+/// The bytes parsed go to `done` as it goes, once per step of bytes.
+pub fn parse_ply(path: &Path, bytes: &[u8], done: Count) -> Result<MeshFile> {
+    let mut cursor = Cursor::new(done);
     let header = parse_header(path, bytes)?;
     let roles = Roles::find(path, &header)?;
     let body = bytes.get(header.body..).unwrap_or_default();
@@ -791,7 +784,7 @@ mod tests {
     use super::*;
 
     fn parse(bytes: &[u8]) -> Result<MeshFile> {
-        parse_ply(Path::new("p/m.ply"), bytes)
+        parse_ply(Path::new("p/m.ply"), bytes, Count::NONE)
     }
 
     fn err(bytes: &[u8]) -> String {

@@ -4,27 +4,17 @@
 use std::io::Read;
 use std::path::Path;
 
+use crate::count::Count;
 use crate::error::{Error, Location, Result};
-use crate::progress::{Phase, Progress, Stage};
 
 /// Bytes read between two adds to the progress.
 const READ_CHUNK: u64 = 1 << 22;
 
-/// The bytes of the regular file at `path`. `at` is the node that asked for it (an include
-/// or `mesh` node), where a missing or unreadable file is reported; else the file itself.
-pub(crate) fn read_file(path: &Path, at: Option<&Location>) -> Result<Vec<u8>> {
-    check_regular(path, at)?;
-    std::fs::read(path).map_err(|e| failure(path, at, e))
-}
-
-/// [`read_file`] as the load's phase [`Phase::Read`], counting the bytes read.
-pub(crate) fn read_file_counted(
-    path: &Path,
-    at: Option<&Location>,
-    progress: &Progress,
-) -> Result<Vec<u8>> {
+/// The bytes of the regular file at `path`, counted in `done` as they are read (once per
+/// chunk). `at` is the node that asked for it (an include or `mesh` node), where a missing
+/// or unreadable file is reported; else the file itself.
+pub(crate) fn read_file(path: &Path, at: Option<&Location>, done: Count) -> Result<Vec<u8>> {
     let len = check_regular(path, at)?;
-    progress.enter_phase(Stage::Load, Phase::Read, len as usize);
     let file = std::fs::File::open(path).map_err(|e| failure(path, at, e))?;
     let mut bytes = Vec::with_capacity(len as usize);
     // In chunks until the end, wherever that is (the file may have changed size).
@@ -36,8 +26,13 @@ pub(crate) fn read_file_counted(
         if n == 0 {
             return Ok(bytes);
         }
-        progress.add(n);
+        done.add(n);
     }
+}
+
+/// The size in bytes of the regular file at `path` (errors as [`read_file`]'s).
+pub(crate) fn file_len(path: &Path, at: Option<&Location>) -> Result<usize> {
+    check_regular(path, at).map(|len| len as usize)
 }
 
 /// The error for a file that cannot be read.
@@ -80,16 +75,17 @@ fn check_regular(path: &Path, at: Option<&Location>) -> Result<u64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::atomic::{AtomicUsize, Ordering};
 
     #[test]
     fn directories_and_devices_are_refused_at_the_asking_node() {
         let at = Location::line(Path::new("s.kdl"), 3, 5);
-        let e = read_file(Path::new("."), Some(&at))
+        let e = read_file(Path::new("."), Some(&at), Count::NONE)
             .unwrap_err()
             .to_string();
         assert_eq!(e, "s.kdl:3:5: cannot read .: it is a directory, not a file");
         if Path::new("/dev/zero").exists() {
-            let e = read_file(Path::new("/dev/zero"), None)
+            let e = read_file(Path::new("/dev/zero"), None, Count::NONE)
                 .unwrap_err()
                 .to_string();
             assert!(
@@ -97,7 +93,7 @@ mod tests {
                 "{e}"
             );
         }
-        let e = read_file(Path::new("/no/such.kdl"), None)
+        let e = read_file(Path::new("/no/such.kdl"), None, Count::NONE)
             .unwrap_err()
             .to_string();
         assert!(
@@ -107,14 +103,14 @@ mod tests {
     }
 
     #[test]
-    fn a_counted_read_gives_the_same_bytes_and_counts_them() {
+    fn a_read_counts_its_bytes() {
         let path = Path::new("scenes/town.kdl");
-        let p = Progress::new();
-        let bytes = read_file_counted(path, None, &p).unwrap();
-        assert_eq!(bytes, read_file(path, None).unwrap());
-        assert_eq!(p.counts(), (bytes.len(), bytes.len()));
-        assert_eq!(p.phase(), Phase::Read);
-        let e = read_file_counted(Path::new("."), None, &p).unwrap_err();
+        let p = AtomicUsize::new(0);
+        let bytes = read_file(path, None, Count::to(&p)).unwrap();
+        assert_eq!(bytes, std::fs::read(path).unwrap());
+        assert_eq!(p.load(Ordering::Relaxed), bytes.len());
+        assert_eq!(file_len(path, None).unwrap(), bytes.len());
+        let e = read_file(Path::new("."), None, Count::to(&p)).unwrap_err();
         assert!(
             e.to_string().ends_with("it is a directory, not a file"),
             "{e}"

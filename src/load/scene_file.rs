@@ -25,24 +25,11 @@ use crate::scene::{CameraSpec, Object, Scene};
 const TOP_NODES: [&str; 5] = ["camera", "include", "prototype", "object", "instance"];
 
 /// Loads the scene file at `path` (and the files it includes and the meshes it uses).
-/// Repairs made on the way are appended to `warnings`.
-pub fn load_scene_file(path: &Path, warnings: &mut Warnings) -> Result<Scene> {
-    load_scene_file_with(path, &LoadOptions::default(), warnings)
-}
-
-/// [`load_scene_file`] with limits: an instance, object or scene with more faces than
-/// `opts.max_faces` is an error at its node, found from counts before anything is expanded.
-pub fn load_scene_file_with(
-    path: &Path,
-    opts: &LoadOptions,
-    warnings: &mut Warnings,
-) -> Result<Scene> {
-    load_scene_file_counted(path, opts, warnings, &Progress::new())
-}
-
-/// [`load_scene_file_with`], reporting to `progress`: the scene file's nodes as the load
-/// stage as a whole, each mesh file in it by its phases (read, parse, cleanup).
-pub(crate) fn load_scene_file_counted(
+/// Repairs made on the way are appended to `warnings`. An instance, object or scene with
+/// more faces than `opts.max_faces` is an error at its node, found from counts before
+/// anything is expanded. The scene file's nodes go to `progress` as the load stage as a
+/// whole, each mesh file in it by its phases (read, parse, cleanup).
+pub fn load_scene_file(
     path: &Path,
     opts: &LoadOptions,
     warnings: &mut Warnings,
@@ -648,7 +635,12 @@ mod tests {
         let d = dir(test);
         let p = write(&d, "s.kdl", text);
         let mut w = Vec::new();
-        let r = load_scene_file(&p, &mut w);
+        let r = load_scene_file(
+            &p,
+            &crate::LoadOptions::default(),
+            &mut w,
+            &crate::Progress::default(),
+        );
         (r, w)
     }
 
@@ -959,7 +951,13 @@ mod tests {
             "include \"lib/parts.kdl\"\ninclude \"lib/more.kdl\"\ninstance \"x\" of=\"p\"\n",
         );
         let mut w = Vec::new();
-        let s = load_scene_file(&top, &mut w).unwrap();
+        let s = load_scene_file(
+            &top,
+            &crate::LoadOptions::default(),
+            &mut w,
+            &crate::Progress::default(),
+        )
+        .unwrap();
         // parts.kdl is read once: more.kdl's include of it is skipped.
         assert_eq!(tree(&s.root), "(from_lib[8] more[8] x@)");
         assert!(s.camera.is_none());
@@ -973,7 +971,14 @@ mod tests {
         let a = write(&d, "a.kdl", "object \"a\" { prism 3 }\ninclude \"b.kdl\"\n");
         write(&d, "b.kdl", "\n\ninclude \"a.kdl\"\n");
         let mut w = Vec::new();
-        let e = load_scene_file(&a, &mut w).unwrap_err().to_string();
+        let e = load_scene_file(
+            &a,
+            &crate::LoadOptions::default(),
+            &mut w,
+            &crate::Progress::default(),
+        )
+        .unwrap_err()
+        .to_string();
         let p = |f: &str| d.join(f).display().to_string();
         assert_eq!(
             e,
@@ -1017,7 +1022,13 @@ mod tests {
             "object \"a\" { prism 3 }\ninclude \"parts/part.kdl\"\n",
         );
         let mut w = Vec::new();
-        let e = load_scene_file(&top, &mut w).unwrap_err();
+        let e = load_scene_file(
+            &top,
+            &crate::LoadOptions::default(),
+            &mut w,
+            &crate::Progress::default(),
+        )
+        .unwrap_err();
         let p = |f: &str| d.join(f).display().to_string();
         assert_eq!(
             e.to_string(),
@@ -1041,7 +1052,14 @@ mod tests {
         let dd = dir("meshdir2");
         std::fs::create_dir_all(dd.join("d.obj")).unwrap();
         let s = write(&dd, "s.kdl", "object \"a\" { mesh \"d.obj\" }\n");
-        let e = load_scene_file(&s, &mut w).unwrap_err().to_string();
+        let e = load_scene_file(
+            &s,
+            &crate::LoadOptions::default(),
+            &mut w,
+            &crate::Progress::default(),
+        )
+        .unwrap_err()
+        .to_string();
         assert!(
             e.ends_with("s.kdl:1:14: cannot read d.obj: it is a directory, not a file")
                 || e.contains("s.kdl:1:14: cannot read"),
@@ -1075,7 +1093,13 @@ mod tests {
             "#,
         );
         let mut w = Vec::new();
-        let s = load_scene_file(&top, &mut w).unwrap();
+        let s = load_scene_file(
+            &top,
+            &crate::LoadOptions::default(),
+            &mut w,
+            &crate::Progress::default(),
+        )
+        .unwrap();
         assert_eq!(tree(&s.root), "(p@ q@ r(mesh@ box[6]))");
         let objs = s.root.subobjects();
         let proto = |o: &Object| match &o.content {
@@ -1106,9 +1130,21 @@ mod tests {
         let d = dir("plain");
         let p = write(&d, "m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
         let mut w = Vec::new();
-        let s = crate::load::load_scene(&p, &mut w).unwrap();
+        let s = crate::load::load_scene(
+            &p,
+            &crate::LoadOptions::default(),
+            &mut w,
+            &crate::Progress::default(),
+        )
+        .unwrap();
         assert_eq!(tree(&s.root), "(m[1])");
-        let e = crate::load::load_scene(&d.join("x.txt"), &mut w).unwrap_err();
+        let e = crate::load::load_scene(
+            &d.join("x.txt"),
+            &crate::LoadOptions::default(),
+            &mut w,
+            &crate::Progress::default(),
+        )
+        .unwrap_err();
         assert!(matches!(e, Error::Usage(_)));
     }
 }

@@ -4,10 +4,10 @@ use std::path::Path;
 
 use super::mesh_file::{coord_problem, finish, stem_name, MeshFile, MeshGroup};
 use super::text::{decode, Word, Words};
+use crate::count::{Count, Cursor};
 use crate::error::{Error, Location, Pos, Result};
 use crate::geom::key_hash::KeyMap;
 use crate::geom::P3;
-use crate::progress::{Cursor, Progress};
 
 /// Size of the binary header: 80 bytes of text and a little-endian u32 triangle count.
 const HEADER: u64 = 84;
@@ -25,19 +25,12 @@ const TRIANGLE: u64 = 50;
 /// [`Error::Parse`] for malformed ASCII (at `file:line:col`) or a binary size that disagrees
 /// with the triangle count (at the byte offset of the first incomplete triangle);
 /// [`Error::Invalid`] for NaN or huge coordinates and facets with fewer than 3 vertices.
-pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<MeshFile> {
-    parse_stl_counted(path, bytes, &Progress::new())
-}
-
-/// [`parse_stl`], adding the bytes parsed to `progress` as it goes.
-pub(crate) fn parse_stl_counted(
-    path: &Path,
-    bytes: &[u8],
-    progress: &Progress,
-) -> Result<MeshFile> {
+///
+/// The bytes parsed go to `done` as it goes, once per step of bytes.
+pub fn parse_stl(path: &Path, bytes: &[u8], done: Count) -> Result<MeshFile> {
     let len = bytes.len() as u64;
     let count = triangle_count(bytes);
-    let mut cursor = Cursor::new(progress);
+    let mut cursor = Cursor::new(done);
     let group = match count {
         Some(n) if len == HEADER + TRIANGLE * n => binary(path, bytes, n, &mut cursor)?,
         _ if starts_with_solid(bytes) && !bytes.contains(&0) => ascii(path, bytes, &mut cursor)?,
@@ -330,7 +323,7 @@ mod tests {
     use super::*;
 
     fn parse(bytes: &[u8]) -> Result<MeshFile> {
-        parse_stl(Path::new("t/s.stl"), bytes)
+        parse_stl(Path::new("t/s.stl"), bytes, Count::NONE)
     }
 
     /// A binary STL with the given header start and triangles.

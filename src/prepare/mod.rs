@@ -14,7 +14,7 @@ pub use inbox::{compute_inboxes, mesh_inbox};
 pub use solidity::{mark_solids, solidity};
 pub use trees::bvtree::{HierarchyKind, ObjectTree};
 
-use crate::progress::Progress;
+use crate::progress::{Phase, Progress, Stage};
 use crate::scene::Scene;
 
 /// What the prepare stage builds.
@@ -32,30 +32,25 @@ pub struct PrepareOptions {
     pub every_inbox: bool,
 }
 
-/// The prepare stage for a whole scene with the default options.
-pub fn prepare(scene: &mut Scene) {
-    prepare_with(scene, &PrepareOptions::default());
-}
-
 /// The prepare stage for a whole scene: every mesh's solidity (once per prototype), INBOXes
 /// for every object lacking one, and an object tree for every large leaf mesh. A scene of one
 /// leaf object gets no inboxes: an inbox prunes only other objects, so there is nothing for it
 /// to do ("model no more than a scene needs").
-pub fn prepare_with(scene: &mut Scene, opts: &PrepareOptions) {
-    prepare_counted(scene, opts, None);
-}
-
-/// [`prepare_with`], reporting where it is to `progress` (stage [`crate::Stage::Prepare`]):
-/// the phases [`crate::Phase::Solidity`], [`crate::Phase::Inboxes`] and
-/// [`crate::Phase::Trees`], each counting the faces of the meshes it handles (a shared
-/// prototype's once). The prepared scene is the same with or without it.
-pub fn prepare_counted(scene: &mut Scene, opts: &PrepareOptions, progress: Option<&Progress>) {
-    let sink = Progress::new();
-    let progress = progress.unwrap_or(&sink);
-    solidity::mark_solids_counted(&mut scene.root, progress);
-    let several = has_two_leaves(&scene.root);
+///
+/// Where it is goes to `progress` (stage [`crate::Stage::Prepare`]): the phases
+/// [`crate::Phase::Solidity`], [`crate::Phase::Inboxes`] and [`crate::Phase::Trees`], each
+/// counting the faces of the meshes it handles (a shared prototype's once). The prepared
+/// scene is the same whatever watches it.
+pub fn prepare(scene: &mut Scene, opts: &PrepareOptions, progress: &Progress) {
+    let root = &mut scene.root;
+    let faces = root.distinct_faces_where(&|_, m| m.solidity.is_none());
+    progress.enter_phase(Stage::Prepare, Phase::Solidity, faces);
+    solidity::mark_solids(root, progress.count());
+    let several = has_two_leaves(root);
     if several || opts.every_inbox {
-        inbox::compute_inboxes_counted(&mut scene.root, progress);
+        let faces = root.distinct_faces_where(&|obj, _| obj.inbox.is_none());
+        progress.enter_phase(Stage::Prepare, Phase::Inboxes, faces);
+        inbox::compute_inboxes(root, progress.count());
     }
     // Trees for every large mesh, for shared prototypes' only, or none.
     let shared_only = match opts.hierarchy {
@@ -65,7 +60,9 @@ pub fn prepare_counted(scene: &mut Scene, opts: &PrepareOptions, progress: Optio
     };
     if let Some(shared_only) = shared_only {
         let kind = HierarchyKind::Simplify;
-        trees::attach_trees_counted(&mut scene.root, kind, several, shared_only, progress);
+        let faces = trees::planned_faces(root, shared_only);
+        progress.enter_phase(Stage::Prepare, Phase::Trees, faces);
+        trees::attach_trees(root, kind, several, shared_only, progress.count());
     }
 }
 

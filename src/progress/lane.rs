@@ -12,7 +12,8 @@
 
 use std::sync::{Mutex, PoisonError};
 
-use super::{Phase, Progress, Stage, Tally};
+use super::{Phase, Progress, Stage};
+use crate::count::{Count, Tally};
 
 /// A piece of work whose phases reach `progress` once nothing runs ahead of it.
 #[derive(Debug)]
@@ -68,6 +69,11 @@ impl<'p> Lane<'p> {
                 self.progress.enter_phase(stage, phase, total - done);
             }
         }
+    }
+
+    /// The count of the lane's current phase, for its algorithms to add to.
+    pub(crate) fn count(&self) -> Count<'_> {
+        Count::to(self)
     }
 
     fn lock(&self) -> std::sync::MutexGuard<'_, State> {

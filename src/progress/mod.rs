@@ -1,60 +1,24 @@
 //! Where a run is, shared with a watcher thread (a progress bar): the stage and its phase,
-//! and units done of the phase's total. Workers add to an atomic counter once per chunk of
-//! work, never per item, and nothing they compute reads it: watching never changes a result.
+//! and units done of the phase's total. Only the stage entry points (load, prepare) and the
+//! pipeline enter stages and phases, with their totals; the algorithms they run are handed
+//! a [`Count`] of the current phase and only add units done to it, once per chunk of work,
+//! and nothing they compute reads it: watching never changes a result.
 //!
 //! - [`stage`]: the stages, their phases and what each phase counts.
-//! - `cursor`: a sequential pass through a file, counted by its position in bytes.
-//! - `share`: a piece of work that fills a fixed share of a phase's count (one mesh's faces
-//!   of all the meshes a phase handles), by steps or by fractions.
 //! - `lane`: work run beside other work of its stage (the picture beside the JSON), whose
 //!   phases reach the bar once the work ahead is done.
 
-mod cursor;
 mod lane;
-mod share;
 pub mod stage;
 
 use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
-pub(crate) use cursor::Cursor;
+use crate::count::{Count, Tally};
 pub(crate) use lane::Lane;
-pub(crate) use share::{Share, Span, Steps};
 
 pub use stage::{Phase, Stage, Unit};
-
-/// Items a loop does between two adds to the shared counter ([`Progress::tick`]).
-pub const CHUNK: usize = 1024;
-
-/// True when item `i` (from 0) of a loop is the last of a [`CHUNK`]: where a chunked count
-/// adds the chunk.
-#[inline]
-fn ends_chunk(i: usize) -> bool {
-    (i + 1).is_multiple_of(CHUNK)
-}
-
-/// Where a phase's units done are added: the [`Progress`] itself, or a [`Lane`] that holds
-/// them until its phase is shown.
-pub(crate) trait Tally: Sync + std::fmt::Debug {
-    /// Adds `n` units done to the current phase.
-    fn add(&self, n: usize);
-
-    /// Counts item `i` (from 0) of a loop as done: one add of [`CHUNK`] as each chunk's
-    /// last item is done, so a hot loop pays a division, not an add, per item; after the
-    /// loop, [`Tally::tick_rest`] adds the items of the last, partial chunk.
-    #[inline]
-    fn tick(&self, i: usize) {
-        if ends_chunk(i) {
-            self.add(CHUNK);
-        }
-    }
-
-    /// Adds what [`Tally::tick`] left uncounted of a loop of `n` items.
-    fn tick_rest(&self, n: usize) {
-        self.add(n % CHUNK);
-    }
-}
 
 impl Tally for Progress {
     fn add(&self, n: usize) {
@@ -177,27 +141,14 @@ impl Progress {
         out
     }
 
-    /// The counter of units done, for the phase's workers to add to.
-    pub fn done_counter(&self) -> &AtomicUsize {
-        &self.done
+    /// The count of the current phase's units done, for its algorithms to add to.
+    pub(crate) fn count(&self) -> Count<'_> {
+        Count::to(self)
     }
 
     /// Adds `n` units done.
     pub fn add(&self, n: usize) {
         self.done.fetch_add(n, Ordering::Relaxed);
-    }
-
-    /// Counts item `i` (from 0) of a loop as done: one atomic add of [`CHUNK`] as each
-    /// chunk's last item is done; after the loop, [`Progress::tick_rest`] adds the items of
-    /// the last, partial chunk.
-    #[inline]
-    pub fn tick(&self, i: usize) {
-        Tally::tick(self, i);
-    }
-
-    /// Adds what [`Progress::tick`] left uncounted of a loop of `n` items.
-    pub fn tick_rest(&self, n: usize) {
-        Tally::tick_rest(self, n);
     }
 }
 
@@ -206,15 +157,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn ticks_add_up_to_the_items_whatever_their_order() {
+    fn a_count_adds_to_the_current_phase() {
         let p = Progress::new();
         p.enter_phase(Stage::View, Phase::Project, 5000);
-        for i in (0..5000).rev() {
-            p.tick(i);
-        }
-        assert_eq!(p.counts(), (4 * CHUNK, 5000));
-        p.tick_rest(5000);
-        assert_eq!(p.counts(), (5000, 5000));
+        p.count().add(4000);
+        assert_eq!(p.counts(), (4000, 5000));
     }
 
     #[test]

@@ -14,9 +14,9 @@ use std::path::Path;
 
 use rayon::prelude::*;
 
+use crate::count::Count;
 use crate::error::{Error, Location, Pos, Result, Warning, Warnings};
 use crate::geom::{newell, PolyMesh, MAX_COORD, P3, V3};
-use crate::progress::{Progress, Share};
 
 use super::object::{Face, Mesh};
 use super::topology::is_closed_oriented;
@@ -47,25 +47,16 @@ impl Origin<'_> {
 }
 
 /// Checks and repairs `raw`, returning the clean mesh; warnings are appended to `warnings`.
-pub fn cleanup(raw: &PolyMesh, origin: &Origin, warnings: &mut Warnings) -> Result<Mesh> {
-    let sink = Progress::new();
-    cleanup_counted(raw, origin, warnings, &Share::new(&sink, 0))
-}
-
-/// [`cleanup`], filling `share` as it goes: the vertices merged first, then the faces by
-/// chunks, then the unused vertices dropped and the orientation checked (the shares of
-/// time each pass takes on a large mesh).
-pub(crate) fn cleanup_counted(
+/// The faces cleaned go to `done` as they are, once per chunk of faces.
+pub fn cleanup(
     raw: &PolyMesh,
     origin: &Origin,
     warnings: &mut Warnings,
-    share: &Share,
+    done: Count,
 ) -> Result<Mesh> {
     check_coordinates(raw, origin)?;
     check_indices(raw, origin)?;
     let (vertices, remap) = merge_duplicate_vertices(&raw.vertices);
-    share.reach(0.15);
-    let faces_done = share.span(0.15, 0.5).steps(raw.faces.len());
     let merged = raw.vertices.len() - vertices.len();
     if merged > 0 {
         warnings.push(Warning {
@@ -80,7 +71,7 @@ pub(crate) fn cleanup_counted(
             let at = || origin.at(c * CLEANED_CHUNK + k);
             clean_face(idx, &vertices, at, &mut part.0, &mut part.1);
         }
-        faces_done.add(chunk.len());
+        done.add(chunk.len());
         part
     };
     // A big mesh in chunks of faces on all threads, joined in order: the same faces and
@@ -100,9 +91,7 @@ pub(crate) fn cleanup_counted(
         warnings.extend(w);
     }
     let (vertices, faces) = drop_unused_vertices(vertices, faces);
-    share.reach(0.55);
     let closed = is_closed_oriented(&faces);
-    share.finish();
     Ok(Mesh {
         vertices,
         faces,
@@ -339,7 +328,13 @@ mod tests {
     #[test]
     fn planar_quad_is_kept() {
         let mut w = Vec::new();
-        let m = cleanup(&quad_mesh(0.0), &origin(), &mut w).unwrap();
+        let m = cleanup(
+            &quad_mesh(0.0),
+            &origin(),
+            &mut w,
+            crate::count::Count::NONE,
+        )
+        .unwrap();
         assert_eq!(m.faces.len(), 1);
         assert!(w.is_empty());
         assert!(!m.closed);
@@ -348,7 +343,13 @@ mod tests {
     #[test]
     fn warped_quad_is_kept_with_warning() {
         let mut w = Vec::new();
-        let m = cleanup(&quad_mesh(0.1), &origin(), &mut w).unwrap();
+        let m = cleanup(
+            &quad_mesh(0.1),
+            &origin(),
+            &mut w,
+            crate::count::Count::NONE,
+        )
+        .unwrap();
         assert_eq!(m.faces.len(), 1);
         assert_eq!(w.len(), 1);
         assert!(
@@ -371,7 +372,7 @@ mod tests {
             ],
             vec![vec![0, 1, 2, 3]],
         );
-        let m = cleanup(&saddle, &origin(), &mut w).unwrap();
+        let m = cleanup(&saddle, &origin(), &mut w, crate::count::Count::NONE).unwrap();
         assert_eq!(m.faces.len(), 2);
         assert_eq!(w.len(), 1);
         assert!(w[0].message.contains("not planar"), "{}", w[0].message);
@@ -395,7 +396,7 @@ mod tests {
             vec![vec![0, 1, 2], vec![0, 1, 3], vec![0, 1, 4]],
         );
         let mut w = Vec::new();
-        let m = cleanup(&raw, &origin(), &mut w).unwrap();
+        let m = cleanup(&raw, &origin(), &mut w, crate::count::Count::NONE).unwrap();
         assert_eq!(m.faces.len(), 1);
         assert_eq!(m.vertices.len(), 3);
         let msgs: Vec<&str> = w.iter().map(|w| w.message.as_str()).collect();
@@ -412,12 +413,12 @@ mod tests {
         let mut w = Vec::new();
         let nan = PolyMesh::new(vec![P3::new(f64::NAN, 0., 0.)], vec![]);
         assert!(matches!(
-            cleanup(&nan, &origin(), &mut w),
+            cleanup(&nan, &origin(), &mut w, crate::count::Count::NONE),
             Err(Error::Invalid(..))
         ));
         let huge = PolyMesh::new(vec![P3::new(1e300, 0., 0.)], vec![]);
         assert!(matches!(
-            cleanup(&huge, &origin(), &mut w),
+            cleanup(&huge, &origin(), &mut w, crate::count::Count::NONE),
             Err(Error::Invalid(..))
         ));
         let oob = PolyMesh::new(vec![P3::origin()], vec![vec![0, 1, 2]]);
@@ -428,6 +429,7 @@ mod tests {
                 face_pos: &[Pos::Line { line: 7, col: 1 }],
             },
             &mut w,
+            crate::count::Count::NONE,
         );
         assert!(e.unwrap_err().to_string().starts_with("x.obj:7:1:"));
     }
@@ -474,7 +476,7 @@ mod tests {
             ],
             vec![vec![0, 2, 1], vec![0, 1, 3], vec![0, 3, 4], vec![1, 2, 3]],
         );
-        let m = cleanup(&raw, &origin(), &mut Vec::new()).unwrap();
+        let m = cleanup(&raw, &origin(), &mut Vec::new(), crate::count::Count::NONE).unwrap();
         assert_eq!(m.vertices.len(), 4);
         assert!(m.closed);
     }

@@ -162,7 +162,10 @@ pub(crate) mod testing {
             file: std::path::Path::new("t"),
             face_pos: &[],
         };
-        Object::from_mesh(name, cleanup(raw, &origin, &mut Vec::new()).unwrap())
+        Object::from_mesh(
+            name,
+            cleanup(raw, &origin, &mut Vec::new(), crate::count::Count::NONE).unwrap(),
+        )
     }
 
     /// A scene of one open leaf "sq": the unit square [0, 1]^2 at z = 0, cut into `faces`

@@ -95,7 +95,12 @@ impl Mesh {
             file: Path::new("polygons"),
             face_pos: &[],
         };
-        cleanup(&PolyMesh::new(vertices, faces), &origin, warnings)
+        cleanup(
+            &PolyMesh::new(vertices, faces),
+            &origin,
+            warnings,
+            Default::default(),
+        )
     }
 
     /// The generalized winding number of the faces around `p`

@@ -46,7 +46,7 @@ fn every_bad_mesh_file_is_refused_with_a_position() {
     let files = bad_files();
     assert!(files.len() >= 30, "only {} bad fixtures found", files.len());
     for path in files {
-        let result = catch_unwind(|| load_mesh(&path));
+        let result = catch_unwind(|| load_mesh(&path, None, &crate::Progress::default()));
         let Ok(result) = result else {
             panic!("{}: the loader panicked", path.display())
         };
@@ -130,7 +130,7 @@ fn bad_mesh_files_give_exact_messages() {
     let mut failures = Vec::new();
     for (name, want) in cases {
         let path = fixtures("bad").join(name);
-        let got = match load_mesh(&path) {
+        let got = match load_mesh(&path, None, &crate::Progress::default()) {
             Ok(_) => "loaded without error".to_string(),
             Err(e) => e.to_string(),
         };
@@ -158,7 +158,11 @@ fn noise_bytes(rng: &mut Rng, n: usize) -> Vec<u8> {
 /// Parses `bytes` as `name`, failing the test on a panic.
 fn no_panic(name: &str, bytes: &[u8], what: &str) {
     let path = Path::new(name);
-    if catch_unwind(AssertUnwindSafe(|| parse_mesh(path, bytes))).is_err() {
+    if catch_unwind(AssertUnwindSafe(|| {
+        parse_mesh(path, bytes, &crate::Progress::default())
+    }))
+    .is_err()
+    {
         panic!(
             "{name}: the loader panicked on {what} ({} bytes: {:?})",
             bytes.len(),
@@ -180,7 +184,10 @@ fn garbage_truncation_and_mutation_never_panic() {
     for path in good_files() {
         let bytes = std::fs::read(&path).expect("readable fixture");
         let name = path.to_string_lossy().into_owned();
-        assert!(parse_mesh(&path, &bytes).is_ok(), "{name} should load");
+        assert!(
+            parse_mesh(&path, &bytes, &crate::Progress::default()).is_ok(),
+            "{name} should load"
+        );
         for cut in 0..bytes.len() {
             no_panic(&name, &bytes[..cut], "a truncated prefix");
         }

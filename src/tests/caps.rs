@@ -36,7 +36,11 @@ fn open_box(h: f64) -> Mesh {
 
 fn prepared(s: &Scene) -> Scene {
     let mut p = s.clone();
-    crate::prepare::prepare(&mut p);
+    crate::prepare::prepare(
+        &mut p,
+        &crate::PrepareOptions::default(),
+        &crate::Progress::default(),
+    );
     p
 }
 

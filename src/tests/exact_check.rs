@@ -11,8 +11,18 @@ use crate::{render, FaceId, RenderOptions};
 
 /// Renders as a user would (prepared: culling where proven safe) and checks every face.
 fn prepared_check(mut scene: Scene, cam: Camera, faces: Option<&[FaceId]>) -> ExactReport {
-    crate::prepare(&mut scene);
-    let r = render(&scene, &cam, &RenderOptions::default()).unwrap();
+    crate::prepare(
+        &mut scene,
+        &crate::PrepareOptions::default(),
+        &crate::Progress::default(),
+    );
+    let r = render(
+        &scene,
+        &cam,
+        &RenderOptions::default(),
+        &crate::Progress::default(),
+    )
+    .unwrap();
     check(&scene, &cam, &r.visibility, faces)
 }
 
@@ -41,7 +51,11 @@ fn unit_cube_from_a_corner() {
 
 /// A prepared scene whose first leaf is forced to count as a solid: the old cull rule.
 fn force_cull(mut scene: Scene) -> Scene {
-    crate::prepare(&mut scene);
+    crate::prepare(
+        &mut scene,
+        &crate::PrepareOptions::default(),
+        &crate::Progress::default(),
+    );
     if let crate::scene::Content::Subobjects(subs) = &mut scene.root.content {
         if let crate::scene::Content::Mesh(m) = &mut subs[0].content {
             m.solidity = Some(Solidity::Solid);
@@ -109,7 +123,13 @@ fn fold_and_inside_out_tetrahedron_match_the_exact_answer() {
         assert_agrees(what, &prepared_check(s.clone(), cam, None));
         // The old rule (culling it as a solid) gives a wrong answer, and the check sees it.
         let forced = force_cull(s.clone());
-        let r = render(&forced, &cam, &RenderOptions::default()).unwrap();
+        let r = render(
+            &forced,
+            &cam,
+            &RenderOptions::default(),
+            &crate::Progress::default(),
+        )
+        .unwrap();
         assert!(
             !check(&forced, &cam, &r.visibility, None).agrees(),
             "{what}: culling must be wrong here"
@@ -284,7 +304,11 @@ fn only_proven_pieces_cull() {
     let bad = joined(&fold_mesh(), &solid(&mut rng, 0, true));
     let s = scene(vec![("parts", joined(&good, &bad))]);
     let mut prepared = s.clone();
-    crate::prepare(&mut prepared);
+    crate::prepare(
+        &mut prepared,
+        &crate::PrepareOptions::default(),
+        &crate::Progress::default(),
+    );
     let m = prepared.leaves()[0].mesh;
     assert!(
         matches!(m.solidity, Some(Solidity::SelfIntersecting(_))),
@@ -302,7 +326,13 @@ fn only_proven_pieces_cull() {
         .enumerate()
     {
         let cam = Camera::orthographic(V3::new(dir[0], dir[1], dir[2]), V3::y()).unwrap();
-        let r = render(&prepared, &cam, &RenderOptions::default()).unwrap();
+        let r = render(
+            &prepared,
+            &cam,
+            &RenderOptions::default(),
+            &crate::Progress::default(),
+        )
+        .unwrap();
         assert!(
             r.stats.counters.faces_culled > 0,
             "view {k}: the proper pieces cull"
@@ -315,7 +345,13 @@ fn only_proven_pieces_cull() {
     // From below the fold shows back faces nearest: culling the whole mesh is wrong.
     let cam = Camera::orthographic(V3::new(0., 0., 1.), V3::y()).unwrap();
     let forced = force_cull(s);
-    let r = render(&forced, &cam, &RenderOptions::default()).unwrap();
+    let r = render(
+        &forced,
+        &cam,
+        &RenderOptions::default(),
+        &crate::Progress::default(),
+    )
+    .unwrap();
     assert!(!check(&forced, &cam, &r.visibility, None).agrees());
 }
 
@@ -327,8 +363,18 @@ fn ogre_proven_pieces_match_the_exact_answer() {
     let Some(path) = model("ogre.obj") else {
         return;
     };
-    let mut s = crate::load_scene(&path, &mut Vec::new()).unwrap();
-    crate::prepare(&mut s);
+    let mut s = crate::load_scene(
+        &path,
+        &crate::LoadOptions::default(),
+        &mut Vec::new(),
+        &crate::Progress::default(),
+    )
+    .unwrap();
+    crate::prepare(
+        &mut s,
+        &crate::PrepareOptions::default(),
+        &crate::Progress::default(),
+    );
     let d = V3::new(-1., -2., -3.);
     let m = s.leaves()[0].mesh;
     let p = m.proven.as_ref().expect("ogre's pieces are proven");
@@ -348,7 +394,13 @@ fn ogre_proven_pieces_match_the_exact_answer() {
         .collect();
     faces.extend((0..m.faces.len() as u32).step_by(step).map(FaceId));
     let cam = Camera::orthographic(d, V3::y()).unwrap();
-    let r = render(&s, &cam, &RenderOptions::default()).unwrap();
+    let r = render(
+        &s,
+        &cam,
+        &RenderOptions::default(),
+        &crate::Progress::default(),
+    )
+    .unwrap();
     assert!(
         r.stats.counters.faces_culled > 30_000,
         "{}",
@@ -364,7 +416,13 @@ fn ogre_proven_pieces_match_the_exact_answer() {
 #[test]
 fn cow_matches_the_exact_answer() {
     let Some(path) = model("cow.obj") else { return };
-    let s = crate::load_scene(&path, &mut Vec::new()).unwrap();
+    let s = crate::load_scene(
+        &path,
+        &crate::LoadOptions::default(),
+        &mut Vec::new(),
+        &crate::Progress::default(),
+    )
+    .unwrap();
     assert_eq!(solidity_of(&s), Solidity::SelfIntersecting(81));
     let mut faces: Vec<FaceId> = [5380, 5381, 5382, 5446, 5465, 5472, 5473, 5474]
         .into_iter()

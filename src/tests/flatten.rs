@@ -18,11 +18,25 @@ fn corners(f: &FlatMesh) -> Vec<Vec<[f64; 3]>> {
 }
 
 fn round_trip(scene_path: &Path, tmp: &Path) {
-    let scene = crate::load::load_scene(scene_path, &mut Vec::new()).unwrap();
+    let scene = crate::load::load_scene(
+        scene_path,
+        &crate::LoadOptions::default(),
+        &mut Vec::new(),
+        &crate::Progress::default(),
+    )
+    .unwrap();
     let first = flatten(&scene);
     let obj1 = tmp.join("first.obj");
     std::fs::write(&obj1, first.to_obj()).unwrap();
-    let second = flatten(&crate::load::load_scene(&obj1, &mut Vec::new()).unwrap());
+    let second = flatten(
+        &crate::load::load_scene(
+            &obj1,
+            &crate::LoadOptions::default(),
+            &mut Vec::new(),
+            &crate::Progress::default(),
+        )
+        .unwrap(),
+    );
     assert_eq!(
         corners(&first),
         corners(&second),
@@ -44,7 +58,15 @@ fn round_trip(scene_path: &Path, tmp: &Path) {
     );
     let obj2 = tmp.join("second.obj");
     std::fs::write(&obj2, second.to_obj()).unwrap();
-    let third = flatten(&crate::load::load_scene(&obj2, &mut Vec::new()).unwrap());
+    let third = flatten(
+        &crate::load::load_scene(
+            &obj2,
+            &crate::LoadOptions::default(),
+            &mut Vec::new(),
+            &crate::Progress::default(),
+        )
+        .unwrap(),
+    );
     assert_eq!(
         second.to_obj(),
         third.to_obj(),

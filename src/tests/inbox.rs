@@ -284,7 +284,7 @@ fn open_meshes_have_no_inbox_and_groups_take_the_largest() {
             Object::from_mesh("sq", sq),
         ],
     );
-    compute_inboxes(&mut g);
+    compute_inboxes(&mut g, Default::default());
     assert_eq!(
         g.inbox,
         Some(Box3::new(P3::new(2., 0., 0.), P3::new(4., 2., 2.)))
@@ -306,7 +306,7 @@ fn instance_inboxes_follow_the_transform() {
             Object::instance("r", proto.clone(), translate(0., 5., 0.) * r),
         ],
     );
-    compute_inboxes(&mut g);
+    compute_inboxes(&mut g, Default::default());
     let t = g.subobjects()[0].inbox.unwrap();
     assert_eq!(t, Box3::new(P3::new(4., -1., -1.), P3::new(6., 1., 1.)));
     let rb = g.subobjects()[1].inbox.unwrap();
@@ -356,7 +356,7 @@ fn scene_behind_wall() -> Scene {
 /// projected and walked): the visible-polygon sets must be equal, face by face.
 /// Returns whether the cull hid a subtree.
 fn assert_same_visibility(mut scene: Scene, camera: Camera, expect_pruning: bool) -> bool {
-    compute_inboxes(&mut scene.root);
+    compute_inboxes(&mut scene.root, Default::default());
     let json = |no_inbox| {
         let outputs = Outputs {
             json: true,
@@ -367,7 +367,7 @@ fn assert_same_visibility(mut scene: Scene, camera: Camera, expect_pruning: bool
             outputs,
             ..RenderOptions::default()
         };
-        render(&scene, &camera, &opts).unwrap()
+        render(&scene, &camera, &opts, &crate::Progress::default()).unwrap()
     };
     let (culled, full) = (json(false), json(true));
     let (with, without) = (&culled.visibility, &full.visibility);

@@ -181,7 +181,11 @@ fn random_closed_solids() {
     for _ in 0..3 {
         let mut s = random_solids(&mut rng, 14);
         // Prepared: each primitive is proven solid, so its back faces are culled.
-        crate::prepare::prepare(&mut s);
+        crate::prepare::prepare(
+            &mut s,
+            &crate::PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
         for (ci, cam) in cameras(&mut rng, P3::new(1.0, 1.0, 1.0))
             .into_iter()
             .enumerate()
@@ -258,7 +262,13 @@ fn shared_meshes_from_several_views() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let s = crate::load::load_scene(&path, &mut Vec::new()).unwrap();
+        let s = crate::load::load_scene(
+            &path,
+            &crate::LoadOptions::default(),
+            &mut Vec::new(),
+            &crate::Progress::default(),
+        )
+        .unwrap();
         let b = s.cbox();
         let c = b.center();
         let r = (b.hi - b.lo).norm();

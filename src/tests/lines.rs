@@ -25,7 +25,13 @@ fn all_edges(hidden: bool) -> LineOptions {
 }
 
 fn load(path: &std::path::Path) -> Scene {
-    crate::load::load_scene(path, &mut Vec::new()).unwrap()
+    crate::load::load_scene(
+        path,
+        &crate::LoadOptions::default(),
+        &mut Vec::new(),
+        &crate::Progress::default(),
+    )
+    .unwrap()
 }
 
 /// Icosphere: an icosahedron subdivided `n` times, pushed onto the unit sphere.
@@ -124,9 +130,9 @@ fn ico5_visible_length_is_analytic() {
 /// piece of screen line counted once: segments on one line (directions within 1e-9, offsets
 /// within 1e-9 of the extent) are merged as intervals along it, as a plotter strokes them.
 fn projected_total(scene: &Scene, view: &View) -> f64 {
-    let world = WorldFaces::build(scene);
-    let mut edges = mesh_edges(&world, view, &all_edges(true).edges);
-    edges.extend(intersection_edges(&world, |_| true));
+    let world = WorldFaces::build(scene, None, Default::default());
+    let mut edges = mesh_edges(&world, view, &all_edges(true).edges, Default::default());
+    edges.extend(intersection_edges(&world, |_| true, Default::default()));
     let segs: Vec<[[f64; 2]; 2]> = edges
         .iter()
         .filter_map(|e| project_segment(&view.camera, &e.ends[0], &e.ends[1]))
@@ -260,7 +266,11 @@ fn example_drawings_have_no_zero_length_strokes() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes");
     for name in ["assembly", "town", "polyhedra"] {
         let mut scene = load(&root.join(format!("{name}.kdl")));
-        crate::prepare(&mut scene);
+        crate::prepare(
+            &mut scene,
+            &crate::PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
         let camera = Camera::for_scene(&scene, &CameraRequest::default()).unwrap();
         let opts = RenderOptions {
             lines: LineOptions {
@@ -273,7 +283,7 @@ fn example_drawings_have_no_zero_length_strokes() {
             },
             ..Default::default()
         };
-        let r = render(&scene, &camera, &opts).unwrap();
+        let r = render(&scene, &camera, &opts, &crate::Progress::default()).unwrap();
         let d = r.drawing.as_ref().expect("drawing asked for");
         assert!(!d.visible.is_empty(), "{name}");
         for s in d.visible.iter().chain(&d.hidden) {

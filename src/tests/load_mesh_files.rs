@@ -17,7 +17,7 @@ fn fixture(name: &str) -> PathBuf {
 
 fn load(name: &str) -> MeshFile {
     let path = fixture(name);
-    load_mesh(&path).unwrap_or_else(|e| panic!("{e}"))
+    load_mesh(&path, None, &crate::Progress::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The unit cube's corners, as in `make_mesh_fixtures.py`.
@@ -129,7 +129,7 @@ fn suzanne_has_500_faces_468_of_them_quads() {
     let Some(path) = model("suzanne.obj") else {
         return;
     };
-    let m = load_mesh(&path).unwrap_or_else(|e| panic!("{e}"));
+    let m = load_mesh(&path, None, &crate::Progress::default()).unwrap_or_else(|e| panic!("{e}"));
     let faces: Vec<&Vec<u32>> = m.groups.iter().flat_map(|g| &g.mesh.faces).collect();
     assert_eq!(faces.len(), 500);
     assert_eq!(faces.iter().filter(|f| f.len() == 4).count(), 468);
@@ -157,7 +157,8 @@ fn every_shared_model_loads() {
     );
     for path in paths {
         let t = Instant::now();
-        let m = load_mesh(&path).unwrap_or_else(|e| panic!("{e}"));
+        let m =
+            load_mesh(&path, None, &crate::Progress::default()).unwrap_or_else(|e| panic!("{e}"));
         let faces: usize = m.groups.iter().map(|g| g.mesh.faces.len()).sum();
         let verts: usize = m.groups.iter().map(|g| g.mesh.vertices.len()).sum();
         println!(

@@ -56,10 +56,10 @@ fn cut_rings_give_the_whole_rings_answer() {
     for cam in cameras {
         let view = View::new(&scene, cam);
         indexed += view.screen.ring_indexes.len();
-        let cut = solve(&view, PassOptions::default());
+        let cut = solve(&view, PassOptions::default(), Default::default());
         let mut whole_view = view.clone();
         whole_view.screen.ring_indexes.clear();
-        let whole = solve(&whole_view, PassOptions::default());
+        let whole = solve(&whole_view, PassOptions::default(), Default::default());
         let total: f64 = whole.by_id().iter().map(|f| f.area).sum();
         assert!(total > 0.0);
         for (a, b) in cut.by_id().iter().zip(whole.by_id()) {

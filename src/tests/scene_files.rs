@@ -33,8 +33,13 @@ fn every_example_scene_loads_without_warnings() {
     assert!(scenes.len() >= 3, "only {} scenes", scenes.len());
     for path in scenes {
         let mut warnings = Vec::new();
-        let scene =
-            load_scene(&path, &mut warnings).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let scene = load_scene(
+            &path,
+            &crate::LoadOptions::default(),
+            &mut warnings,
+            &crate::Progress::default(),
+        )
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert!(warnings.is_empty(), "{}: {warnings:?}", path.display());
         assert!(scene.face_count() > 0, "{}", path.display());
         assert!(scene.camera.is_some(), "{}: no camera", path.display());
@@ -60,7 +65,13 @@ fn child<'a>(o: &'a Object, name: &str) -> &'a Object {
 #[test]
 fn town_places_one_house_many_times() {
     let mut warnings = Vec::new();
-    let town = load_scene(&crate_dir("scenes/town.kdl"), &mut warnings).unwrap();
+    let town = load_scene(
+        &crate_dir("scenes/town.kdl"),
+        &crate::LoadOptions::default(),
+        &mut warnings,
+        &crate::Progress::default(),
+    )
+    .unwrap();
     let right = child(&town.root, "right");
     let left = child(&town.root, "left");
     let house = prototype(child(right, "house1"));
@@ -83,7 +94,13 @@ fn town_places_one_house_many_times() {
 #[test]
 fn polyhedra_shows_all_eighteen_solids() {
     let mut warnings = Vec::new();
-    let scene = load_scene(&crate_dir("scenes/polyhedra.kdl"), &mut warnings).unwrap();
+    let scene = load_scene(
+        &crate_dir("scenes/polyhedra.kdl"),
+        &crate::LoadOptions::default(),
+        &mut warnings,
+        &crate::Progress::default(),
+    )
+    .unwrap();
     let names: Vec<String> = scene
         .leaves()
         .iter()
@@ -119,7 +136,14 @@ fn every_bad_scene_is_refused_at_its_line() {
     assert!(fixtures.len() >= 20, "only {} fixtures", fixtures.len());
     for path in fixtures {
         let line = expected_line(&path);
-        let result = catch_unwind(|| load_scene(&path, &mut Vec::new()));
+        let result = catch_unwind(|| {
+            load_scene(
+                &path,
+                &crate::LoadOptions::default(),
+                &mut Vec::new(),
+                &crate::Progress::default(),
+            )
+        });
         let Ok(result) = result else {
             panic!("{}: the loader panicked", path.display())
         };
@@ -144,7 +168,14 @@ fn every_bad_scene_is_refused_at_its_line() {
 /// Loads `text` as a scene file at `path`; must not panic.
 fn load_text(path: &Path, text: &[u8]) {
     std::fs::write(path, text).expect("temporary file");
-    let r = catch_unwind(AssertUnwindSafe(|| load_scene(path, &mut Vec::new())));
+    let r = catch_unwind(AssertUnwindSafe(|| {
+        load_scene(
+            path,
+            &crate::LoadOptions::default(),
+            &mut Vec::new(),
+            &crate::Progress::default(),
+        )
+    }));
     assert!(
         r.is_ok(),
         "the loader panicked on:\n{}",

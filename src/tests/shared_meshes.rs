@@ -42,8 +42,18 @@ fn shared_meshes_emit_valid_rings_and_stroke_each_line_once() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let mut scene = crate::load_scene(&path, &mut Vec::new()).unwrap();
-        crate::prepare(&mut scene);
+        let mut scene = crate::load_scene(
+            &path,
+            &crate::LoadOptions::default(),
+            &mut Vec::new(),
+            &crate::Progress::default(),
+        )
+        .unwrap();
+        crate::prepare(
+            &mut scene,
+            &crate::PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
         let cam = Camera::orthographic(V3::new(-1., -2., -3.), V3::y()).unwrap();
         let opts = RenderOptions {
             lines: LineOptions {
@@ -59,7 +69,7 @@ fn shared_meshes_emit_valid_rings_and_stroke_each_line_once() {
             },
             ..RenderOptions::default()
         };
-        let r = render(&scene, &cam, &opts).unwrap();
+        let r = render(&scene, &cam, &opts, &crate::Progress::default()).unwrap();
         let mut bad = Vec::new();
         for (id, f) in r.visibility.iter() {
             for d in multipolygon_defects(&f.visible) {
@@ -100,7 +110,13 @@ fn teapot_seams_merge_and_leave_only_real_borders() {
     let Some(path) = model("teapot.obj") else {
         return;
     };
-    let scene = crate::load_scene(&path, &mut Vec::new()).unwrap();
+    let scene = crate::load_scene(
+        &path,
+        &crate::LoadOptions::default(),
+        &mut Vec::new(),
+        &crate::Progress::default(),
+    )
+    .unwrap();
     let mesh = scene.leaves()[0].mesh;
     let mut uses: HashMap<(u32, u32), usize> = HashMap::new();
     for f in &mesh.faces {

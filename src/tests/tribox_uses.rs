@@ -258,7 +258,13 @@ fn shared_meshes_tribox_between_hull_and_cbox() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let scene: Scene = crate::load::load_scene(&p, &mut Vec::new()).unwrap();
+        let scene: Scene = crate::load::load_scene(
+            &p,
+            &crate::LoadOptions::default(),
+            &mut Vec::new(),
+            &crate::Progress::default(),
+        )
+        .unwrap();
         let pts: Vec<P3> = scene
             .leaves()
             .iter()

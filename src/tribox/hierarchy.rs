@@ -550,6 +550,7 @@ mod tests {
                 face_pos: &[],
             },
             &mut Vec::new(),
+            crate::count::Count::NONE,
         )
         .unwrap()
     }

@@ -191,7 +191,7 @@ fn clean(raw: &PolyMesh) -> Option<Mesh> {
         file: std::path::Path::new("tribox"),
         face_pos: &[],
     };
-    cleanup(raw, &origin, &mut Vec::new())
+    cleanup(raw, &origin, &mut Vec::new(), Default::default())
         .ok()
         .filter(|m| !m.faces.is_empty())
 }

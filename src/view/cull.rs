@@ -303,7 +303,11 @@ mod tests {
     #[test]
     fn a_box_behind_the_wall_is_hidden_and_later_faces_keep_their_ids() {
         let mut scene = warped_scene();
-        crate::prepare::prepare(&mut scene);
+        crate::prepare::prepare(
+            &mut scene,
+            &crate::PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
         let camera = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
         let cull = Cull::new(&scene, &camera);
         assert_eq!(cull.hidden.len(), 1);
@@ -314,7 +318,7 @@ mod tests {
         );
         assert_eq!(cull.leaves.len(), 3);
         assert_eq!(cull.face_count, 19);
-        let view = View::from_cull(&scene, camera, &cull);
+        let view = View::from_cull(&scene, camera, &cull, &crate::Progress::default());
         let sf = &view.screen;
         // The hidden box's faces have no pieces; the faces after it keep their global ids
         // while their pieces close up (2 for the bent quad + 6 for the wall = 8 before them).

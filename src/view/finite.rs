@@ -65,7 +65,12 @@ mod tests {
         let target = P3::new(0.5, 0.5, 0.0);
         for (fov, ok) in [(40.0, true), (1e-6, true), (1e-150, false), (1e-300, false)] {
             let cam = Camera::perspective(eye, target, V3::y(), fov, 0.005).unwrap();
-            let r = render(&scene, &cam, &RenderOptions::default());
+            let r = render(
+                &scene,
+                &cam,
+                &RenderOptions::default(),
+                &crate::Progress::default(),
+            );
             assert_eq!(r.is_ok(), ok, "{fov}");
             if let Err(e) = r {
                 assert!(e.to_string().contains("field of view is too narrow"), "{e}");

@@ -335,7 +335,7 @@ fn clean(poly: &PolyMesh) -> Option<Mesh> {
         file: std::path::Path::new("tribox"),
         face_pos: &[],
     };
-    let m = cleanup(poly, &origin, &mut Vec::new()).ok()?;
+    let m = cleanup(poly, &origin, &mut Vec::new(), crate::count::Count::NONE).ok()?;
     (!m.faces.is_empty()).then_some(m)
 }
 

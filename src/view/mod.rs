@@ -60,12 +60,17 @@ pub struct CullSummary {
 impl View {
     /// Projects every face of `scene` with `camera` (no cull).
     pub fn new(scene: &Scene, camera: Camera) -> View {
-        Self::from_cull(scene, camera, &Cull::none(scene))
+        Self::from_cull(scene, camera, &Cull::none(scene), &Progress::default())
     }
 
     /// Culls `scene` with its inboxes, then projects what is left.
     pub fn culled(scene: &Scene, camera: Camera) -> View {
-        Self::from_cull(scene, camera, &Cull::new(scene, &camera))
+        Self::from_cull(
+            scene,
+            camera,
+            &Cull::new(scene, &camera),
+            &Progress::default(),
+        )
     }
 
     /// Number of faces of the scene (face ids run from 0 below it), culled ones included.
@@ -115,23 +120,15 @@ impl View {
 
     /// Projects the faces a cull of `scene` kept: hidden subtrees are left out of the screen
     /// faces and the tree, and their faces' VTPs are empty.
-    pub fn from_cull(scene: &Scene, camera: Camera, cull: &Cull) -> View {
-        Self::from_cull_counted(scene, camera, cull, &Progress::new())
-    }
-
-    /// [`View::from_cull`] as the view stage's phases: [`Phase::Project`] counting the kept
-    /// leaves' faces projected, then [`Phase::Tree`] every face placed in the view tree.
-    pub(crate) fn from_cull_counted(
-        scene: &Scene,
-        camera: Camera,
-        cull: &Cull,
-        progress: &Progress,
-    ) -> View {
+    ///
+    /// As the view stage's phases in `progress`: [`Phase::Project`] counting the kept leaves'
+    /// faces projected, then [`Phase::Tree`] every face placed in the view tree.
+    pub fn from_cull(scene: &Scene, camera: Camera, cull: &Cull, progress: &Progress) -> View {
         let kept = cull.leaves.iter().map(|l| l.mesh.faces.len()).sum();
         progress.enter_phase(Stage::View, Phase::Project, kept);
-        let screen = ScreenFaces::from_cull_counted(cull, &camera, progress);
+        let screen = ScreenFaces::from_cull(cull, &camera, progress.count());
         progress.enter_phase(Stage::View, Phase::Tree, screen.face_count());
-        let tree = ViewTree::build_counted(scene, &camera, &screen, &cull.hidden, progress);
+        let tree = ViewTree::build(scene, &camera, &screen, &cull.hidden, progress.count());
         View {
             camera,
             screen,

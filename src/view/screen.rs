@@ -3,10 +3,10 @@
 
 use std::ops::Range;
 
+use crate::count::Count;
 use crate::geom::convexity::{is_convex_ccw, Strictness};
 use crate::geom::poly2::{ring_area, Pt2};
 use crate::geom::{newell, orient2d, orient3d_refs, Corners, Rect, P3};
-use crate::progress::Progress;
 use crate::scene::{FaceId, Leaf, Scene};
 
 use super::backfaces::BackCull;
@@ -118,21 +118,13 @@ pub struct ScreenFaces {
 impl ScreenFaces {
     /// Projects every face of `scene` with `camera`.
     pub fn build(scene: &Scene, camera: &Camera) -> ScreenFaces {
-        Self::from_cull(&Cull::none(scene), camera)
+        Self::from_cull(&Cull::none(scene), camera, Count::NONE)
     }
 
     /// Projects the faces of the leaves a cull kept; faces of hidden subtrees get no pieces.
-    pub fn from_cull(cull: &Cull, camera: &Camera) -> ScreenFaces {
-        Self::from_cull_counted(cull, camera, &Progress::new())
-    }
-
-    /// [`ScreenFaces::from_cull`], counting in `progress` the faces of the kept leaves as
-    /// they are projected.
-    pub(crate) fn from_cull_counted(
-        cull: &Cull,
-        camera: &Camera,
-        progress: &Progress,
-    ) -> ScreenFaces {
+    ///
+    /// The faces of the kept leaves go to `done` as they are projected, once per chunk.
+    pub fn from_cull(cull: &Cull, camera: &Camera, done: Count) -> ScreenFaces {
         let mut out = ScreenFaces {
             det_sign: camera.matrix.determinant().signum(),
             camera: Some(*camera),
@@ -156,7 +148,7 @@ impl ScreenFaces {
         for (li, leaf) in cull.leaves.iter().enumerate() {
             out.face_starts
                 .resize(leaf.first_face + 1, out.pieces.len() as u32);
-            out.add_leaf(li as u32, leaf, camera, cull.hidden_in_leaf(li), progress);
+            out.add_leaf(li as u32, leaf, camera, cull.hidden_in_leaf(li), done);
         }
         out.face_starts
             .resize(cull.face_count as usize + 1, out.pieces.len() as u32);
@@ -294,14 +286,7 @@ impl ScreenFaces {
 
     /// Projects the faces of a leaf, except its `hidden` ones (local indices, ascending: faces
     /// of components the cull found HIDDEN get no pieces).
-    fn add_leaf(
-        &mut self,
-        li: u32,
-        leaf: &Leaf,
-        camera: &Camera,
-        hidden: &[u32],
-        progress: &Progress,
-    ) {
+    fn add_leaf(&mut self, li: u32, leaf: &Leaf, camera: &Camera, hidden: &[u32], done: Count) {
         let world_first = self.world.len() as u32;
         self.world.extend(leaf.world_vertices());
         let world = &self.world[world_first as usize..];
@@ -323,7 +308,7 @@ impl ScreenFaces {
         let mut hidden = hidden.iter().peekable();
         let mut scratch = Vec::new();
         for (k, f) in leaf.mesh.faces.iter().enumerate() {
-            progress.tick(k);
+            done.tick(k);
             if hidden.next_if_eq(&&(k as u32)).is_some() {
                 self.face_starts.push(self.pieces.len() as u32);
                 continue;
@@ -348,7 +333,7 @@ impl ScreenFaces {
             }
             self.face_starts.push(self.pieces.len() as u32);
         }
-        progress.tick_rest(leaf.mesh.faces.len());
+        done.tick_rest(leaf.mesh.faces.len());
     }
 
     fn add_piece(

@@ -10,11 +10,11 @@
 
 use std::ops::Range;
 
+use crate::count::Count;
 use crate::geom::hull2::convex_hull;
 use crate::geom::poly2::Pt2;
 use crate::geom::{Box3, Rect, M4};
 use crate::prepare::trees::bvtree::{HierarchyKind, ObjectTree};
-use crate::progress::{Progress, Share, CHUNK};
 use crate::scene::{Content, FaceId, Object, Scene};
 
 use super::camera::{Camera, Projection};
@@ -123,23 +123,15 @@ impl ViewTree {
 
     /// Builds the tree of `scene` over its screen faces; `hidden` objects (in global face
     /// order) become empty nodes.
+    ///
+    /// The faces of each mesh go to `done` once its pieces are placed (every face of the
+    /// scene in the end; hidden objects' faces at once).
     pub fn build(
         scene: &Scene,
         camera: &Camera,
         sf: &ScreenFaces,
         hidden: &[HiddenObject],
-    ) -> ViewTree {
-        Self::build_counted(scene, camera, sf, hidden, &Progress::new())
-    }
-
-    /// [`ViewTree::build`], counting in `progress` the faces of each mesh as their pieces
-    /// are placed in the tree (every face of the scene in the end).
-    pub(crate) fn build_counted(
-        scene: &Scene,
-        camera: &Camera,
-        sf: &ScreenFaces,
-        hidden: &[HiddenObject],
-        progress: &Progress,
+        done: Count,
     ) -> ViewTree {
         let mut b = Builder {
             tree: ViewTree::default(),
@@ -147,9 +139,7 @@ impl ViewTree {
             camera,
             next_face: FaceId(0),
             hidden,
-            progress,
-            share: Share::new(progress, 0),
-            placed: 0,
+            done,
         };
         b.object(&scene.root, &M4::identity(), "", None);
         b.tree
@@ -168,12 +158,8 @@ struct Builder<'a> {
     next_face: FaceId,
     /// Hidden objects not yet met, in global face order.
     hidden: &'a [HiddenObject<'a>],
-    /// Where the view stage is.
-    progress: &'a Progress,
-    /// The faces of the mesh being placed, filled as its pieces are.
-    share: Share<'a>,
-    /// Pieces placed since the share was last added to.
-    placed: usize,
+    /// The faces placed so far, counted per mesh.
+    done: Count<'a>,
 }
 
 impl Builder<'_> {
@@ -182,7 +168,7 @@ impl Builder<'_> {
         let first = self.next_face;
         if let Some(n) = self.hidden_here(obj) {
             self.next_face = self.next_face.offset(n);
-            self.progress.add(n as usize);
+            self.done.add(n as usize);
             let node = self.push(empty_node());
             if let Some(s) = slot {
                 self.tree.objects[s].node = node;
@@ -195,7 +181,6 @@ impl Builder<'_> {
             Content::Mesh(m) => {
                 let end = first.offset(m.faces.len() as u32);
                 self.next_face = end;
-                self.share = Share::new(self.progress, m.faces.len());
                 let node = match obj.tree.as_deref() {
                     Some(t) if t.kind == HierarchyKind::Simplify => self
                         .prepared(t, 0, first, xf)
@@ -209,8 +194,7 @@ impl Builder<'_> {
                         self.bvh(ids)
                     }
                 };
-                self.share.finish();
-                self.placed = 0;
+                self.done.add(m.faces.len());
                 node
             }
             Content::Subobjects(subs) => {
@@ -395,11 +379,6 @@ impl Builder<'_> {
         self.tree
             .piece_bounds
             .extend(ids.iter().map(|&p| PieceBound::of(self.sf.piece(p))));
-        self.placed += ids.len();
-        if self.placed >= CHUNK {
-            self.share.add(self.placed);
-            self.placed = 0;
-        }
         self.tree.pieces.extend(ids);
         n.kind = NodeKind::Leaf(start..self.tree.pieces.len() as u32);
         self.push(n)
@@ -482,7 +461,11 @@ mod tests {
     fn faces_and_pieces_are_told_apart() {
         let mut scene = warped_scene();
         // Prepared: the wall is a proven solid, so its back faces are culled.
-        crate::prepare::prepare(&mut scene);
+        crate::prepare::prepare(
+            &mut scene,
+            &crate::PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
         let camera = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
         let sf = ScreenFaces::build(&scene, &camera);
         // The bent quad is one face but two planar pieces: every later face's piece is one on.
@@ -493,7 +476,7 @@ mod tests {
             assert_eq!(p, [PieceId(f + 1)]);
             assert_eq!(sf.piece(p[0]).face, FaceId(f));
         }
-        let tree = ViewTree::build(&scene, &camera, &sf, &[]);
+        let tree = ViewTree::build(&scene, &camera, &sf, &[], Count::NONE);
         // The leaf lists hold pieces; their bounds name the pieces' faces.
         for (p, b) in tree.pieces.iter().zip(&tree.piece_bounds) {
             assert_eq!(b.face, sf.piece(*p).face);

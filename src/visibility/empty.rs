@@ -58,7 +58,13 @@ mod tests {
 
     fn reason(camera: Camera) -> Option<String> {
         let scene = unit_cube_scene();
-        let r = render(&scene, &camera, &RenderOptions::default()).unwrap();
+        let r = render(
+            &scene,
+            &camera,
+            &RenderOptions::default(),
+            &crate::Progress::default(),
+        )
+        .unwrap();
         why_empty(scene.face_count(), &r.view, &r.visibility)
     }
 

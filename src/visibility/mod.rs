@@ -13,7 +13,7 @@ pub mod visp;
 pub mod vtp_texture;
 
 pub use include::{include, Inclusion};
-pub use pass::{solve, solve_counted, FaceVisibility, PassOptions, Visibility};
+pub use pass::{solve, FaceVisibility, PassOptions, Visibility};
 pub use stats::Counters;
 pub use visfac::{visfac, Verdict, Vtp};
 pub use visobj::visobj;

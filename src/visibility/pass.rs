@@ -1,11 +1,11 @@
 //! The whole-scene pass: every face's VTP, in parallel over faces. Subtrees the view stage
 //! culled (HIDDEN by inboxes) have no pieces, so the pass never touches their faces.
 
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 use rayon::prelude::*;
 
+use crate::count::Count;
 use crate::geom::boolean;
 use crate::geom::poly2::{canonicalize, multipolygon_area, MultiPolygon};
 use crate::geom::ring_check::repair;
@@ -117,13 +117,10 @@ impl Visibility {
 const SEQUENTIAL_BELOW: usize = 64;
 
 /// Computes every face's VTP against the whole scene.
-pub fn solve(view: &View, opts: PassOptions) -> Visibility {
-    solve_counted(view, opts, None)
-}
-
-/// [`solve`], adding 1 to `done` as each of the `view.screen.pieces.len()` pieces is
-/// finished (for a progress bar; one relaxed atomic add per piece, the result is the same).
-pub fn solve_counted(view: &View, opts: PassOptions, done: Option<&AtomicUsize>) -> Visibility {
+///
+/// Each of the `view.screen.pieces.len()` pieces goes to `done` as it is finished (one
+/// add per piece: a piece is a whole visibility solve; the result is the same).
+pub fn solve(view: &View, opts: PassOptions, done: Count) -> Visibility {
     let mut counters = Counters {
         subtrees_tested: view.culled.tested,
         subtrees_hidden: view.culled.subtrees,
@@ -144,9 +141,7 @@ pub fn solve_counted(view: &View, opts: PassOptions, done: Option<&AtomicUsize>)
     let total = Mutex::new(Counters::default());
     let solve = |w: &mut Worker, f| {
         let r = solve_face(&view_used, root, f, &mut w.scratch, &mut w.counters);
-        if let Some(d) = done {
-            d.fetch_add(1, Ordering::Relaxed);
-        }
+        done.add(1);
         r
     };
     let results: Vec<FaceVisibility> = if sf.pieces.len() < SEQUENTIAL_BELOW {

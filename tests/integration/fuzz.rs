@@ -11,7 +11,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use kepler_hsr::{load_scene_with, render, Camera, CameraRequest, LoadOptions, Outputs};
+use kepler_hsr::{load_scene, render, Camera, CameraRequest, LoadOptions, Outputs};
 use kepler_hsr::{LineOptions, RenderOptions};
 use kepler_testkit::Rng;
 
@@ -143,18 +143,23 @@ fn check(path: &Path) -> Result<Outcome, String> {
     let opts = LoadOptions { max_faces: 200_000 };
     let run = || -> Result<Outcome, String> {
         let mut warnings = Vec::new();
-        let mut scene = match load_scene_with(path, &opts, &mut warnings) {
-            Ok(s) => s,
-            Err(e) => {
-                let msg = e.to_string();
-                let named = msg.starts_with(&format!("{}:", path.display()));
-                return match named {
-                    true => Ok(Outcome::Refused),
-                    false => Err(format!("error does not name the file: {msg}")),
-                };
-            }
-        };
-        kepler_hsr::prepare(&mut scene);
+        let mut scene =
+            match load_scene(path, &opts, &mut warnings, &kepler_hsr::Progress::default()) {
+                Ok(s) => s,
+                Err(e) => {
+                    let msg = e.to_string();
+                    let named = msg.starts_with(&format!("{}:", path.display()));
+                    return match named {
+                        true => Ok(Outcome::Refused),
+                        false => Err(format!("error does not name the file: {msg}")),
+                    };
+                }
+            };
+        kepler_hsr::prepare(
+            &mut scene,
+            &kepler_hsr::PrepareOptions::default(),
+            &kepler_hsr::Progress::default(),
+        );
         if scene.face_count() > RENDER_FACES {
             return Ok(Outcome::Loaded);
         }
@@ -174,7 +179,7 @@ fn check(path: &Path) -> Result<Outcome, String> {
             },
             ..Default::default()
         };
-        let Ok(r) = render(&scene, &camera, &opts) else {
+        let Ok(r) = render(&scene, &camera, &opts, &kepler_hsr::Progress::default()) else {
             return Ok(Outcome::Rendered);
         };
         let json = r.json.unwrap_or_default();

@@ -8,8 +8,8 @@ use std::ops::Range;
 
 use rayon::prelude::*;
 
+use crate::count::{Count, Share};
 use crate::geom::{P3, V3};
-use crate::progress::{Progress, Share};
 use crate::scene::topology::{sort_by_key, sort_by_pair};
 use crate::scene::{FaceId, Scene};
 use crate::view::{Facing, View};
@@ -87,11 +87,13 @@ impl EdgeOptions {
     /// world end points, the faces it lies on and its kind; mesh edges first (in order of
     /// first appearance), then the intersection curves of faces that can hide something.
     pub fn edges(&self, scene: &Scene, view: &View) -> Vec<([P3; 2], Vec<FaceId>, EdgeKind)> {
-        let world = WorldFaces::build(scene);
-        let mut edges = mesh_edges(&world, view, self);
-        edges.extend(intersection_edges(&world, |f| {
-            view.screen.face_is_occluder(f)
-        }));
+        let world = WorldFaces::build(scene, None, Default::default());
+        let mut edges = mesh_edges(&world, view, self, Default::default());
+        edges.extend(intersection_edges(
+            &world,
+            |f| view.screen.face_is_occluder(f),
+            Default::default(),
+        ));
         edges
             .into_iter()
             .map(|e| (e.ends, e.faces, e.kind))
@@ -138,21 +140,13 @@ impl HalfEdge {
 }
 
 /// The mesh edges of every leaf (in order of first appearance), classified, filtered by `opts.set`.
-pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions) -> Vec<Edge> {
-    mesh_edges_counted(world, view, opts, &Progress::new())
-}
-
-/// [`mesh_edges`], counting in `progress` the world faces whose edges are done: each
-/// leaf's faces fill as its edges are found, grouped and classified.
-pub(crate) fn mesh_edges_counted(
-    world: &WorldFaces,
-    view: &View,
-    opts: &EdgeOptions,
-    progress: &Progress,
-) -> Vec<Edge> {
+///
+/// The world faces whose edges are done go to `done`: each leaf's faces as its edges are
+/// found, grouped and classified.
+pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions, done: Count) -> Vec<Edge> {
     let cos_crease = opts.crease_deg.to_radians().cos();
     let all = world.faces.len().max(1) as f64;
-    let share = Share::new(progress, world.faces.len());
+    let share = Share::new(done, world.faces.len());
     // Each face's facing once (a warped face's is a sum over its pieces).
     let facing: Vec<Facing> = (0..view.screen.face_count())
         .into_par_iter()
@@ -217,7 +211,7 @@ pub(crate) fn mesh_edges_counted(
     out
 }
 
-/// The part of [`mesh_edges_counted`]'s count that every face's facing fills (the rest is
+/// The part of [`mesh_edges`]'s count that every face's facing fills (the rest is
 /// the leaves' edges, by faces).
 const FACING_SHARE: f64 = 0.1;
 
@@ -323,38 +317,55 @@ mod tests {
     fn cube_three_quarter_has_six_silhouette_edges() {
         let scene = unit_cube_scene();
         let view = View::new(&scene, Camera::three_quarter());
-        let world = WorldFaces::build(&scene);
+        let world = WorldFaces::build(&scene, None, crate::count::Count::NONE);
         let opts = EdgeOptions {
             set: EdgeSet::All,
             crease_deg: 30.0,
         };
-        let all = mesh_edges(&world, &view, &opts);
+        let all = mesh_edges(&world, &view, &opts, crate::count::Count::NONE);
         assert_eq!(all.len(), 12, "each shared edge once");
         assert!(all.iter().all(|e| e.faces.len() == 2));
         assert_eq!(count(&all, EdgeKind::Silhouette), 6);
         assert_eq!(count(&all, EdgeKind::Crease), 6);
-        let feat = mesh_edges(&world, &view, &EdgeOptions::default());
+        let feat = mesh_edges(
+            &world,
+            &view,
+            &EdgeOptions::default(),
+            crate::count::Count::NONE,
+        );
         assert_eq!(feat.len(), 12);
         let none = EdgeOptions {
             set: EdgeSet::Feature,
             crease_deg: 95.0,
         };
-        assert_eq!(mesh_edges(&world, &view, &none).len(), 6);
+        assert_eq!(
+            mesh_edges(&world, &view, &none, crate::count::Count::NONE).len(),
+            6
+        );
     }
 
     #[test]
     fn open_square_has_four_borders() {
         let scene = crate::scene::testing::unit_square_scene(vec![vec![0, 1, 2], vec![0, 2, 3]]);
         let view = View::new(&scene, Camera::three_quarter());
-        let world = WorldFaces::build(&scene);
+        let world = WorldFaces::build(&scene, None, crate::count::Count::NONE);
         let opts = EdgeOptions {
             set: EdgeSet::All,
             crease_deg: 30.0,
         };
-        let e = mesh_edges(&world, &view, &opts);
+        let e = mesh_edges(&world, &view, &opts, crate::count::Count::NONE);
         assert_eq!(e.len(), 5);
         assert_eq!(count(&e, EdgeKind::Border), 4);
         assert_eq!(count(&e, EdgeKind::Plain), 1);
-        assert_eq!(mesh_edges(&world, &view, &EdgeOptions::default()).len(), 4);
+        assert_eq!(
+            mesh_edges(
+                &world,
+                &view,
+                &EdgeOptions::default(),
+                crate::count::Count::NONE
+            )
+            .len(),
+            4
+        );
     }
 }

@@ -7,9 +7,9 @@
 
 use rayon::prelude::*;
 
-use crate::geom::box_pairs::{filter_map_pairs_counted, filter_map_pairs_of, overlap, Bounds3};
+use crate::count::{Count, Share};
+use crate::geom::box_pairs::{filter_map_pairs, filter_map_pairs_of, overlap, Bounds3};
 use crate::geom::{newell, orient3d_refs, Corners, P3, V3};
-use crate::progress::{Progress, Share};
 use crate::scene::FaceId;
 
 use super::edges::{Edge, EdgeKind};
@@ -17,22 +17,15 @@ use super::world::{WorldFaces, NO_PIECE};
 
 /// Every intersection segment between pairs of faces that cross (both faces with vertices
 /// strictly on both sides of the other's plane); `keep(f)` filters faces worth testing.
-pub fn intersection_edges(world: &WorldFaces, keep: impl Fn(FaceId) -> bool + Sync) -> Vec<Edge> {
-    intersection_edges_counted(world, keep, &Progress::new())
-}
-
-/// [`intersection_edges`], filling in `progress` a share of the world's faces: the faces
-/// that can cross nothing set aside first, then the search of the pairs left.
 ///
-/// What is kept per face while the pairs are searched is small (its id, the offsets of its
-/// plane's reference corners, whether it is flat; its box is remade when needed): at ten
-/// million faces this stage sets the peak memory of a render.
-pub(crate) fn intersection_edges_counted(
+/// The faces go to `done` as they are done: the faces that can cross nothing set aside
+/// first, then the search of the pairs left.
+pub fn intersection_edges(
     world: &WorldFaces,
     keep: impl Fn(FaceId) -> bool + Sync,
-    progress: &Progress,
+    done: Count,
 ) -> Vec<Edge> {
-    let share = Share::new(progress, world.faces.len());
+    let share = Share::new(done, world.faces.len());
     let faces = &world.faces;
     let cand: Vec<u32> = (0..faces.len() as u32)
         .filter(|&f| keep(FaceId(f)) && faces[f as usize].len >= 3)
@@ -116,7 +109,7 @@ pub(crate) fn intersection_edges_counted(
     let box_of = |i: u32| world.bbox_of(ids[i as usize] as usize);
     let found = if ids.len() <= HELD_BOXES {
         let boxes: Vec<Bounds3> = (0..ids.len() as u32).map(box_of).collect();
-        filter_map_pairs_counted(&boxes, pair, share.span(0.2, 1.0))
+        filter_map_pairs(&boxes, pair, share.span(0.2, 1.0))
     } else {
         filter_map_pairs_of(ids.len(), box_of, pair, share.span(0.2, 1.0))
     };
@@ -401,20 +394,20 @@ mod tests {
         e.sort_by(|p, q| p.y.total_cmp(&q.y));
         assert_eq!(e, [P3::new(1., 0.5, 0.), P3::new(1., 2., 0.)]);
         let mut w = world(&[(0, 0, &SQUARE), (1, 0, &upright)]);
-        let all = intersection_edges(&w, |_| true);
+        let all = intersection_edges(&w, |_| true, Count::NONE);
         assert_eq!(all.len(), 1);
         assert_eq!(all[0].faces, vec![FaceId(0), FaceId(1)]);
         // Faces of one piece known free of self-intersection are not tested (here the claim
         // is false on purpose, to show that it is what is used).
         w.clean_piece = vec![7, 7];
-        assert!(intersection_edges(&w, |_| true).is_empty());
+        assert!(intersection_edges(&w, |_| true, Count::NONE).is_empty());
         w.clean_piece = vec![7, 8];
-        assert_eq!(intersection_edges(&w, |_| true).len(), 1);
+        assert_eq!(intersection_edges(&w, |_| true, Count::NONE).len(), 1);
         // A face off its plane is not the union of the triangles the claim was proven on:
         // it is tested whatever the claim.
         w.clean_piece = vec![7, 7];
         w.points[2].z = 1e-3;
-        assert_eq!(intersection_edges(&w, |_| true).len(), 1);
+        assert_eq!(intersection_edges(&w, |_| true, Count::NONE).len(), 1);
     }
 
     #[test]
@@ -433,12 +426,12 @@ mod tests {
         let flat = ring(&|c, s| [c, s, 0.0]);
         let upright = ring(&|c, s| [c, 0.0, s]);
         let apart = world(&[(0, 0, &flat), (0, n, &upright)]);
-        assert_eq!(intersection_edges(&apart, |_| true).len(), 1);
+        assert_eq!(intersection_edges(&apart, |_| true, Count::NONE).len(), 1);
         let sharing = world(&[(0, 0, &flat), (0, n - 1, &upright)]);
-        assert!(intersection_edges(&sharing, |_| true).is_empty());
+        assert!(intersection_edges(&sharing, |_| true, Count::NONE).is_empty());
         // Of different leaves, a shared index means nothing.
         let leaves = world(&[(0, 0, &flat), (1, n - 1, &upright)]);
-        assert_eq!(intersection_edges(&leaves, |_| true).len(), 1);
+        assert_eq!(intersection_edges(&leaves, |_| true, Count::NONE).len(), 1);
     }
 
     #[test]

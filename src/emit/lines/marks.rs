@@ -108,7 +108,7 @@ mod tests {
         );
         let cam = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
         let view = View::new(&scene, cam);
-        let vis = solve(&view, PassOptions::default());
+        let vis = solve(&view, PassOptions::default(), crate::count::Count::NONE);
         let m = face_marks(&scene, &view, &vis);
         assert_eq!(m.len(), 1);
         assert_eq!(total_length(&m), 1.0);

@@ -25,16 +25,17 @@ use std::sync::OnceLock;
 
 use rayon::prelude::*;
 
+use crate::count::Count;
 use crate::geom::poly2::Pt2;
 use crate::geom::P3;
-use crate::progress::{Phase, Progress, Share, Stage};
+use crate::progress::{Phase, Progress, Stage};
 use crate::scene::{FaceId, Scene};
 use crate::view::{Camera, Projection, View};
 use crate::visibility::Visibility;
 
 use self::clip_segment::{at, complement, intervals_in, intervals_in_region, union, Interval};
-use self::edges::{mesh_edges_counted, Edge, EdgeKind, EdgeOptions};
-use self::intersect::intersection_edges_counted;
+use self::edges::{mesh_edges, Edge, EdgeKind, EdgeOptions};
+use self::intersect::intersection_edges;
 use self::once::{stroke_once, Ranked};
 use self::region::Region;
 use self::world::WorldFaces;
@@ -108,13 +109,10 @@ impl Visibility {
 }
 
 /// The line drawing of a solved view: mesh edges and intersection curves.
-pub fn draw(scene: &Scene, view: &View, vis: &Visibility, opts: &LineOptions) -> Drawing {
-    draw_counted(scene, view, vis, opts, &Progress::new())
-}
-
-/// [`draw`] as the lines stage's phases, each counted in `progress`: [`Phase::World`] and
+///
+/// As the lines stage's phases, each counted in `progress`: [`Phase::World`] and
 /// [`Phase::Edges`] and [`Phase::Intersections`] by faces, then [`Phase::Clip`] by edges.
-pub(crate) fn draw_counted(
+pub fn draw(
     scene: &Scene,
     view: &View,
     vis: &Visibility,
@@ -122,17 +120,17 @@ pub(crate) fn draw_counted(
     progress: &Progress,
 ) -> Drawing {
     progress.enter_phase(Stage::Lines, Phase::World, scene.face_count());
-    let world = WorldFaces::build_counted(scene, Some(&view.screen), progress);
+    let world = WorldFaces::build(scene, Some(&view.screen), progress.count());
     progress.enter_phase(Stage::Lines, Phase::Edges, world.faces.len());
-    let mut edges = mesh_edges_counted(&world, view, &opts.edges, progress);
+    let mut edges = mesh_edges(&world, view, &opts.edges, progress.count());
     progress.enter_phase(Stage::Lines, Phase::Intersections, world.faces.len());
-    edges.extend(intersection_edges_counted(
+    edges.extend(intersection_edges(
         &world,
         |f| opts.hidden || view.screen.face_is_occluder(f),
-        progress,
+        progress.count(),
     ));
     progress.enter_phase(Stage::Lines, Phase::Clip, edges.len());
-    let mut drawing = split_edges_counted(view, vis, &edges, opts.hidden, progress);
+    let mut drawing = split_edges(view, vis, &edges, opts.hidden, progress.count());
     drawing.leaf_paths = world.paths;
     drawing
 }
@@ -242,31 +240,25 @@ fn edge_pieces(view: &View, regions: &Regions, e: &Edge, hidden: bool) -> Pieces
 
 /// Clips every edge against the VTPs, strokes every piece of line once ([`stroke_once`]),
 /// then chains and orders the pieces per (leaf, kind).
-pub fn split_edges(view: &View, vis: &Visibility, edges: &[Edge], hidden: bool) -> Drawing {
-    split_edges_counted(view, vis, edges, hidden, &Progress::new())
-}
-
-/// [`split_edges`], filling in `progress` a share of the edges: most of it as they are
-/// clipped, the rest as their pieces are stroked once and chained.
-fn split_edges_counted(
+///
+/// The edges clipped go to `done`, once per chunk.
+pub fn split_edges(
     view: &View,
     vis: &Visibility,
     edges: &[Edge],
     hidden: bool,
-    progress: &Progress,
+    done: Count,
 ) -> Drawing {
-    let share = Share::new(progress, edges.len());
-    let clipped = share.span(0.0, 0.7).steps(edges.len());
     let regions = Regions::new(vis, edges);
     let pieces: Vec<Pieces> = edges
         .par_iter()
         .enumerate()
         .map(|(i, e)| {
-            clipped.tick(i);
+            done.tick(i);
             edge_pieces(view, &regions, e, hidden)
         })
         .collect();
-    share.reach(0.7);
+    done.tick_rest(edges.len());
     // Every piece of line once: shared parts go to the higher-ranked edge, and hidden lines
     // give way to visible ones.
     let ranked = |pick: fn(&Pieces) -> &Vec<[Pt2; 2]>| -> Vec<(usize, Ranked)> {
@@ -291,7 +283,6 @@ fn split_edges_counted(
     let hid_ranked = ranked(|p| &p.1);
     let shown: Vec<[Pt2; 2]> = vis_once.iter().flatten().copied().collect();
     let hid_once = stroke_once(&hid_ranked.iter().map(|x| x.1).collect::<Vec<_>>(), &shown);
-    share.reach(0.85);
     let mut vis_groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>> = BTreeMap::new();
     let mut hid_groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>> = BTreeMap::new();
     for ((k, _), v) in vis_ranked.iter().zip(vis_once) {
@@ -302,13 +293,11 @@ fn split_edges_counted(
         let e = &edges[*k];
         hid_groups.entry((e.leaf, e.kind)).or_default().extend(h);
     }
-    let drawing = Drawing {
+    Drawing {
         visible: strokes(vis_groups),
         hidden: strokes(hid_groups),
         leaf_paths: Vec::new(),
-    };
-    share.finish();
-    drawing
+    }
 }
 
 /// Chained, ordered strokes of grouped segments.
@@ -360,12 +349,12 @@ mod tests {
         let scene = unit_cube_scene();
         let cam = Camera::orthographic(V3::new(0., 0., -1.), V3::y()).unwrap();
         let view = View::new(&scene, cam);
-        let vis = solve(&view, PassOptions::default());
+        let vis = solve(&view, PassOptions::default(), crate::count::Count::NONE);
         let opts = LineOptions {
             hidden: true,
             ..Default::default()
         };
-        let d = draw(&scene, &view, &vis, &opts);
+        let d = draw(&scene, &view, &vis, &opts, &Progress::default());
         assert!((total_length(&d.visible) - 4.0).abs() < 1e-12);
         assert_eq!(d.visible.len(), 1, "one closed outline");
         // The back square's outline coincides with the front's; side edges project to points.

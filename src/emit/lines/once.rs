@@ -10,6 +10,7 @@
 //! the other is removed. Ranks: edge kind (silhouette first, as [`EdgeKind::ALL`]), then
 //! order in the edge list.
 
+use crate::count::Span;
 use crate::geom::box_pairs::{filter_map_pairs, Bounds3};
 use crate::geom::poly2::Pt2;
 
@@ -69,7 +70,7 @@ pub fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
         ]
     };
     let boxes: Vec<Bounds3> = all.iter().map(|(s, _)| reach(s)).collect();
-    let found = filter_map_pairs(&boxes, |i, j| {
+    let pair = |i: u32, j: u32| {
         let (i, j) = (i as usize, j as usize);
         // Of two segments of one rank, the one of lesser least x (ties: the earlier) wins.
         let (first, second) = match xmin(&all[j].0).total_cmp(&xmin(&all[i].0)) {
@@ -88,7 +89,8 @@ pub fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
             return None; // both kept, or too far apart
         }
         along(&all[lo].0, &all[hi].0, tol).map(|iv| (lo, iv))
-    });
+    };
+    let found = filter_map_pairs(&boxes, pair, Span::NONE);
     let mut cuts: Vec<Vec<Interval>> = vec![Vec::new(); all.len()];
     for (lo, iv) in found {
         cuts[lo].push(iv);

@@ -4,8 +4,8 @@ use std::collections::HashMap;
 
 use rayon::prelude::*;
 
+use crate::count::Count;
 use crate::geom::{Box3, Corners, P3, V3};
-use crate::progress::Progress;
 use crate::scene::topology::{edge_pieces, Pieces};
 use crate::scene::{Leaf, Mesh, Scene};
 use crate::view::ScreenFaces;
@@ -59,18 +59,10 @@ pub struct WorldFaces<'s> {
 pub const NO_PIECE: u32 = u32::MAX;
 
 impl<'s> WorldFaces<'s> {
-    /// The world polygons of every face of `scene`, in global face order.
-    pub fn build(scene: &Scene) -> WorldFaces<'static> {
-        WorldFaces::build_counted(scene, None, &Progress::new())
-    }
-
-    /// [`WorldFaces::build`], sharing the points of `screen` where they are the same, and
-    /// counting in `progress` the faces as they are made.
-    pub(crate) fn build_counted(
-        scene: &Scene,
-        screen: Option<&'s ScreenFaces>,
-        progress: &Progress,
-    ) -> WorldFaces<'s> {
+    /// The world polygons of every face of `scene`, in global face order, sharing the points
+    /// of `screen` where they are the same (None: every point made here). The faces made go
+    /// to `done`, once per chunk.
+    pub fn build(scene: &Scene, screen: Option<&'s ScreenFaces>, done: Count) -> WorldFaces<'s> {
         let leaves = scene.leaves();
         let corners = leaves
             .iter()
@@ -102,7 +94,7 @@ impl<'s> WorldFaces<'s> {
             let held = projected
                 .next_if(|l| l.first_face.index() == leaf.first_face)
                 .map(|l| l.world_first as usize);
-            w.add_leaf(li as u32, leaf, held, progress);
+            w.add_leaf(li as u32, leaf, held, done);
         }
         w.points.shrink_to_fit();
         w.paths = leaves.into_iter().map(|l| l.path).collect();
@@ -111,7 +103,7 @@ impl<'s> WorldFaces<'s> {
 
     /// Appends the faces of leaf `li`, its points at `held` in the shared part (or made here),
     /// then each face's normal, a big mesh's on all threads, in face order either way.
-    fn add_leaf(&mut self, li: u32, leaf: &Leaf, held: Option<usize>, progress: &Progress) {
+    fn add_leaf(&mut self, li: u32, leaf: &Leaf, held: Option<usize>, done: Count) {
         let first = match held {
             Some(at) => at,
             None => {
@@ -148,13 +140,13 @@ impl<'s> WorldFaces<'s> {
         let n = new.len();
         if n > PARALLEL_ABOVE {
             new.par_iter_mut().enumerate().for_each(|(i, w)| {
-                progress.tick(i);
+                done.tick(i);
                 normal(w);
             });
-            progress.tick_rest(n);
+            done.tick_rest(n);
         } else {
             new.iter_mut().for_each(normal);
-            progress.add(n);
+            done.add(n);
         }
     }
 
@@ -231,7 +223,7 @@ mod tests {
     #[test]
     fn square_face_in_world() {
         let scene = crate::scene::testing::unit_square_scene(vec![vec![0, 1, 2, 3]]);
-        let w = WorldFaces::build(&scene);
+        let w = WorldFaces::build(&scene, None, Count::NONE);
         assert_eq!(w.faces.len(), 1);
         assert_eq!(w.faces[0].normal, V3::new(0., 0., 2.));
         assert_eq!(w.bbox_of(0), [[0., 0., 0.], [1., 1., 0.]]);
@@ -265,7 +257,7 @@ mod tests {
             M4::new_translation(&V3::new(3., 0., 0.)),
         ));
         let scene = Scene::new(Object::group("", kids), "t".into());
-        let alone = WorldFaces::build(&scene);
+        let alone = WorldFaces::build(&scene, None, Count::NONE);
         let near = Camera::perspective(
             P3::new(0., 0., 1.5),
             P3::new(0., 0., -5.),
@@ -275,7 +267,7 @@ mod tests {
         );
         for camera in [Camera::three_quarter(), near.unwrap()] {
             let view = View::new(&scene, camera);
-            let w = WorldFaces::build_counted(&scene, Some(&view.screen), &Progress::new());
+            let w = WorldFaces::build(&scene, Some(&view.screen), Count::NONE);
             let bits = |p: Corners| -> Vec<[u64; 3]> {
                 p.iter()
                     .map(|q| q.coords.map(f64::to_bits).into())
@@ -297,7 +289,7 @@ mod tests {
         // With a leaf the view does not hold, that leaf's points are made: the same bits.
         let mut sf = View::new(&scene, Camera::three_quarter()).screen;
         let last = sf.leaves.pop().unwrap();
-        let w = WorldFaces::build_counted(&scene, Some(&sf), &Progress::new());
+        let w = WorldFaces::build(&scene, Some(&sf), Count::NONE);
         assert_eq!(w.points.len(), 8);
         assert_eq!(w.leaf_first.last(), Some(&w.shared.len()));
         for f in 0..alone.faces.len() {
@@ -329,7 +321,11 @@ mod tests {
         let raw = crate::geom::PolyMesh::new(pts, faces);
         let root = Object::group("", vec![crate::scene::testing::leaf("two", &raw)]);
         let mut scene = Scene::new(root, "t".into());
-        crate::prepare::prepare(&mut scene);
+        crate::prepare::prepare(
+            &mut scene,
+            &crate::PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
         scene
     }
 
@@ -339,14 +335,14 @@ mod tests {
         // self-intersection, the pair is not, and its curves are found.
         let scene = two_tetrahedra(0.25);
         assert!(scene.leaves()[0].mesh.cullable());
-        let w = WorldFaces::build(&scene);
+        let w = WorldFaces::build(&scene, None, Count::NONE);
         assert_eq!(w.clean_piece, [0, 0, 0, 0, 1, 1, 1, 1]);
-        let curves = intersection_edges(&w, |_| true);
+        let curves = intersection_edges(&w, |_| true, crate::count::Count::NONE);
         assert!(!curves.is_empty());
         assert!(curves.iter().all(|e| e.faces[0].0 < 4 && e.faces[1].0 >= 4));
         // Apart, no curve.
-        let w = WorldFaces::build(&two_tetrahedra(3.0));
-        assert!(intersection_edges(&w, |_| true).is_empty());
+        let w = WorldFaces::build(&two_tetrahedra(3.0), None, Count::NONE);
+        assert!(intersection_edges(&w, |_| true, crate::count::Count::NONE).is_empty());
     }
 
     #[test]
@@ -361,8 +357,8 @@ mod tests {
             panic!("a leaf");
         };
         m.solidity = Some(crate::scene::Solidity::InsideOut);
-        let w = WorldFaces::build(&scene);
+        let w = WorldFaces::build(&scene, None, Count::NONE);
         assert!(w.clean_piece.iter().all(|&k| k == NO_PIECE));
-        assert!(!intersection_edges(&w, |_| true).is_empty());
+        assert!(!intersection_edges(&w, |_| true, crate::count::Count::NONE).is_empty());
     }
 }

@@ -8,10 +8,10 @@
 //! end point, so the pieces meet their neighbours exactly and chain without gaps. A uniform
 //! grid over sampled cells finds candidates, so the work follows the drawing's length.
 
+use crate::count::Count;
 use crate::geom::grid::{per_side, Cells};
 use crate::geom::poly2::{dist, Pt2};
 use crate::geom::Rect;
-use crate::progress::{Progress, Share, Span};
 
 /// Counts of what [`dedup`] removed.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -28,18 +28,9 @@ pub struct DedupStats {
 
 /// The parts of `segs` (in priority order) not covered by an earlier segment's kept parts,
 /// each with the index of the segment it comes from, in input order.
-pub fn dedup(segs: &[[Pt2; 2]], eps: f64) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
-    let sink = Progress::new();
-    dedup_counted(segs, eps, Share::new(&sink, 0).span(0.0, 1.0))
-}
-
-/// [`dedup`], filling `span` as the segments are looked at, in chunks.
-pub(crate) fn dedup_counted(
-    segs: &[[Pt2; 2]],
-    eps: f64,
-    span: Span,
-) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
-    let looked = span.steps(segs.len());
+///
+/// The segments looked at go to `done`, once per chunk.
+pub fn dedup(segs: &[[Pt2; 2]], eps: f64, done: Count) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
     let mut index = SegmentIndex::new(segs, eps);
     let mut kept: Vec<(usize, [Pt2; 2])> = Vec::with_capacity(segs.len());
     let mut stats = DedupStats {
@@ -48,7 +39,7 @@ pub(crate) fn dedup_counted(
     };
     let mut covers: Vec<Cover> = Vec::new();
     for (i, &[a, b]) in segs.iter().enumerate() {
-        looked.tick(i);
+        done.tick(i);
         let len = dist(a, b);
         if len <= eps {
             stats.dropped += 1;
@@ -87,7 +78,7 @@ pub(crate) fn dedup_counted(
             index.insert(k.1);
         }
     }
-    span.finish();
+    done.tick_rest(segs.len());
     (kept, stats)
 }
 
@@ -333,19 +324,18 @@ mod tests {
     }
 
     #[test]
-    fn a_counted_dedup_fills_its_share_and_keeps_the_same() {
-        use crate::progress::{Phase, Stage};
+    fn a_counted_dedup_counts_every_segment_and_keeps_the_same() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
         let segs: Vec<[Pt2; 2]> = (0..3000)
             .map(|k| {
                 let x = f64::from(k % 1500);
                 [[x, 0.0], [x + 2.0, 0.0]]
             })
             .collect();
-        let p = Progress::new();
-        p.enter_phase(Stage::Emit, Phase::Dedup, segs.len());
-        let counted = dedup_counted(&segs, 1e-9, Share::new(&p, segs.len()).span(0.0, 1.0));
-        assert_eq!(p.counts(), (3000, 3000));
-        assert_eq!(counted, dedup(&segs, 1e-9));
+        let p = AtomicUsize::new(0);
+        let counted = dedup(&segs, 1e-9, Count::to(&p));
+        assert_eq!(p.load(Ordering::Relaxed), 3000);
+        assert_eq!(counted, dedup(&segs, 1e-9, Count::NONE));
     }
 
     fn total(pieces: &[(usize, [Pt2; 2])]) -> f64 {
@@ -360,7 +350,7 @@ mod tests {
             [[0., 0.], [1., 0.]],
             [[0., 1.], [1., 1.]],
         ];
-        let (k, st) = dedup(&s, 1e-9);
+        let (k, st) = dedup(&s, 1e-9, Count::NONE);
         assert_eq!(k, vec![(0, s[0]), (3, s[3])]);
         assert_eq!((st.dropped, st.trimmed), (2, 0));
     }
@@ -375,7 +365,7 @@ mod tests {
             [[7., 0.], [-1., 0.]],
             [[1., 1e-3], [3., 1e-3]],
         ];
-        let (k, _) = dedup(&s, 1e-9);
+        let (k, _) = dedup(&s, 1e-9, Count::NONE);
         assert_eq!(
             k,
             vec![
@@ -400,7 +390,7 @@ mod tests {
             ]
         };
         let s = [[a, b], [at(0.25), at(0.75)]];
-        let (k, st) = dedup(&s, 1e-9);
+        let (k, st) = dedup(&s, 1e-9, Count::NONE);
         assert_eq!(k.len(), 1);
         assert_eq!(st.dropped, 1);
     }
@@ -434,7 +424,7 @@ mod tests {
                 ivs[l].push([t0.min(t1), t0.max(t1)]);
             }
         }
-        let (kept, _) = dedup(&segs, 1e-9);
+        let (kept, _) = dedup(&segs, 1e-9, Count::NONE);
         let mut want = 0.0;
         for (l, iv) in ivs.iter_mut().enumerate() {
             iv.sort_by(|a, b| a[0].total_cmp(&b[0]));
@@ -457,7 +447,11 @@ mod tests {
         let got = total(&kept);
         assert!((got - want).abs() < 1e-9 * want, "{got} != {want}");
         // Nothing kept overlaps anything else kept.
-        let (again, st) = dedup(&kept.iter().map(|k| k.1).collect::<Vec<_>>(), 1e-9);
+        let (again, st) = dedup(
+            &kept.iter().map(|k| k.1).collect::<Vec<_>>(),
+            1e-9,
+            Count::NONE,
+        );
         assert_eq!((again.len(), st.dropped, st.trimmed), (kept.len(), 0, 0));
     }
 }

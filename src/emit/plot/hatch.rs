@@ -12,10 +12,10 @@
 
 use rayon::prelude::*;
 
+use crate::count::Count;
 use crate::geom::boolean;
 use crate::geom::poly2::{MultiPolygon, Pt2, Ring};
 use crate::geom::{Rect, V3};
-use crate::progress::{Lane, Phase, Progress, Stage, Tally};
 use crate::scene::{FaceId, Scene};
 use crate::view::View;
 use crate::visibility::Visibility;
@@ -81,6 +81,8 @@ pub struct Hatching {
 
 /// Hatches every visible face of a solved view; `layout` gives the page scale and frame,
 /// `light` the direction toward the light (world; default from the upper left, in front).
+///
+/// The visible faces hatched go to `done`, once per chunk.
 pub fn hatch(
     scene: &Scene,
     view: &View,
@@ -88,20 +90,7 @@ pub fn hatch(
     layout: &Layout,
     opts: &HatchOptions,
     light: Option<V3>,
-) -> Hatching {
-    let ignored = Progress::new();
-    hatch_counted(scene, view, vis, layout, opts, light, &Lane::open(&ignored))
-}
-
-/// [`hatch`], its visible faces counted in `lane` ([`Phase::Hatch`]) as they are hatched.
-pub(crate) fn hatch_counted(
-    scene: &Scene,
-    view: &View,
-    vis: &Visibility,
-    layout: &Layout,
-    opts: &HatchOptions,
-    light: Option<V3>,
-    lane: &Lane,
+    done: Count,
 ) -> Hatching {
     let light = light_direction(&view.camera, light);
     let angle = opts.angle_deg.unwrap_or_else(|| {
@@ -122,12 +111,11 @@ pub(crate) fn hatch_counted(
         .map(|&(f, leaf)| (f, leaf, tone(face_shade(view, f, &light))))
         .collect();
     let spacing = opts.spacing_mm.max(1e-6);
-    lane.enter_phase(Stage::Emit, Phase::Hatch, tones.len());
     let segments = tones
         .par_iter()
         .enumerate()
         .map(|(i, &(f, leaf, t))| {
-            lane.tick(i);
+            done.tick(i);
             let mut out = Vec::new();
             for &(mult, offset) in families(t) {
                 let fam = Family::new(layout, angle + offset, spacing * mult);
@@ -141,7 +129,7 @@ pub(crate) fn hatch_counted(
         .into_iter()
         .flatten()
         .collect();
-    lane.tick_rest(tones.len());
+    done.tick_rest(tones.len());
     Hatching { segments, tones }
 }
 

@@ -9,30 +9,17 @@
 //! order, ties broken by index. A gap is bridged only where the caller allows it (no other
 //! line runs along it: a line is drawn once).
 
+use crate::count::Span;
 use crate::geom::key_hash::{point_key as key, KeyMap};
 use crate::geom::poly2::{dist, Pt2};
-use crate::progress::{Progress, Share, Span};
 
 /// Joins polylines (each of two points or more) at exactly equal ends, then, when
 /// `tolerance > 0`, at ends closer than `tolerance` where `bridge(p, q)` allows drawing the
 /// gap from p to q.
+///
+/// The pairs tried go to `span`: its first half when the lines are joined at equal ends,
+/// the rest as the near pairs are tried, in chunks (none: [`Span::NONE`]).
 pub fn join(
-    lines: Vec<Vec<Pt2>>,
-    tolerance: f64,
-    bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
-) -> Vec<Vec<Pt2>> {
-    let sink = Progress::new();
-    join_counted(
-        lines,
-        tolerance,
-        bridge,
-        Share::new(&sink, 0).span(0.0, 1.0),
-    )
-}
-
-/// [`join`], filling `span`: its first half when the lines are joined at equal ends, the
-/// rest as the near pairs are tried, in chunks.
-pub(crate) fn join_counted(
     lines: Vec<Vec<Pt2>>,
     tolerance: f64,
     bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
@@ -299,7 +286,8 @@ mod tests {
 
     #[test]
     fn a_counted_join_fills_its_share_and_joins_the_same() {
-        use crate::progress::{Phase, Stage};
+        use crate::count::Share;
+        use crate::progress::{Phase, Progress, Stage};
         // A row of unit pieces with small gaps: joined within the tolerance.
         let lines: Vec<Vec<Pt2>> = (0..2500)
             .map(|k| {
@@ -309,10 +297,10 @@ mod tests {
             .collect();
         let p = Progress::new();
         p.enter_phase(Stage::Emit, Phase::Join, lines.len());
-        let span = Share::new(&p, lines.len());
-        let counted = join_counted(lines.clone(), 0.05, &mut |_, _| true, span.span(0.0, 1.0));
+        let span = Share::new(p.count(), lines.len());
+        let counted = join(lines.clone(), 0.05, &mut |_, _| true, span.span(0.0, 1.0));
         assert_eq!(p.counts(), (2500, 2500));
-        assert_eq!(counted, join(lines, 0.05, &mut |_, _| true));
+        assert_eq!(counted, join(lines, 0.05, &mut |_, _| true, Span::NONE));
         assert_eq!(counted.len(), 1);
     }
 
@@ -339,7 +327,7 @@ mod tests {
             vec![[0., 1.], [0., 0.]],
             vec![[1., 1.], [2., 2.]],
         ];
-        let j = join(s.clone(), 0.0, &mut |_, _| true);
+        let j = join(s.clone(), 0.0, &mut |_, _| true, Span::NONE);
         assert_eq!(j.len(), 1, "{j:?}");
         assert_eq!(j[0].len(), 6);
         assert_eq!(length(&j), length(&s));
@@ -354,7 +342,7 @@ mod tests {
                 vec![[0., 0.], [a.cos(), a.sin()]]
             })
             .collect();
-        let j = join(s.clone(), 0.0, &mut |_, _| true);
+        let j = join(s.clone(), 0.0, &mut |_, _| true, Span::NONE);
         assert_eq!(j.len(), odd_points(&s) / 2);
         assert_eq!(length(&j), length(&s));
         // Every spoke appears once (as a run of consecutive points).
@@ -377,7 +365,7 @@ mod tests {
                     ]
                 })
                 .collect();
-            let j = join(lines.clone(), 0.0, &mut |_, _| true);
+            let j = join(lines.clone(), 0.0, &mut |_, _| true, Span::NONE);
             // Lower bound per connected part: max(1, odd / 2); over the whole graph the sum.
             let mut parent: HashMap<(u64, u64), (u64, u64)> = HashMap::new();
             fn root(p: &mut HashMap<(u64, u64), (u64, u64)>, k: (u64, u64)) -> (u64, u64) {
@@ -424,21 +412,26 @@ mod tests {
             vec![[1., 1.0 + 1e-4], [0., 1.]],
             vec![[0., 1.], [0., 2e-4]],
         ];
-        let j = join(s.clone(), 0.01, &mut |_, _| true);
+        let j = join(s.clone(), 0.01, &mut |_, _| true, Span::NONE);
         assert_eq!(j.len(), 1, "{j:?}");
         // The gaps are drawn: all four sides plus two of the three gaps, and the side that
         // meets its neighbour exactly (2 -> 3) joins without a gap.
         assert_eq!(j[0].len(), 4 + 2 + 1);
-        assert_eq!(join(s.clone(), 0.0, &mut |_, _| true).len(), 3);
-        assert_eq!(join(s.clone(), 1e-5, &mut |_, _| true).len(), 3);
+        assert_eq!(join(s.clone(), 0.0, &mut |_, _| true, Span::NONE).len(), 3);
+        assert_eq!(join(s.clone(), 1e-5, &mut |_, _| true, Span::NONE).len(), 3);
         // Gaps the caller forbids stay open: both ends of the stroke of sides 3 and 4.
         let mut asked = 0;
-        let j = join(s, 0.01, &mut |p, q| {
-            asked += 1;
-            ![[1., 1.0 + 1e-4], [0., 2e-4]]
-                .iter()
-                .any(|x| [p, q].contains(x))
-        });
+        let j = join(
+            s,
+            0.01,
+            &mut |p, q| {
+                asked += 1;
+                ![[1., 1.0 + 1e-4], [0., 2e-4]]
+                    .iter()
+                    .any(|x| [p, q].contains(x))
+            },
+            Span::NONE,
+        );
         assert_eq!(j.len(), 2, "{j:?}");
         assert!(asked >= 2);
     }

@@ -27,23 +27,24 @@ use std::collections::BTreeMap;
 use geo::{LineString, Simplify};
 use rayon::prelude::*;
 
+use crate::count::{Share, Span};
 use crate::error::{Error, Result};
 use crate::geom::poly2::{polyline_length as length, Pt2};
 use crate::geom::Rect;
-use crate::progress::{Lane, Phase, Progress, Share, Span, Stage, Tally};
+use crate::progress::{Lane, Phase, Stage};
 use crate::scene::{FaceId, Scene};
 use crate::view::{Frame, View};
 use crate::visibility::Visibility;
 
 use self::clip_rect::clip_polyline;
 use self::dash::dashes;
-use self::dedup::{dedup_counted, SegmentIndex};
-use self::hatch::{hatch_counted, tone_outlines};
-use self::join::join_counted;
+use self::dedup::{dedup, SegmentIndex};
+use self::hatch::{hatch, tone_outlines};
+use self::join::join;
 use self::page::Layout;
 use self::picture::{Fill, Layer, LayerMode, Pen, Picture, PictureOptions, PlotStats, Run};
 use self::shade::{face_shade, light_direction};
-use self::tour::plan_counted;
+use self::tour::plan;
 use crate::emit::lines::{Drawing, Stroke};
 
 /// Coincidence tolerance of [`dedup::dedup`] on the page: lines closer than 0.1 µm are one line
@@ -58,26 +59,14 @@ struct Item {
 }
 
 /// The picture of a solved view: `drawing` is its line drawing, `marks` its face markings.
-pub fn picture(
-    scene: &Scene,
-    view: &View,
-    vis: &Visibility,
-    drawing: &Drawing,
-    marks: &[Stroke],
-    opts: &PictureOptions,
-) -> Result<Picture> {
-    let sink = Progress::new();
-    let lane = Lane::open(&sink);
-    picture_counted(scene, view, vis, drawing, marks, opts, &lane)
-}
-
-/// [`picture`] in phases of the emit stage, entered in `lane`: with `hatch`, [`Phase::Hatch`]
+///
+/// In phases of the emit stage, entered in `lane`: with `hatch`, [`Phase::Hatch`]
 /// by visible faces hatched; then [`Phase::Dedup`] by segments looked at, [`Phase::Join`] by
 /// segments joined (each layer and pen's share its segments), [`Phase::Order`] by strokes
 /// (each layer's share its strokes, the layers planned side by side), and with `fill`,
 /// [`Phase::Fill`] by visible faces. Mapping to the page and clipping, before dedup, are not
 /// counted (a few ms on 200k segments).
-pub(crate) fn picture_counted(
+pub(crate) fn picture(
     scene: &Scene,
     view: &View,
     vis: &Visibility,
@@ -127,7 +116,9 @@ pub(crate) fn picture_counted(
     let layout = Layout::new(&frame, opts.page, opts.margin_mm, opts.size)?;
 
     if let Some(h) = &opts.hatch {
-        let hatching = hatch_counted(scene, view, vis, &layout, h, opts.light, lane);
+        let faces = vis.iter().filter(|(_, fv)| !fv.visible.is_empty()).count();
+        lane.enter_phase(Stage::Emit, Phase::Hatch, faces);
+        let hatching = hatch(scene, view, vis, &layout, h, opts.light, lane.count());
         for &(leaf, s) in &hatching.segments {
             items.push(Item {
                 pen: Pen::Hatch,
@@ -161,7 +152,7 @@ pub(crate) fn picture_counted(
     for it in &items {
         // Counted by segments (most lines are a segment or two), a chunk at a time.
         let next = placed + segments(it);
-        (placed..next).for_each(|s| lane.tick(s));
+        (placed..next).for_each(|s| lane.count().tick(s));
         placed = next;
         let page: Vec<Pt2> = it.pts.iter().map(|&p| layout.to_page(p)).collect();
         let before = length(&page);
@@ -175,10 +166,10 @@ pub(crate) fn picture_counted(
         }
         stats.clipped_mm += (before - after).max(0.0);
     }
-    lane.tick_rest(placed);
+    lane.count().tick_rest(placed);
     let eps = DEDUP_EPS_MM;
     lane.enter_phase(Stage::Emit, Phase::Dedup, segs.len());
-    let (kept, dup) = dedup_counted(&segs, eps, Share::new(lane, segs.len()).span(0.0, 1.0));
+    let (kept, dup) = dedup(&segs, eps, lane.count());
     stats.duplicates = dup;
     // Every line drawn, to keep the joins' gap bridges off them.
     let mut drawn = SegmentIndex::new(&segs, eps);
@@ -214,10 +205,10 @@ pub(crate) fn picture_counted(
         groups.values().map(Vec::len).sum(),
     );
     for ((layer, pen), lines) in groups {
-        let share = Share::new(lane, lines.len());
+        let share = Share::new(lane.count(), lines.len());
         // The hidden pen's lines are joined twice, before and after dashing.
         let once = if pen == Pen::Hidden { 0.4 } else { 1.0 };
-        let mut strokes = join_counted(lines, opts.join_mm, &mut bridge, share.span(0.0, once));
+        let mut strokes = join(lines, opts.join_mm, &mut bridge, share.span(0.0, once));
         if opts.simplify_mm > 0.0 {
             strokes = strokes
                 .into_iter()
@@ -230,7 +221,7 @@ pub(crate) fn picture_counted(
             let [on, off] = opts.dash_mm;
             let dashed = strokes.iter().flat_map(|l| dashes(l, on, off)).collect();
             share.reach(0.5);
-            strokes = join_counted(dashed, opts.join_mm, &mut bridge, share.span(0.5, 1.0));
+            strokes = join(dashed, opts.join_mm, &mut bridge, share.span(0.5, 1.0));
         }
         share.finish();
         by_layer
@@ -245,7 +236,7 @@ pub(crate) fn picture_counted(
     let layers: Vec<Layer> = by_layer
         .into_par_iter()
         .map(|(number, strokes)| {
-            let share = Share::new(lane, strokes.len());
+            let share = Share::new(lane.count(), strokes.len());
             let name = match opts.layers {
                 LayerMode::Pen => Pen::ALL
                     .iter()
@@ -366,7 +357,7 @@ fn ordered_runs(strokes: Vec<(Pen, Vec<Pt2>)>, span: Span) -> Vec<Run> {
         .collect();
     let mut strokes: Vec<Option<(Pen, Vec<Pt2>)>> = strokes.into_iter().map(Some).collect();
     let mut runs: Vec<Run> = Vec::new();
-    for (i, rev) in plan_counted(&ends, span) {
+    for (i, rev) in plan(&ends, span) {
         let Some((pen, mut l)) = strokes[i].take() else {
             continue;
         };
@@ -401,8 +392,9 @@ fn fills(
     let visible = || vis.iter().filter(|(_, fv)| !fv.visible.is_empty());
     let n = visible().count();
     lane.enter_phase(Stage::Emit, Phase::Fill, n);
+    let done = lane.count();
     for (k, (f, fv)) in visible().enumerate() {
-        lane.tick(k);
+        done.tick(k);
         let f: FaceId = f;
         let rings = fv
             .visible
@@ -416,7 +408,7 @@ fn fills(
             .clamp(0.0, 255.0) as u8;
         by_grey.entry(grey).or_default().extend(rings);
     }
-    lane.tick_rest(n);
+    done.tick_rest(n);
     by_grey
         .into_iter()
         .filter(|(_, rings)| !rings.is_empty())

@@ -13,12 +13,12 @@
 //! The open path is closed into a cycle through a depot at distance 0 from everything, so a
 //! reversal can always take the shorter side. Deterministic: fixed neighbour lists, a FIFO
 //! work queue, ties to the lower index, a seeded generator for the kicks, and fixed budgets
-//! of moves and kicks. Counting the work done for a progress bar (`plan_counted`) reads
+//! of moves and kicks. Counting the work done for a progress bar (`plan`) reads
 //! nothing the search decides by.
 
+use crate::count::{Span, Steps};
 use crate::geom::grid::{per_side, Cells};
 use crate::geom::poly2::{dist, Pt2};
-use crate::progress::{Progress, Share, Span, Steps};
 
 use crate::geom::rng::XorShift;
 
@@ -45,15 +45,15 @@ const KICK_RUN: usize = 30;
 /// Kicks between two adds to a progress count (a kick with its local search is long).
 const KICK_CHUNK: usize = 16;
 
-/// How far into [`plan_counted`]'s span the greedy order ends. This and the two below are
+/// How far into [`plan`]'s span the greedy order ends. This and the two below are
 /// estimates, the passes' shares of the planning time on the dashed hidden layers of ogre,
 /// bunny and nefertiti; the kicks fill the rest.
 const SPAN_GREEDY: f64 = 0.05;
 
-/// How far into [`plan_counted`]'s span the neighbour lists end.
+/// How far into [`plan`]'s span the neighbour lists end.
 const SPAN_NEIGHBOURS: f64 = 0.5;
 
-/// How far into [`plan_counted`]'s span the first local search ends.
+/// How far into [`plan`]'s span the first local search ends.
 const SPAN_SEARCH: f64 = 0.7;
 
 /// Pen-up travel of strokes drawn in order: Σ |end(i) − start(i+1)| (0 for one stroke or
@@ -70,21 +70,18 @@ pub fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
 }
 
 /// The drawing order of strokes given by their (start, end) points: (stroke, reversed).
-pub fn plan(ends: &[[Pt2; 2]]) -> Vec<(usize, bool)> {
-    let sink = Progress::new();
-    plan_counted(ends, Share::new(&sink, 0).span(0.0, 1.0))
-}
-
-/// [`plan`], filling `span` as it goes: by the passes' estimated shares
+///
+/// The work goes to `span` as it is done: by the passes' estimated shares
 /// ([`SPAN_NEIGHBOURS`] and the others), and within them by the end slots searched, the
-/// strokes the first local search starts from and the kicks made, in chunks.
-pub(crate) fn plan_counted(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> {
+/// strokes the first local search starts from and the kicks made, in chunks (none:
+/// [`Span::NONE`]).
+pub fn plan(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> {
     let order = plan_steps(ends, span);
     span.finish();
     order
 }
 
-/// The passes of [`plan_counted`].
+/// The passes of [`plan`].
 fn plan_steps(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> {
     let n = ends.len();
     if n < 3 || 2 * n > u32::MAX as usize {
@@ -100,7 +97,7 @@ fn plan_steps(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> {
         .unwrap_or(0);
     let start = greedy(ends, first);
     span.reach(SPAN_GREEDY);
-    let mut t = Tour::new_counted(ends, &start, span.span(SPAN_GREEDY, SPAN_NEIGHBOURS));
+    let mut t = Tour::new(ends, &start, span.span(SPAN_GREEDY, SPAN_NEIGHBOURS));
     t.improve(span.span(SPAN_NEIGHBOURS, 1.0));
     t.order()
 }
@@ -134,15 +131,8 @@ struct Tour<'a> {
 }
 
 impl<'a> Tour<'a> {
-    /// The tour of strokes `ends` in `order`, not counted.
-    #[cfg(test)]
-    fn new(ends: &'a [[Pt2; 2]], order: &[(usize, bool)]) -> Tour<'a> {
-        let sink = Progress::new();
-        Tour::new_counted(ends, order, Share::new(&sink, 0).span(0.0, 1.0))
-    }
-
     /// The tour of strokes `ends` in `order`, filling `span` as its neighbour lists are made.
-    fn new_counted(ends: &'a [[Pt2; 2]], order: &[(usize, bool)], span: Span) -> Tour<'a> {
+    fn new(ends: &'a [[Pt2; 2]], order: &[(usize, bool)], span: Span) -> Tour<'a> {
         let n = ends.len();
         let mut seq: Vec<usize> = order.iter().map(|o| o.0).collect();
         seq.push(n);
@@ -689,7 +679,7 @@ mod tests {
     fn plan_is_a_permutation_and_beats_greedy() {
         for (n, seed) in [(3, 1), (10, 2), (200, 3), (2000, 4)] {
             let ends = random_strokes(n, seed);
-            let p = plan(&ends);
+            let p = plan(&ends, Span::NONE);
             let mut seen: Vec<usize> = p.iter().map(|o| o.0).collect();
             seen.sort_unstable();
             assert_eq!(seen, (0..n).collect::<Vec<_>>());
@@ -699,7 +689,7 @@ mod tests {
             if n >= 200 {
                 assert!(t < 0.95 * g, "n {n}: plan {t} not clearly below greedy {g}");
             }
-            assert_eq!(p, plan(&ends), "deterministic");
+            assert_eq!(p, plan(&ends, Span::NONE), "deterministic");
         }
     }
 
@@ -717,7 +707,7 @@ mod tests {
         ends.swap(0, 5);
         ends[3].reverse();
         ends[8].reverse();
-        let t = travel(&apply(&ends, &plan(&ends)));
+        let t = travel(&apply(&ends, &plan(&ends, Span::NONE)));
         assert!((t - 9.0).abs() < 1e-12, "{t}");
     }
 
@@ -725,7 +715,7 @@ mod tests {
     fn reversals_and_moves_keep_positions_consistent() {
         let ends = random_strokes(12, 9);
         let order: Vec<(usize, bool)> = (0..12).map(|i| (i, i % 3 == 0)).collect();
-        let mut t = Tour::new(&ends, &order);
+        let mut t = Tour::new(&ends, &order, Span::NONE);
         let before = cycle_cost(&t);
         t.reverse(10, 2); // wraps around the depot at 12
         t.or_opt_move(t.seq[4], 2, 8, true);
@@ -741,23 +731,24 @@ mod tests {
 
     #[test]
     fn a_counted_plan_fills_its_share_and_plans_the_same() {
-        use crate::progress::{Phase, Stage};
+        use crate::count::Share;
+        use crate::progress::{Phase, Progress, Stage};
         let ends = random_strokes(3000, 6);
         let p = Progress::new();
         p.enter_phase(Stage::Emit, Phase::Order, 3000);
-        let share = Share::new(&p, 3000);
+        let share = Share::new(p.count(), 3000);
         // The search and its kicks fill their span by their own counts (2,000 kicks, a
         // whole number of chunks), before any finishing.
-        let mut t = Tour::new(&ends, &greedy(&ends, 0));
+        let mut t = Tour::new(&ends, &greedy(&ends, 0), Span::NONE);
         t.improve(share.span(0.0, 0.5));
         assert_eq!(
             p.counts().0,
             1500,
             "the first search and every kick counted"
         );
-        let counted = plan_counted(&ends, share.span(0.5, 1.0));
+        let counted = plan(&ends, share.span(0.5, 1.0));
         assert_eq!(p.counts(), (3000, 3000));
-        assert_eq!(counted, plan(&ends), "counting changes nothing");
+        assert_eq!(counted, plan(&ends, Span::NONE), "counting changes nothing");
     }
 
     fn cycle_cost(t: &Tour) -> f64 {
@@ -770,7 +761,7 @@ mod tests {
     fn or_opt_gain_is_the_cost_change() {
         // Every Or-opt move the search proposes lowers the cycle's cost by its gain.
         let ends = random_strokes(60, 5);
-        let mut t = Tour::new(&ends, &greedy(&ends, 0));
+        let mut t = Tour::new(&ends, &greedy(&ends, 0), Span::NONE);
         for v in 0..60 {
             if let Some((g, run, p, r)) = t.best_or_opt(v) {
                 let before = cycle_cost(&t);
@@ -804,8 +795,7 @@ mod tests {
             ends.push([[50.0, 50.0], [50.0 + x, 50.0]]);
         }
         for ends in [ends, random_strokes(5, 12)] {
-            let sink = Progress::new();
-            let near = neighbours(&ends, Share::new(&sink, 0).span(0.0, 1.0));
+            let near = neighbours(&ends, Span::NONE);
             let pts: Vec<Pt2> = ends.iter().flatten().copied().collect();
             for (s, &p) in pts.iter().enumerate() {
                 let mut all: Vec<(f64, usize)> = (0..pts.len())
@@ -887,7 +877,7 @@ mod against_full_two_opt {
                     })
                     .sum()
             };
-            let mine = ap(&plan(&ends));
+            let mine = ap(&plan(&ends, Span::NONE));
             let full = full_two_opt(&ends, &g);
             assert!(mine <= full, "n {n}: plan {mine} > full 2-opt {full}");
         }

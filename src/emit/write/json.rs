@@ -7,8 +7,8 @@
 use std::fmt::Write as _;
 use std::io;
 
+use crate::count::Count;
 use crate::geom::poly2::Pt2;
-use crate::progress::Progress;
 use crate::scene::flatten::write_num;
 use crate::view::{Projection, View};
 use crate::visibility::Visibility;
@@ -59,22 +59,14 @@ fn list<T>(s: &mut String, items: &[T], mut each: impl FnMut(&mut String, &T)) {
 
 /// The JSON document for a view's visible-polygon set (faces with nothing visible left out),
 /// with `lines` when given.
-pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>) -> String {
-    to_json_counted(view, vis, lines, &Progress::new())
-}
-
-/// [`to_json`], counting in `progress` the solved faces as they are written.
-pub(crate) fn to_json_counted(
-    view: &View,
-    vis: &Visibility,
-    lines: Option<&Lines>,
-    progress: &Progress,
-) -> String {
+///
+/// The solved faces written go to `done`, once per chunk of faces.
+pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>, done: Count) -> String {
     let mut out = Sink {
         s: String::with_capacity(256 + vis.solved_count() * 128),
         to: None,
     };
-    match json_into(&mut out, view, vis, lines, progress) {
+    match json_into(&mut out, view, vis, lines, done) {
         Ok(()) => out.s,
         Err(_) => unreachable!("a string takes every write"),
     }
@@ -83,40 +75,32 @@ pub(crate) fn to_json_counted(
 /// [`to_json`] written to `w` as it is made, in pieces of about [`SPILL_AT`] bytes: the
 /// document is never held whole (ten million faces make over a gigabyte of text). The bytes
 /// are those of [`to_json`].
+///
+/// The solved faces written go to `done`, once per chunk of faces.
 pub fn write_json(
     view: &View,
     vis: &Visibility,
     lines: Option<&Lines>,
     w: &mut dyn io::Write,
+    done: Count,
 ) -> io::Result<()> {
-    write_json_counted(view, vis, lines, w, &Progress::new())
+    write_json_spilling(view, vis, lines, w, done, SPILL_AT)
 }
 
-/// [`write_json`], counting in `progress` the solved faces as they are written.
-pub(crate) fn write_json_counted(
-    view: &View,
-    vis: &Visibility,
-    lines: Option<&Lines>,
-    w: &mut dyn io::Write,
-    progress: &Progress,
-) -> io::Result<()> {
-    write_json_spilling(view, vis, lines, w, progress, SPILL_AT)
-}
-
-/// [`write_json_counted`], writing whenever `spill_at` bytes are gathered.
+/// [`write_json`], writing whenever `spill_at` bytes are gathered.
 fn write_json_spilling(
     view: &View,
     vis: &Visibility,
     lines: Option<&Lines>,
     w: &mut dyn io::Write,
-    progress: &Progress,
+    done: Count,
     spill_at: usize,
 ) -> io::Result<()> {
     let mut out = Sink {
         s: String::with_capacity(spill_at.min(SPILL_AT) + (SPILL_AT >> 4)),
         to: Some((w, spill_at)),
     };
-    json_into(&mut out, view, vis, lines, progress)?;
+    json_into(&mut out, view, vis, lines, done)?;
     out.spill_all()
 }
 
@@ -155,7 +139,7 @@ fn json_into(
     view: &View,
     vis: &Visibility,
     lines: Option<&Lines>,
-    progress: &Progress,
+    done: Count,
 ) -> io::Result<()> {
     head(&mut out.s, view);
     out.s.push_str("},\n\"faces\":[");
@@ -168,7 +152,7 @@ fn json_into(
         .collect();
     let mut first = true;
     for (k, (id, f)) in vis.iter().enumerate() {
-        progress.tick(k);
+        done.tick(k);
         if f.visible.is_empty() {
             continue;
         }
@@ -187,7 +171,7 @@ fn json_into(
         s.push('}');
         out.spill()?;
     }
-    progress.tick_rest(vis.solved_count());
+    done.tick_rest(vis.solved_count());
     out.s.push_str("\n]");
     if let Some(l) = lines {
         out.s.push_str(",\n\"lines\":{\"visible\":");
@@ -267,7 +251,13 @@ mod tests {
             .into_iter()
             .map(|name| {
                 let path = format!("scenes/{name}.kdl");
-                let scene = crate::load_scene(path.as_ref(), &mut Vec::new()).unwrap();
+                let scene = crate::load_scene(
+                    path.as_ref(),
+                    &crate::LoadOptions::default(),
+                    &mut Vec::new(),
+                    &crate::Progress::default(),
+                )
+                .unwrap();
                 let scene: &'static crate::Scene = Box::leak(Box::new(scene));
                 let opts = crate::RenderOptions {
                     lines: crate::LineOptions {
@@ -280,7 +270,13 @@ mod tests {
                     },
                     ..Default::default()
                 };
-                crate::render(scene, &crate::Camera::three_quarter(), &opts).unwrap()
+                crate::render(
+                    scene,
+                    &crate::Camera::three_quarter(),
+                    &opts,
+                    &crate::Progress::default(),
+                )
+                .unwrap()
             })
             .collect()
     }
@@ -289,13 +285,13 @@ mod tests {
     fn written_in_pieces_the_bytes_are_the_kept_ones() {
         for r in rendered() {
             let lines = r.drawing.as_ref().map(|d| d.lines());
-            let kept = to_json(&r.view, &r.visibility, lines.as_ref());
+            let kept = to_json(&r.view, &r.visibility, lines.as_ref(), Count::NONE);
             assert!(kept.contains("\"lines\"") && kept.len() > 1000);
             // Spilled after every face and polyline, after every few, and once at the end.
             for spill_at in [1, 700, usize::MAX] {
                 let mut w = Vec::new();
-                let p = Progress::new();
-                write_json_spilling(&r.view, &r.visibility, lines.as_ref(), &mut w, &p, spill_at)
+                let p = Count::NONE;
+                write_json_spilling(&r.view, &r.visibility, lines.as_ref(), &mut w, p, spill_at)
                     .unwrap();
                 assert_eq!(String::from_utf8(w).unwrap(), kept, "spilled at {spill_at}");
             }
@@ -324,10 +320,10 @@ mod tests {
     #[test]
     fn a_failed_write_is_reported() {
         let r = &rendered()[0];
-        let p = Progress::new();
+        let p = Count::NONE;
         for (room, spill_at) in [(0, 1), (500, 1), (500, SPILL_AT)] {
             let mut w = Full { room };
-            let e = write_json_spilling(&r.view, &r.visibility, None, &mut w, &p, spill_at);
+            let e = write_json_spilling(&r.view, &r.visibility, None, &mut w, p, spill_at);
             assert_eq!(e.unwrap_err().kind(), io::ErrorKind::StorageFull);
         }
     }

@@ -6,8 +6,8 @@ use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Stroke, Transform,
 };
 
+use crate::count::Count;
 use crate::geom::poly2::Pt2;
-use crate::progress::{Lane, Phase, Progress, Share, Stage, Steps};
 use crate::Error;
 
 use crate::emit::plot::color::Rgb;
@@ -30,28 +30,11 @@ pub fn pixel_size(pic: &Picture, px_per_mm: f64) -> (u32, u32) {
     (px(pic.page.width), px(pic.page.height))
 }
 
-/// How far into [`to_png_counted`]'s count the picture is painted: the rest is the encoding.
-const PAINTED: f64 = 0.9;
-
 /// The PNG bytes of a picture.
-pub fn to_png(pic: &Picture, size: u32, dpi: Option<f64>) -> Result<Vec<u8>, Error> {
-    let sink = Progress::new();
-    to_png_counted(pic, size, dpi, &Lane::open(&sink))
-}
-
-/// [`to_png`], counted in `lane` ([`Phase::Png`]): each fill's rings and each run's strokes
-/// as they are painted, then the encoding.
-pub(crate) fn to_png_counted(
-    pic: &Picture,
-    size: u32,
-    dpi: Option<f64>,
-    lane: &Lane,
-) -> Result<Vec<u8>, Error> {
-    let polylines = pic.polylines();
-    lane.enter_phase(Stage::Emit, Phase::Png, polylines);
-    let share = Share::new(lane, polylines);
-    let painted = share.span(0.0, PAINTED).steps(polylines);
-    let pixmap = paint_counted(pic, pixels_per_mm(pic, size, dpi), &painted)?;
+///
+/// Each fill's rings and each run's strokes go to `done` as they are painted.
+pub fn to_png(pic: &Picture, size: u32, dpi: Option<f64>, done: Count) -> Result<Vec<u8>, Error> {
+    let pixmap = rasterise(pic, pixels_per_mm(pic, size, dpi), done)?;
     let (w, h) = (pixmap.width(), pixmap.height());
     // Opaque background: premultiplied RGBA equals straight RGBA.
     let img = image::RgbaImage::from_raw(w, h, pixmap.take())
@@ -59,19 +42,13 @@ pub(crate) fn to_png_counted(
     let mut out = std::io::Cursor::new(Vec::new());
     img.write_to(&mut out, image::ImageFormat::Png)
         .map_err(|e| Error::Usage(format!("PNG encoding failed: {e}")))?;
-    share.finish();
     Ok(out.into_inner())
 }
 
 /// Draws the picture into a new pixmap at `k` pixels per mm.
-pub fn rasterise(pic: &Picture, k: f64) -> Result<Pixmap, Error> {
-    let sink = Progress::new();
-    let share = Share::new(&sink, 0);
-    paint_counted(pic, k, &share.span(0.0, 1.0).steps(0))
-}
-
-/// [`rasterise`], each fill's rings and each run's strokes counted in `painted` once drawn.
-fn paint_counted(pic: &Picture, k: f64, painted: &Steps) -> Result<Pixmap, Error> {
+///
+/// Each fill's rings and each run's strokes go to `done` once drawn.
+pub fn rasterise(pic: &Picture, k: f64, done: Count) -> Result<Pixmap, Error> {
     let (w, h) = pixel_size(pic, k);
     let mut pm =
         Pixmap::new(w, h).ok_or_else(|| Error::Usage(format!("cannot make a {w}x{h} picture")))?;
@@ -99,7 +76,7 @@ fn paint_counted(pic: &Picture, k: f64, painted: &Steps) -> Result<Pixmap, Error
             };
             pm.stroke_path(&path, &paint, &seam, Transform::identity(), None);
         }
-        painted.add(f.rings.len());
+        done.add(f.rings.len());
     }
     for layer in &pic.layers {
         for run in &layer.runs {
@@ -117,7 +94,7 @@ fn paint_counted(pic: &Picture, k: f64, painted: &Steps) -> Result<Pixmap, Error
                 let grey = paint(run.pen.grey());
                 pm.stroke_path(&path, &grey, &stroke, Transform::identity(), None);
             }
-            painted.add(run.lines.len());
+            done.add(run.lines.len());
         }
     }
     Ok(pm)
@@ -186,13 +163,13 @@ mod tests {
             pixel_size(&pic, pixels_per_mm(&pic, 1, Some(254.0))),
             (1100, 600)
         );
-        let pm = rasterise(&pic, 1.0).unwrap();
+        let pm = rasterise(&pic, 1.0, Count::NONE).unwrap();
         let px = |x: u32, y: u32| pm.pixel(x, y).unwrap().red();
         assert_eq!(px(1, 1), 255, "margin is white");
         assert_eq!(px(20, 50), 200, "fill");
         let ink = (28..33).map(|y| px(55, y)).min().unwrap();
         assert!(ink < 150, "line through the centre: {ink}");
-        let bytes = to_png(&pic, 110, None).unwrap();
+        let bytes = to_png(&pic, 110, None, Count::NONE).unwrap();
         assert_eq!(&bytes[1..4], b"PNG");
     }
 
@@ -201,7 +178,7 @@ mod tests {
         // A 1 mm pen is 1 px at 1 px/mm and 4 px at 4 px/mm: ink across the line scales.
         let pic = pic();
         let across = |k: f64| {
-            let pm = rasterise(&pic, k).unwrap();
+            let pm = rasterise(&pic, k, Count::NONE).unwrap();
             let x = (55.0 * k) as u32;
             (0..pm.height())
                 .filter(|&y| pm.pixel(x, y).unwrap().red() < 100)
@@ -229,7 +206,7 @@ mod tests {
             grey: 40,
         }];
         pic.layers.clear();
-        let pm = rasterise(&pic, 30.3).unwrap();
+        let pm = rasterise(&pic, 30.3, Count::NONE).unwrap();
         let (w, h) = (pm.width(), pm.height());
         let lightest = (h / 10..h * 9 / 10)
             .flat_map(|y| (w / 10..w * 9 / 10).map(move |x| (x, y)))

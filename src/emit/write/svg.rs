@@ -9,8 +9,8 @@ use std::fmt::Write as _;
 use svg::node::element::{Group, Path, Rectangle};
 use svg::Document;
 
+use crate::count::Count;
 use crate::geom::poly2::Pt2;
-use crate::progress::{Lane, Phase, Progress, Share, Stage};
 
 use super::json::num;
 use crate::emit::plot::picture::{LayerMode, Pen, Picture};
@@ -18,23 +18,10 @@ use crate::emit::plot::picture::{LayerMode, Pen, Picture};
 /// The Inkscape namespace (layers).
 const INKSCAPE: &str = "http://www.inkscape.org/namespaces/inkscape";
 
-/// How far into [`to_svg_counted`]'s count the elements are built: the rest is the
-/// document's text (about a fifth of the time on a filled 600k-face terrain).
-const BUILT: f64 = 0.8;
-
 /// The SVG document of a picture.
-pub fn to_svg(pic: &Picture) -> String {
-    let sink = Progress::new();
-    to_svg_counted(pic, &Lane::open(&sink))
-}
-
-/// [`to_svg`], counted in `lane` ([`Phase::Svg`]): each fill's rings and each run's strokes
-/// as their paths are made, then the document's text.
-pub(crate) fn to_svg_counted(pic: &Picture, lane: &Lane) -> String {
-    let polylines = pic.polylines();
-    lane.enter_phase(Stage::Emit, Phase::Svg, polylines);
-    let share = Share::new(lane, polylines);
-    let built = share.span(0.0, BUILT).steps(polylines);
+///
+/// Each fill's rings and each run's strokes go to `done` as their paths are made.
+pub fn to_svg(pic: &Picture, done: Count) -> String {
     let (w, h) = (pic.page.width, pic.page.height);
     let mut doc = Document::new()
         .set("xmlns:inkscape", INKSCAPE)
@@ -70,7 +57,7 @@ pub(crate) fn to_svg_counted(pic: &Picture, lane: &Lane) -> String {
                     .set("stroke", grey)
                     .set("fill-rule", "evenodd"),
             );
-            built.add(f.rings.len());
+            done.add(f.rings.len());
         }
         doc = doc.add(g);
     }
@@ -95,13 +82,12 @@ pub(crate) fn to_svg_counted(pic: &Picture, lane: &Lane) -> String {
                 p = pen_style(p, r.pen, pic);
             }
             g = g.add(p);
-            built.add(r.lines.len());
+            done.add(r.lines.len());
         }
         doc = doc.add(g);
     }
     let mut s = doc.to_string();
     s.push('\n');
-    share.finish();
     s
 }
 
@@ -186,7 +172,7 @@ mod tests {
 
     #[test]
     fn a4_page_in_mm_with_inkscape_layers_and_no_background() {
-        let s = to_svg(&pic(LayerMode::Pen));
+        let s = to_svg(&pic(LayerMode::Pen), Count::NONE);
         assert!(s.starts_with("<svg"), "{s}");
         assert!(s.contains(r#"width="210mm""#) && s.contains(r#"height="297mm""#));
         assert!(s.contains(r#"viewBox="0 0 210 297""#), "{s}");
@@ -209,7 +195,7 @@ mod tests {
             rings: vec![vec![[0., 0.], [1., 0.], [0., 1.]]],
             grey: 200,
         }];
-        let s = to_svg(&p);
+        let s = to_svg(&p, Count::NONE);
         assert!(s.contains(r##"fill="#fffff0""##));
         assert!(s.contains(r#"inkscape:label="7 fill""#), "{s}");
         assert!(s.contains(r##"fill="#c8c8c8""##));

@@ -11,8 +11,8 @@ pub mod solid;
 use std::collections::HashMap;
 use std::sync::Arc;
 
+use crate::count::Count;
 use crate::geom::{Box3, P3, V3};
-use crate::progress::{Phase, Progress, Stage};
 use crate::scene::{Content, Mesh, Object};
 
 use self::convex::{convex_inbox, is_convex};
@@ -22,41 +22,34 @@ use self::solid::Triangles;
 
 /// Computes an INBOX for every object of the tree that has none, keeping explicit ones.
 /// Prototypes shared by instances are prepared once and stay shared.
-pub fn compute_inboxes(root: &mut Object) {
-    compute_inboxes_counted(root, &Progress::new());
-}
-
-/// [`compute_inboxes`] as the prepare stage's phase [`Phase::Inboxes`], counting the faces
-/// of each mesh as its INBOX is found.
-pub(crate) fn compute_inboxes_counted(root: &mut Object, progress: &Progress) {
-    let faces = root.distinct_faces_where(&|obj, _| obj.inbox.is_none());
-    progress.enter_phase(Stage::Prepare, Phase::Inboxes, faces);
-    let mut done = HashMap::new();
-    fill(root, &mut done, progress);
+///
+/// The faces of each mesh go to `done` as its INBOX is found.
+pub fn compute_inboxes(root: &mut Object, done: Count) {
+    fill(root, &mut HashMap::new(), done);
 }
 
 /// Prepared prototypes, by the address of the original.
 type Prepared = HashMap<usize, Arc<Object>>;
 
-fn fill(obj: &mut Object, done: &mut Prepared, progress: &Progress) {
+fn fill(obj: &mut Object, made: &mut Prepared, done: Count) {
     let computed = match &mut obj.content {
         Content::Mesh(m) => obj
             .inbox
             .is_none()
             .then(|| {
                 let b = mesh_inbox(m);
-                progress.add(m.faces.len());
+                done.add(m.faces.len());
                 b
             })
             .flatten(),
         Content::Subobjects(subs) => {
             for s in subs.iter_mut() {
-                fill(s, done, progress);
+                fill(s, made, done);
             }
             largest(subs.iter().filter_map(|s| s.inbox))
         }
         Content::Instance(i) => {
-            i.prototype = prepared(&i.prototype, done, progress);
+            i.prototype = prepared(&i.prototype, made, done);
             i.prototype.inbox.and_then(|b| place_box(&b, &i.transform))
         }
     };
@@ -66,15 +59,15 @@ fn fill(obj: &mut Object, done: &mut Prepared, progress: &Progress) {
 }
 
 /// The prototype with its inboxes computed, made once per distinct prototype.
-fn prepared(proto: &Arc<Object>, done: &mut Prepared, progress: &Progress) -> Arc<Object> {
+fn prepared(proto: &Arc<Object>, made: &mut Prepared, done: Count) -> Arc<Object> {
     let key = Arc::as_ptr(proto) as usize;
-    if let Some(p) = done.get(&key) {
+    if let Some(p) = made.get(&key) {
         return p.clone();
     }
     let mut copy = (**proto).clone();
-    fill(&mut copy, done, progress);
+    fill(&mut copy, made, done);
     let p = Arc::new(copy);
-    done.insert(key, p.clone());
+    made.insert(key, p.clone());
     p
 }
 

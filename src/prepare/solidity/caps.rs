@@ -46,8 +46,8 @@ use std::collections::HashMap;
 
 use rayon::prelude::*;
 
+use crate::count::Span;
 use crate::geom::{newell, orient3d, P3};
-use crate::progress::{Progress, Share, Span};
 use crate::scene::topology::{edge_topology, sort_edges, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Face, Mesh, Solidity};
@@ -85,8 +85,7 @@ enum Way {
 /// times; only caps that pass go on to the one test of the whole surface (every pair of the
 /// mesh's own triangles).
 pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
-    let sink = Progress::new();
-    capping(mesh, Share::new(&sink, 0).span(0.0, 1.0)).map_err(|(why, _)| why)
+    capping(mesh, Span::NONE).map_err(|(why, _)| why)
 }
 
 /// A capped surface that is not a solid as a whole.

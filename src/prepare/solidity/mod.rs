@@ -37,11 +37,11 @@ mod plates;
 mod slab;
 mod slits;
 
-use crate::geom::box_pairs::{filter_map_pairs_counted, overlap, Bounds3};
+use crate::count::{Count, Share, Span};
+use crate::geom::box_pairs::{filter_map_pairs, overlap, Bounds3};
 use crate::geom::box_tree::BoxTree;
 use crate::geom::tri_intersect::{plane_axes, segment_meets_triangle, triangles_intersect};
 use crate::geom::{newell, orient2d, orient3d, Box3, P3};
-use crate::progress::{Phase, Progress, Share, Span, Stage};
 use crate::scene::topology::{Pieces, Topology, Traversals};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Content, Face, Mesh, Object, Solidity};
@@ -159,8 +159,7 @@ pub(crate) fn examine(mesh: &Mesh) -> Examined {
 /// [`examine`], testing for crossings only the pairs of triangles where one's face passes
 /// `suspect` (the others known not to cross).
 pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -> Examined {
-    let sink = Progress::new();
-    examine_until(mesh, suspect, None, Share::new(&sink, 0).span(0.0, 1.0))
+    examine_until(mesh, suspect, None, Span::NONE)
 }
 
 /// [`examine_where`], where the suspect faces fall in `groups` (by face, [`NO_GROUP`] for
@@ -222,15 +221,12 @@ pub(crate) fn examine_until(
 /// Fills [`Mesh::solidity`] of `mesh`, and for an open mesh whose holes cap into a solid
 /// ([`self::caps`]), its [`Mesh::caps`]; where the whole is not a solid, the pieces that
 /// are ([`Mesh::proven`], [`pieces`]) with their caps.
-pub fn decide(mesh: &mut Mesh) {
-    let sink = Progress::new();
-    decide_counted(mesh, &Share::new(&sink, 0));
-}
-
-/// [`decide`], filling `share` as it goes. A closed mesh's test is nearly all of the work; an
-/// open mesh's is only its edges matched (a tenth), and its capping the rest.
-pub(crate) fn decide_counted(mesh: &mut Mesh, share: &Share) {
+///
+/// Its faces go to `done` as the tests are done: a closed mesh's test is nearly all of the
+/// work; an open mesh's is only its edges matched (a tenth), and its capping the rest.
+pub fn decide(mesh: &mut Mesh, done: Count) {
     let n = mesh.faces.len();
+    let share = Share::new(done, n);
     let test = if mesh.closed { 0.97 } else { 0.1 };
     let whole = examine_until(mesh, |_| true, None, share.span(0.0, test));
     let pieces = share.span(0.97, 1.0);
@@ -273,39 +269,33 @@ pub(crate) fn decide_counted(mesh: &mut Mesh, share: &Share) {
 
 /// Fills [`Mesh::solidity`] of every mesh below `root` that has none; each shared prototype
 /// is decided once and stays shared.
-pub fn mark_solids(root: &mut Object) {
-    mark_solids_counted(root, &Progress::new());
-}
-
-/// [`mark_solids`] as the prepare stage's phase [`Phase::Solidity`]: each mesh decided
-/// fills its faces' share of the count.
-pub(crate) fn mark_solids_counted(root: &mut Object, progress: &Progress) {
-    let faces = root.distinct_faces_where(&|_, m| m.solidity.is_none());
-    progress.enter_phase(Stage::Prepare, Phase::Solidity, faces);
-    let mut done = HashMap::new();
-    mark(root, &mut done, progress);
+///
+/// Each mesh decided goes to `done` with its faces, as its share of the count fills.
+pub fn mark_solids(root: &mut Object, done: Count) {
+    let mut marked = HashMap::new();
+    mark(root, &mut marked, done);
 }
 
 /// Prototypes already marked, by the address of the original.
 type Marked = HashMap<usize, Arc<Object>>;
 
-fn mark(obj: &mut Object, done: &mut Marked, progress: &Progress) {
+fn mark(obj: &mut Object, marked: &mut Marked, done: Count) {
     match &mut obj.content {
         Content::Mesh(m) => {
             if m.solidity.is_none() {
-                decide_counted(m, &Share::new(progress, m.faces.len()));
+                decide(m, done);
             }
         }
-        Content::Subobjects(subs) => subs.iter_mut().for_each(|s| mark(s, done, progress)),
+        Content::Subobjects(subs) => subs.iter_mut().for_each(|s| mark(s, marked, done)),
         Content::Instance(i) => {
             let key = Arc::as_ptr(&i.prototype) as usize;
-            let p = match done.get(&key) {
+            let p = match marked.get(&key) {
                 Some(p) => p.clone(),
                 None => {
                     let mut copy = (*i.prototype).clone();
-                    mark(&mut copy, done, progress);
+                    mark(&mut copy, marked, done);
                     let p = Arc::new(copy);
-                    done.insert(key, p.clone());
+                    marked.insert(key, p.clone());
                     p
                 }
             };
@@ -462,7 +452,7 @@ fn grid_pairs(
         .filter(|&i| is[i as usize])
         .collect();
     if few.len() * 10 > boxes.len() {
-        return filter_map_pairs_counted(
+        return filter_map_pairs(
             boxes,
             |i, j| ((is[i as usize] || is[j as usize]) && crosses(i, j)).then_some((i, j)),
             span,
@@ -813,7 +803,7 @@ pub(crate) mod tests {
             file: std::path::Path::new("t"),
             face_pos: &[],
         };
-        cleanup(&raw, &origin, &mut Vec::new()).unwrap()
+        cleanup(&raw, &origin, &mut Vec::new(), crate::count::Count::NONE).unwrap()
     }
 
     const TET: [[f64; 3]; 4] = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]];
@@ -842,9 +832,7 @@ pub(crate) mod tests {
             let quiet = |t: u32| of[t as usize] == 6;
             !(i + j).is_multiple_of(3) && !quiet(i) && !quiet(j)
         };
-        let sink = Progress::new();
-        let share = Share::new(&sink, 0);
-        let span = share.span(0.0, 1.0);
+        let span = Span::NONE;
         let all = grid_pairs(&boxes, &is, &crosses, None, span);
         let groups = Groups::new(of.clone());
         let some = grid_pairs(&boxes, &is, &crosses, Some(&groups), span);
@@ -885,8 +873,7 @@ pub(crate) mod tests {
             }
             is[7] = true;
             let odd = |i: u32, j: u32| !(i + j).is_multiple_of(3);
-            let sink = Progress::new();
-            let got = grid_pairs(&boxes, &is, &odd, None, Share::new(&sink, 0).span(0.0, 1.0));
+            let got = grid_pairs(&boxes, &is, &odd, None, Span::NONE);
             let mut want = Vec::new();
             for i in 0..n as u32 {
                 for j in i + 1..n as u32 {
@@ -909,7 +896,7 @@ pub(crate) mod tests {
             file: std::path::Path::new("t"),
             face_pos: &[],
         };
-        let m = cleanup(&cube, &origin, &mut Vec::new()).unwrap();
+        let m = cleanup(&cube, &origin, &mut Vec::new(), crate::count::Count::NONE).unwrap();
         assert_eq!(solidity(&m), Solidity::Solid);
     }
 

@@ -16,8 +16,8 @@
 //! is then proven with its caps, and only the caps of proven pieces are kept (a cap of
 //! another piece plays no part in P's argument).
 
+use crate::count::Span;
 use crate::geom::P3;
-use crate::progress::Span;
 use crate::scene::{Mesh, ProvenPieces};
 
 use super::Surface;
@@ -83,10 +83,10 @@ pub(crate) fn proven_pieces(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::count::Span;
     use crate::prepare::solidity::caps::tests::{box_with_chimney, cube_without};
     use crate::prepare::solidity::decide;
     use crate::prepare::solidity::tests::crossing_piece;
-    use crate::progress::{Progress, Share};
     use crate::scene::{CapFailure, Face, Solidity};
 
     /// `b`'s faces after `a`'s, its vertices moved by `dx` along x.
@@ -106,7 +106,7 @@ mod tests {
     #[test]
     fn a_closed_mesh_culls_its_proven_piece_only() {
         let mut m = beside(&cube_without(&[]), &crossing_piece(), 3.0);
-        decide(&mut m);
+        decide(&mut m, crate::count::Count::NONE);
         assert!(matches!(m.solidity, Some(Solidity::SelfIntersecting(_))));
         let p = m.proven.as_ref().expect("the cube is proven");
         assert_eq!((p.proven, p.pieces), (1, 2));
@@ -114,7 +114,7 @@ mod tests {
         assert!(m.caps.is_empty());
         // The crossing piece alone: nothing proven.
         let mut alone = crossing_piece();
-        decide(&mut alone);
+        decide(&mut alone, crate::count::Count::NONE);
         assert_eq!(alone.proven, None);
     }
 
@@ -123,7 +123,7 @@ mod tests {
         // An open box (caps into a solid) beside a box whose chimney rises through its mouth
         // (its cap crosses its own piece).
         let mut m = beside(&cube_without(&[1]), &box_with_chimney(1.5), 3.0);
-        decide(&mut m);
+        decide(&mut m, crate::count::Count::NONE);
         assert!(matches!(
             m.solidity,
             Some(Solidity::Open(CapFailure::SelfIntersecting(_)))
@@ -144,9 +144,7 @@ mod tests {
         let m = beside(&cube_without(&[]), &crossing_piece(), 3.0);
         let e = super::super::examine(&m);
         let surface = e.surface.as_ref().expect("closed");
-        let sink = Progress::new();
-        let share = Share::new(&sink, 0);
-        let span = share.span(0.0, 1.0);
+        let span = Span::NONE;
         let fresh = proven_pieces(&m, surface, m.faces.len(), Crossings::Some(&[]), span);
         let known = proven_pieces(
             &m,

@@ -255,12 +255,11 @@ impl Plate {
 #[cfg(test)]
 mod tests {
     use super::super::{cross, crossing_pairs, examine, triangulate, Tri};
+    use crate::count::Span;
 
     /// The triangles and their faces of a mesh with no flat face.
     fn surface_triangles(m: &Mesh) -> Option<(Vec<Tri>, Vec<u32>)> {
-        let sink = crate::progress::Progress::new();
-        let share = crate::progress::Share::new(&sink, 0);
-        let (tris, face_of, flat) = triangulate(m, share.span(0.0, 1.0));
+        let (tris, face_of, flat) = triangulate(m, Span::NONE);
         flat.is_empty().then_some((tris, face_of))
     }
     use super::*;
@@ -274,7 +273,7 @@ mod tests {
             file: std::path::Path::new("t"),
             face_pos: &[],
         };
-        cleanup(&raw, &origin, &mut Vec::new()).unwrap()
+        cleanup(&raw, &origin, &mut Vec::new(), crate::count::Count::NONE).unwrap()
     }
 
     /// A prism over a regular `n`-gon of radius 1, from z = 0 to z = 1, each point passed
@@ -321,9 +320,7 @@ mod tests {
     fn pairs(m: &Mesh) -> Vec<(u32, u32)> {
         let (tris, face_of) = surface_triangles(m).unwrap();
         // One piece: every pair is tested, as `brute` tests them.
-        let sink = crate::progress::Progress::new();
-        let share = crate::progress::Share::new(&sink, 0);
-        let span = share.span(0.0, 1.0);
+        let span = Span::NONE;
         crossing_pairs(
             m,
             &tris,

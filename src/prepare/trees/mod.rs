@@ -20,8 +20,8 @@ pub mod widths;
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
+use crate::count::Count;
 use crate::geom::{Box3, P3};
-use crate::progress::{Phase, Progress, Stage};
 use crate::scene::{Content, Mesh, Object};
 
 use self::bvtree::{HierarchyKind, ObjectTree};
@@ -38,32 +38,49 @@ pub const INBOX_SHARE: f64 = 1.0 / 64.0;
 /// Attaches a tree of `kind` to every leaf mesh of at least [`MIN_FACES`] faces that has none
 /// (with `shared_only`, only to meshes of prototypes placed more than once); with `inboxes`,
 /// closed meshes' large components get inboxes too.
-pub fn attach_trees(root: &mut Object, kind: HierarchyKind, inboxes: bool, shared_only: bool) {
-    attach_trees_counted(root, kind, inboxes, shared_only, &Progress::new());
-}
-
-/// [`attach_trees`] as the prepare stage's phase [`Phase::Trees`], counting the faces of
-/// each mesh as its tree is built.
-pub(crate) fn attach_trees_counted(
+///
+/// The faces of each mesh go to `done` as its tree is built.
+pub fn attach_trees(
     root: &mut Object,
     kind: HierarchyKind,
     inboxes: bool,
     shared_only: bool,
-    progress: &Progress,
+    done: Count,
 ) {
+    attach_of(root, kind, inboxes, shared_only, done).attach(root, false);
+}
+
+/// The faces of the meshes [`attach_trees`] gives a tree (a shared prototype's once): the
+/// total of its count.
+pub(crate) fn planned_faces(root: &Object, shared_only: bool) -> usize {
+    let w = attach_of(
+        root,
+        HierarchyKind::Simplify,
+        false,
+        shared_only,
+        Count::NONE,
+    );
+    w.planned(root, false, &mut HashSet::new())
+}
+
+/// The walk that attaches trees below `root`.
+fn attach_of<'p>(
+    root: &Object,
+    kind: HierarchyKind,
+    inboxes: bool,
+    shared_only: bool,
+    done: Count<'p>,
+) -> Attach<'p> {
     let mut placements = HashMap::new();
     count_placements(root, &mut placements);
-    let mut w = Attach {
+    Attach {
         kind,
         inboxes,
         shared_only,
         placements,
         done: HashMap::new(),
-        progress,
-    };
-    let faces = w.planned(root, false, &mut HashSet::new());
-    progress.enter_phase(Stage::Prepare, Phase::Trees, faces);
-    w.attach(root, false);
+        faces_done: done,
+    }
 }
 
 /// How often each prototype (by address) is placed.
@@ -88,7 +105,8 @@ struct Attach<'p> {
     shared_only: bool,
     placements: HashMap<usize, usize>,
     done: HashMap<usize, Arc<Object>>,
-    progress: &'p Progress,
+    /// The faces whose trees are built.
+    faces_done: Count<'p>,
 }
 
 impl Attach<'_> {
@@ -127,7 +145,7 @@ impl Attach<'_> {
                         component_inboxes(&mut t, m);
                     }
                     obj.tree = Some(Arc::new(t));
-                    self.progress.add(m.faces.len());
+                    self.faces_done.add(m.faces.len());
                 }
             }
             Content::Subobjects(subs) => {
@@ -201,7 +219,7 @@ mod tests {
     use super::*;
     use crate::geom::{PolyMesh, V3};
     use crate::pipeline::{render, Outputs, RenderOptions};
-    use crate::prepare::{prepare_with, PrepareOptions};
+    use crate::prepare::{prepare, PrepareOptions};
     use crate::scene::testing::leaf;
     use crate::scene::Scene;
     use crate::tribox::interfere::{interfere_with, Method};
@@ -255,12 +273,13 @@ mod tests {
 
     fn prepared(kind: HierarchyKind) -> Scene {
         let mut s = spheres();
-        prepare_with(
+        prepare(
             &mut s,
             &PrepareOptions {
                 hierarchy: Some(kind),
                 ..PrepareOptions::default()
             },
+            &crate::Progress::default(),
         );
         s
     }
@@ -279,7 +298,11 @@ mod tests {
         assert!(leaf_trees(&median).iter().all(Option::is_none));
         // By default a mesh drawn once keeps the per-view median split.
         let mut auto = spheres();
-        prepare_with(&mut auto, &PrepareOptions::default());
+        prepare(
+            &mut auto,
+            &PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
         assert!(leaf_trees(&auto).iter().all(Option::is_none));
         let json = |s: &Scene| {
             let outputs = Outputs {
@@ -294,6 +317,7 @@ mod tests {
                     outputs,
                     ..Default::default()
                 },
+                &crate::Progress::default(),
             )
             .unwrap();
             assert!(r.stats.counters.nodes_visited > 0);
@@ -322,12 +346,13 @@ mod tests {
         let mut two = sphere(12, 1.0, V3::zeros());
         two.append(&sphere(12, 1.0, V3::new(10., 0., 0.)));
         let mut s = Scene::new(Object::group("", vec![leaf("two", &two)]), "t".into());
-        prepare_with(
+        prepare(
             &mut s,
             &PrepareOptions {
                 hierarchy: Some(HierarchyKind::Simplify),
                 ..PrepareOptions::default()
             },
+            &crate::Progress::default(),
         );
         let cam = Camera::three_quarter();
         let (out, stats) =
@@ -339,12 +364,13 @@ mod tests {
         assert!(sub.vertices().iter().all(|v| v.x < 1.5 || v.x > 8.5));
         // Without a tree: one tribox.
         let mut bare = Scene::new(Object::group("", vec![leaf("two", &two)]), "t".into());
-        prepare_with(
+        prepare(
             &mut bare,
             &PrepareOptions {
                 hierarchy: Some(HierarchyKind::Median),
                 ..PrepareOptions::default()
             },
+            &crate::Progress::default(),
         );
         let (_, one) =
             crate::view::substitute(&bare, &cam, &crate::view::LodOptions::new(1e9, 100));

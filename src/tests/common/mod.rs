@@ -24,6 +24,7 @@ pub(crate) fn mesh(pts: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
             face_pos: &[],
         },
         &mut Vec::new(),
+        Default::default(),
     )
     .unwrap()
 }
@@ -37,6 +38,7 @@ pub(crate) fn prim(raw: PolyMesh) -> Mesh {
             face_pos: &[],
         },
         &mut Vec::new(),
+        Default::default(),
     )
     .unwrap()
 }
@@ -83,7 +85,7 @@ pub(crate) fn run(scene: &Scene, camera: Camera) -> (View, Visibility) {
         no_inbox: true,
         ..RenderOptions::default()
     };
-    let r = render(scene, &camera, &opts).expect("in-memory render");
+    let r = render(scene, &camera, &opts, &crate::Progress::default()).expect("in-memory render");
     (View::new(scene, camera), r.visibility)
 }
 
@@ -97,7 +99,7 @@ pub(crate) fn drawing(scene: &Scene, camera: Camera, lines: LineOptions) -> (Vie
         },
         ..RenderOptions::default()
     };
-    let r = render(scene, &camera, &opts).expect("in-memory render");
+    let r = render(scene, &camera, &opts, &crate::Progress::default()).expect("in-memory render");
     (
         View::new(scene, camera),
         r.drawing.expect("drawing asked for"),

@@ -1,5 +1,6 @@
-//! A progress bar on standard error: drawn only on a terminal, and only once a run has taken
-//! more than a moment; it never touches standard output or the results.
+//! A progress bar on standard error, drawn from the library's counts: only on a terminal,
+//! and only once a run has taken more than a moment; it never touches standard output or
+//! the results.
 
 use std::io::{IsTerminal, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -15,7 +16,7 @@ const WIDTH: usize = 30;
 
 /// A progress bar for `total` units of work.
 #[derive(Debug)]
-pub struct Progress {
+pub struct Bar {
     label: String,
     total: usize,
     unit: Unit,
@@ -25,10 +26,10 @@ pub struct Progress {
     last: Option<Instant>,
 }
 
-impl Progress {
+impl Bar {
     /// A bar that shows itself after `delay`, if standard error is a terminal.
-    pub fn new(label: &str, total: usize, delay: Duration) -> Progress {
-        Progress {
+    pub fn new(label: &str, total: usize, delay: Duration) -> Bar {
+        Bar {
             label: label.to_string(),
             total,
             unit: Unit::Items,
@@ -161,7 +162,7 @@ pub fn follow<T: Send>(
     delay: Duration,
     work: impl FnOnce() -> T + Send,
 ) -> T {
-    let mut bar = Progress::new("render", 0, delay);
+    let mut bar = Bar::new("render", 0, delay);
     bar.start = start;
     if !bar.enabled {
         return work();

@@ -1,35 +1,35 @@
-//! A share of a phase's count filled by one piece of work: a phase over many meshes gives
-//! each mesh its faces' worth, and the mesh's passes fill it by fractions ([`Span`]) or by
-//! steps ([`Steps`]), never past it; when the work is done the share is full, whatever the
-//! passes counted.
+//! A share of a count filled by one piece of work: a phase over many meshes gives each mesh
+//! its faces' worth, and the mesh's passes fill it by fractions ([`Span`]) or by steps
+//! ([`Steps`]), never past it; when the work is done the share is full, whatever the passes
+//! counted. (For the passes not yet reduced to plain counts of their own units.)
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::{ends_chunk, Tally, CHUNK};
+use super::{Count, CHUNK};
+
+/// True when item `i` (from 0) of a loop is the last of a [`CHUNK`].
+#[inline]
+fn ends_chunk(i: usize) -> bool {
+    (i + 1).is_multiple_of(CHUNK)
+}
 
 /// `units` of a phase's count, filled by one piece of work.
 #[derive(Debug)]
 pub(crate) struct Share<'p> {
-    progress: &'p dyn Tally,
+    count: Count<'p>,
     units: usize,
     /// Units counted so far (may run past `units`; only `units` reach the progress).
     given: AtomicUsize,
 }
 
 impl<'p> Share<'p> {
-    /// A share of `units` of `progress`'s current phase, nothing counted yet.
-    pub(crate) fn new(progress: &'p dyn Tally, units: usize) -> Share<'p> {
+    /// A share of `units` of `count`, nothing counted yet.
+    pub(crate) fn new(count: Count<'p>, units: usize) -> Share<'p> {
         Share {
-            progress,
+            count,
             units,
             given: AtomicUsize::new(0),
         }
-    }
-
-    /// Counts `n` more units (never past the share).
-    pub(crate) fn add(&self, n: usize) {
-        let old = self.given.fetch_add(n, Ordering::Relaxed);
-        self.give(old, old.saturating_add(n));
     }
 
     /// Fills the share up to `fraction` of its units (never back): the work is that far.
@@ -47,7 +47,7 @@ impl<'p> Share<'p> {
     /// The part of the share from `lo` to `hi` (fractions), for one pass of the work.
     pub(crate) fn span(&self, lo: f64, hi: f64) -> Span<'_> {
         Span {
-            share: self,
+            share: Some(self),
             lo,
             hi,
         }
@@ -58,24 +58,33 @@ impl<'p> Share<'p> {
     fn give(&self, old: usize, new: usize) {
         let n = new.min(self.units) - old.min(self.units);
         if n > 0 {
-            self.progress.add(n);
+            self.count.add(n);
         }
     }
 }
 
 /// The part of a [`Share`] one pass of the work fills, from fraction `lo` to `hi` of it.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Span<'s> {
-    share: &'s Share<'s>,
+pub struct Span<'s> {
+    /// None: the span counts nothing.
+    share: Option<&'s Share<'s>>,
     lo: f64,
     hi: f64,
 }
 
 impl<'s> Span<'s> {
+    /// A span that counts nothing.
+    pub(crate) const NONE: Span<'static> = Span {
+        share: None,
+        lo: 0.0,
+        hi: 1.0,
+    };
+
     /// The pass is `fraction` done.
     pub(crate) fn reach(&self, fraction: f64) {
-        self.share
-            .reach(self.lo + (self.hi - self.lo) * fraction.clamp(0.0, 1.0));
+        if let Some(share) = self.share {
+            share.reach(self.lo + (self.hi - self.lo) * fraction.clamp(0.0, 1.0));
+        }
     }
 
     /// The pass is done.
@@ -147,18 +156,23 @@ mod tests {
     use super::*;
     use crate::progress::{Phase, Progress, Stage};
 
+    /// A share of `units` of `p`'s current phase.
+    fn share(p: &Progress, units: usize) -> Share<'_> {
+        Share::new(p.count(), units)
+    }
+
     #[test]
     fn a_share_never_counts_past_its_units() {
         let p = Progress::new();
         p.enter_phase(Stage::Prepare, Phase::Solidity, 150);
-        let a = Share::new(&p, 100);
-        a.add(60);
+        let a = share(&p, 100);
+        a.reach(0.6);
         a.reach(0.5);
         assert_eq!(p.counts().0, 60, "reach never goes back");
-        a.add(70);
+        a.reach(1.3);
         assert_eq!(p.counts().0, 100);
         a.finish();
-        let b = Share::new(&p, 50);
+        let b = share(&p, 50);
         b.span(0.5, 1.0).span(0.0, 0.5).reach(1.0);
         assert_eq!(p.counts().0, 137, "three quarters of 50, rounded down");
         b.finish();
@@ -169,7 +183,7 @@ mod tests {
     fn steps_fill_their_span_in_any_order() {
         let p = Progress::new();
         p.enter_phase(Stage::Lines, Phase::Intersections, 1000);
-        let s = Share::new(&p, 1000);
+        let s = share(&p, 1000);
         let half = s.span(0.0, 0.5);
         let steps = half.steps(4 * CHUNK);
         for i in (0..4 * CHUNK).rev() {
@@ -184,7 +198,7 @@ mod tests {
     fn small_chunks_move_the_count_sooner() {
         let p = Progress::new();
         p.enter_phase(Stage::Emit, Phase::Order, 100);
-        let s = Share::new(&p, 100);
+        let s = share(&p, 100);
         let steps = s.span(0.0, 1.0).steps(40);
         for i in 0..19 {
             steps.tick_in(i, 8);
