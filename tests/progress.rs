@@ -282,7 +282,7 @@ fn hatching_and_fills_count_their_visible_faces() {
         svg: true,
         ..Outputs::default()
     });
-    ropts.outputs.picture.hatch = Some(kepler_hsr::emit::plot::hatch::HatchOptions::default());
+    ropts.outputs.picture.hatch = Some(kepler_hsr::plot::HatchOptions::default());
     ropts.outputs.picture.fill = true;
     let watched = Progress::new();
     let r = render(&scene, &camera, &ropts, &watched).unwrap();

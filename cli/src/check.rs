@@ -1,5 +1,5 @@
 //! `kepler check`: re-render a scene and compare its visible-polygon set with a golden file,
-//! and/or (`--exact`) with the independent exact answer (`kepler_hsr::exact`: rationals, no
+//! and/or (`--exact`) with the independent exact answer (`kepler_hsr::check::exact`: rationals, no
 //! boolean engine, no tolerance in any decision; slow, for small scenes): each face's
 //! symmetric difference must stay within 1e-9 of its projected area plus rounding.
 //!

@@ -83,7 +83,7 @@ fn load_with(
     prepare: &kepler_hsr::PrepareOptions,
 ) -> Result<Scene> {
     let mut scene = load_only(path, quiet, opts)?;
-    kepler_hsr::prepare::prepare(&mut scene, prepare, &kepler_hsr::Progress::default());
+    kepler_hsr::prepare(&mut scene, prepare, &kepler_hsr::Progress::default());
     Ok(scene)
 }
 

@@ -156,7 +156,7 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         let load = t.elapsed();
         let t = Instant::now();
         let prep = a.hierarchy.prepare();
-        kepler_hsr::prepare::prepare(&mut scene, &prep, &progress);
+        kepler_hsr::prepare(&mut scene, &prep, &progress);
         if scene.face_count() >= crate::memory::TRIM_ABOVE_FACES {
             crate::memory::trim();
         }

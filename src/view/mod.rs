@@ -143,6 +143,13 @@ impl View {
 }
 
 impl View {
+    /// A face's normal in view space (Newell's normal of its world corners turned by the
+    /// camera, not normalised): +z faces the viewer of an orthographic view.
+    pub fn face_normal(&self, f: crate::scene::FaceId) -> crate::geom::V3 {
+        let n = crate::geom::newell(&self.screen.face_world_pts(f));
+        self.camera.matrix.fixed_view::<3, 3>(0, 0) * n
+    }
+
     /// The path of the object (leaf) a face belongs to, as `kepler info` names it; "" for a
     /// face this view does not hold (in a culled subtree).
     pub fn object_path(&self, f: crate::scene::FaceId) -> &str {

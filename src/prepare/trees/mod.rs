@@ -214,6 +214,22 @@ pub fn leaf_trees(scene: &crate::scene::Scene) -> Vec<Option<Arc<ObjectTree>>> {
     out
 }
 
+impl crate::scene::Scene {
+    /// The leaf component of every face of the scene's object trees (paper 002), in global
+    /// face order: faces of meshes without a prepared tree get `None`.
+    pub fn face_components(&self) -> Vec<Option<u32>> {
+        let mut out = Vec::with_capacity(self.face_count());
+        for (leaf, tree) in self.leaves().iter().zip(leaf_trees(self)) {
+            let n = leaf.mesh.faces.len();
+            match tree {
+                Some(t) => out.extend(t.components.face_component(n).into_iter().map(Some)),
+                None => out.extend(std::iter::repeat_n(None, n)),
+            }
+        }
+        out
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
