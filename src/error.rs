@@ -120,7 +120,7 @@ impl Error {
 }
 
 /// Result with the library's error.
-pub type Result<T> = std::result::Result<T, Error>;
+pub(crate) type Result<T> = std::result::Result<T, Error>;
 
 /// A recoverable defect that was repaired, reported to the user.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -138,4 +138,4 @@ impl fmt::Display for Warning {
 }
 
 /// Collected warnings of one load.
-pub type Warnings = Vec<Warning>;
+pub(crate) type Warnings = Vec<Warning>;

@@ -14,22 +14,23 @@ const ANYWHERE: u32 = u32::MAX;
 
 /// The top-level modules in the order data flows: each may import only lower ranks.
 const RANKS: &[(&str, u32)] = &[
-    ("error", 0),           // errors and warnings: the foundation, importing nothing
-    ("geom", 1),            // points, boxes and the one home of predicates: the foundation
-    ("scene", 2),           // the database every stage reads: imports only the foundation
-    ("primitives", 3),      // named solids as meshes, built from geometry; load names them
-    ("load", 4),            // stage 1: scene and mesh files to a scene
-    ("prepare", 5),         // stage 2: solidity, INBOXes and object trees, once per scene
-    ("tribox", 6),          // triboxes and interference: walks prepare's trees; view's LOD uses it
-    ("view", 7),            // stage 3: a camera, the cull, screen faces and the view tree
-    ("visibility", 8),      // stage 4: VISFAC, the visible part of every face
-    ("exact", 9), // the independent checker: reads views, visibility and prepare's numbers
-    ("query", 9), // Franklin's queries by path and point: over views, visibility and triboxes
-    ("emit", 10), // stage 5: hidden lines, plots and the writers
-    ("check", 10), // checking a render: the exact checker and golden comparison
-    ("pipeline", 11), // runs the stages after prepare as one call
-    ("describe", 11), // a prepared scene described (`kepler info`): reads every stage's facts
-    ("progress", ANYWHERE), // being reworked (issue 29): allowed from anywhere for now
+    ("error", 0),      // errors and warnings: the foundation, importing nothing
+    ("geom", 1),       // points, boxes and the one home of predicates: the foundation
+    ("scene", 2),      // the database every stage reads: imports only the foundation
+    ("primitives", 3), // named solids as meshes, built from geometry; load names them
+    ("load", 4),       // stage 1: scene and mesh files to a scene
+    ("prepare", 5),    // stage 2: solidity, INBOXes and object trees, once per scene
+    ("tribox", 6),     // triboxes and interference: walks prepare's trees; view's LOD uses it
+    ("view", 7),       // stage 3: a camera, the cull, screen faces and the view tree
+    ("visibility", 8), // stage 4: VISFAC, the visible part of every face
+    ("exact", 9),      // the independent checker: reads views, visibility and prepare's numbers
+    ("query", 9),      // Franklin's queries by path and point: over views, visibility and triboxes
+    ("emit", 10),      // stage 5: hidden lines, plots and the writers
+    ("check", 10),     // checking a render: the exact checker and golden comparison
+    ("pipeline", 11),  // runs the stages after prepare as one call
+    ("describe", 11),  // a prepared scene described (`kepler info`): reads every stage's facts
+    ("count", 0),      // units of work done, per chunk: all an algorithm is handed, never a bar
+    ("progress", 1),   // stages and phases a watcher reads: entered by the stage entry points
 ];
 
 /// The rank of a top-level module, if it has one.

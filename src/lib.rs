@@ -3,9 +3,11 @@
 //! precision of f64 arithmetic, not to a pixel — and draws it as SVG line drawings, PNG
 //! pictures and canonical JSON visible-polygon sets.
 //!
-//! Data flows one way, one module per stage:
-//! [`load`] → [`mod@prepare`] → [`view`] → [`visibility`] → [`emit`], and [`render()`] runs the
-//! stages after `prepare` as one call:
+//! Data flows one way: [`load_scene`] → [`prepare()`] → a [`Camera`] and a [`View`] → every
+//! face's [`Visibility`] → the emitted outputs ([`Rendered`]), and [`render()`] runs the
+//! stages after `prepare` as one call. Every operation takes a [`Progress`] last: its default
+//! observes nothing and costs nothing; a watcher thread (a progress bar) reads one that the
+//! work reports its counts to, and watching never changes a result.
 //!
 //! ```
 //! use kepler_hsr::{load_scene, prepare, render, Camera, CameraRequest, LoadOptions, Outputs};
@@ -26,65 +28,80 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! The papers' names are kept: [`visibility::visfac()`], [`visibility::visp()`],
-//! [`visibility::visobj()`], [`visibility::include()`], CBOX and INBOX ([`scene::Object`]),
-//! [`tribox`].
+//! The papers' names are kept (docs/papers.md says which module implements which section):
+//! Franklin's queries [`query::include`], [`query::visp`] and [`query::visobj`]; CBOX and
+//! INBOX on every [`Object`]; Crosnier and Rossignac's triboxes and Tan, Chong and Low's
+//! object trees in [`tribox`]. Beside the root: [`lines`] (the line drawing), [`plot`] (pages,
+//! pens and hatching), [`stats`] (what a render did), [`check`] (exact and golden checks).
+//! ARCHITECTURE.md maps the modules behind them.
 
 pub mod check;
 mod count;
 mod describe;
-pub mod emit;
-pub mod error;
-pub mod exact;
-pub mod geom;
+mod emit;
+mod error;
+mod exact;
+mod geom;
 #[cfg(test)]
 mod layering;
-pub mod load;
-pub mod pipeline;
-pub mod prepare;
-pub mod primitives;
-pub mod progress;
+mod load;
+mod pipeline;
+mod prepare;
+mod primitives;
+mod progress;
 pub mod query;
-pub mod scene;
+mod scene;
 pub mod tribox;
-pub mod view;
-pub mod visibility;
+mod view;
+mod visibility;
 
 #[cfg(test)]
 mod tests;
 
-pub use emit::{Drawing, EdgeKind, EdgeOptions, EdgeSet, LineOptions};
-pub use error::{Error, Location, Pos, Result, Warning, Warnings};
-pub use geom::{Box3, M4, P3, V3};
-pub use load::{load_scene, LoadOptions};
-pub use pipeline::{
-    render, render_to, Outputs, PictureOptions, RenderOptions, RenderStats, Rendered,
-};
-pub use prepare::{prepare, HierarchyKind, PrepareOptions};
-pub use progress::{Phase, PhaseCount, Progress, Stage, Unit};
-pub use scene::{Content, Face, FaceId, Instance, Mesh, Object, Scene, Solidity};
-pub use view::{Camera, CameraRequest, LodOptions, PieceId, Projection, View};
-pub use visibility::{FaceVisibility, Visibility};
+pub use error::{Error, Location, Pos, Warning};
+pub use geom::box3::Box3;
+pub use geom::{M4, P3, V3};
+pub use load::limits::LoadOptions;
+pub use load::load_scene;
+pub use pipeline::{render, render_to, Outputs, RenderOptions, Rendered};
+pub use prepare::{prepare, PrepareOptions};
+pub use progress::Progress;
+pub use scene::face_id::FaceId;
+pub use scene::flatten::FlatMesh;
+pub use scene::object::{Content, Face, Instance, Mesh, Object};
+pub use scene::object_tree::HierarchyKind;
+pub use scene::Scene;
+pub use view::camera::{Camera, CameraRequest, Projection};
+pub use view::lod::LodOptions;
+pub use view::View;
+pub use visibility::pass::{FaceVisibility, Visibility};
 
 /// The line drawing: which edges are drawn, and the visible and hidden strokes a render makes.
 pub mod lines {
-    pub use crate::emit::{Drawing, EdgeKind, EdgeOptions, EdgeSet, LineOptions, Stroke};
+    pub use crate::emit::lines::edges::{EdgeKind, EdgeOptions, EdgeSet};
+    pub use crate::emit::lines::{Drawing, LineOptions, Stroke};
 }
 
 /// Plotter pages and pens: page sizes, layers, hatching, colours, and what building a
 /// picture did.
 pub mod plot {
-    pub use crate::emit::{HatchOptions, LayerMode, PageSize, Pen, PictureOptions, PlotStats, Rgb};
-    pub use crate::geom::Rect;
+    pub use crate::emit::plot::color::Rgb;
+    pub use crate::emit::plot::dedup::DedupStats;
+    pub use crate::emit::plot::hatch::HatchOptions;
+    pub use crate::emit::plot::page::PageSize;
+    pub use crate::emit::plot::picture::{LayerMode, LayerSummary, Pen, PictureOptions, PlotStats};
+    pub use crate::geom::rect::Rect;
 }
 
 /// What a render did: stage times, progress stages and phases, and the counters of the cull,
 /// the visibility pass and level-of-detail substitution.
 pub mod stats {
     pub use crate::pipeline::RenderStats;
-    pub use crate::progress::{Phase, PhaseCount, Stage, Unit};
-    pub use crate::view::{CullSummary, LodStats};
-    pub use crate::visibility::Counters;
+    pub use crate::progress::stage::{Phase, Stage, Unit};
+    pub use crate::progress::PhaseCount;
+    pub use crate::view::lod::LodStats;
+    pub use crate::view::CullSummary;
+    pub use crate::visibility::stats::Counters;
 }
 
 /// The README's code, compiled and run as doctests.

@@ -17,7 +17,7 @@ use crate::emit::write::svg::to_svg;
 use crate::error::{Error, Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
 use crate::progress::{Lane, Phase};
-pub use crate::progress::{Progress, Stage};
+pub(crate) use crate::progress::{Progress, Stage};
 use crate::scene::Scene;
 use crate::view::{substitute, Camera, Cull, LodOptions, LodStats, View};
 use crate::visibility::empty::why_empty;
@@ -58,7 +58,7 @@ pub struct Outputs {
     pub picture: PictureOptions,
 }
 
-pub use crate::emit::plot::picture::PictureOptions;
+pub(crate) use crate::emit::plot::picture::PictureOptions;
 
 /// Stage times and work counters of one render.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -135,12 +135,6 @@ impl Rendered<'_> {
         let lines = self.drawing.as_ref().filter(|_| lines).map(Drawing::lines);
         write_json(&self.view, &self.visibility, lines.as_ref(), w, Count::NONE)
             .map_err(Error::Write)
-    }
-
-    /// The picture both SVG and PNG draw (texture markings included), its phases going to
-    /// `progress`.
-    pub fn picture(&self, opts: &PictureOptions, progress: &Progress) -> Result<Picture> {
-        picture_of(self, opts, &Lane::open(progress))
     }
 }
 

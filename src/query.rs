@@ -8,7 +8,9 @@ use crate::scene::Scene;
 use crate::view::View;
 
 pub use crate::tribox::interfere::{Interference, Method as InterfereMethod};
-pub use crate::visibility::{Inclusion, PointVisibility, Verdict};
+pub use crate::visibility::include::Inclusion;
+pub use crate::visibility::visfac::Verdict;
+pub use crate::visibility::visp::PointVisibility;
 
 /// INCLUDE: whether `p` lies inside the scene's solids.
 pub fn include(scene: &Scene, p: &P3) -> Inclusion {

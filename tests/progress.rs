@@ -8,9 +8,11 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use kepler_hsr::lines::{EdgeKind, EdgeOptions, EdgeSet, LineOptions};
+use kepler_hsr::stats::{Phase, PhaseCount, Stage};
 use kepler_hsr::{
-    load_scene, prepare, render, Camera, CameraRequest, EdgeOptions, EdgeSet, LineOptions,
-    LoadOptions, Outputs, Phase, PhaseCount, PrepareOptions, Progress, RenderOptions, Scene, Stage,
+    load_scene, prepare, render, Camera, CameraRequest, LoadOptions, Outputs, PrepareOptions,
+    Progress, RenderOptions, Scene,
 };
 
 /// A fresh directory for this test's files.
@@ -193,12 +195,7 @@ fn every_phase_counts_to_its_total_and_changes_nothing() {
     assert!(total(Stage::Lines, Phase::Clip)[0] > 0);
     assert!(total(Stage::Emit, Phase::Json)[0] > 0);
     let curves = r.drawing.as_ref().unwrap().visible.iter();
-    assert!(
-        curves
-            .filter(|s| s.kind == kepler_hsr::EdgeKind::Intersection)
-            .count()
-            > 0
-    );
+    assert!(curves.filter(|s| s.kind == EdgeKind::Intersection).count() > 0);
 }
 
 /// Render options for every edge with hidden lines dashed, into `outputs`.

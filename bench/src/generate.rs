@@ -240,12 +240,9 @@ mod tests {
             let b = field(target, 7);
             assert!(a.face_count() >= target && a.face_count() < target + 30);
             assert_eq!(a.face_count(), b.face_count());
-            let (la, lb) = (a.leaves(), b.leaves());
-            assert_eq!(la.len(), lb.len());
-            for (x, y) in la.iter().zip(&lb) {
-                assert_eq!(x.transform, y.transform);
-                assert_eq!(x.mesh, y.mesh);
-            }
+            let (fa, fb) = (a.flatten(), b.flatten());
+            assert_eq!(fa.vertices, fb.vertices);
+            assert_eq!(fa.faces, fb.faces);
             let t = terrain(target);
             assert!(t.face_count() >= target && t.face_count() < target * 2);
         }

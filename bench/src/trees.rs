@@ -8,9 +8,9 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
-use kepler_hsr::prepare::trees::bvtree::TopDown;
-use kepler_hsr::prepare::ObjectTree;
-use kepler_hsr::tribox::collide::{collide, collide_brute, CollideStats, FaceTriangles, Placed};
+use kepler_hsr::tribox::{
+    collide, collide_brute, CollideStats, FaceTriangles, ObjectTree, Placed, TopDown,
+};
 
 use kepler_hsr::{Box3, Face, HierarchyKind, Mesh, Scene, M4, V3};
 
@@ -27,16 +27,18 @@ pub const DENSITIES: [(&str, f64); 3] = [("dense", 1.0), ("normal", 0.5), ("spar
 /// All leaves of a loaded scene as one mesh in world coordinates.
 pub fn one_mesh(scene: &Scene) -> Mesh {
     let mut m = Mesh::default();
-    for l in scene.leaves() {
-        let base = m.vertices.len() as u32;
-        m.vertices.extend(l.world_vertices());
-        m.faces.extend(
-            l.mesh
-                .faces
-                .iter()
-                .map(|f| Face::new(f.vertices.iter().map(|v| v + base).collect())),
-        );
-    }
+    scene
+        .root
+        .for_each_mesh(&M4::identity(), &mut |_, mesh, xf| {
+            let base = m.vertices.len() as u32;
+            m.vertices
+                .extend(mesh.vertices.iter().map(|v| xf.transform_point(v)));
+            m.faces.extend(
+                mesh.faces
+                    .iter()
+                    .map(|f| Face::new(f.vertices.iter().map(|v| v + base).collect())),
+            );
+        });
     m
 }
 

@@ -34,7 +34,7 @@ impl Tally for AtomicUsize {
 /// counts nothing and costs nothing. (Public but unnameable outside the crate: the load
 /// functions that still are public take one; callers outside pass `Default::default()`.)
 #[derive(Debug, Clone, Copy, Default)]
-pub struct Count<'a>(Option<&'a dyn Tally>);
+pub(crate) struct Count<'a>(Option<&'a dyn Tally>);
 
 impl<'a> Count<'a> {
     /// Counts nothing.

@@ -65,7 +65,7 @@ impl<'p> Share<'p> {
 
 /// The part of a [`Share`] one pass of the work fills, from fraction `lo` to `hi` of it.
 #[derive(Debug, Clone, Copy)]
-pub struct Span<'s> {
+pub(crate) struct Span<'s> {
     /// None: the span counts nothing.
     share: Option<&'s Share<'s>>,
     lo: f64,

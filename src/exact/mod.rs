@@ -11,10 +11,10 @@
 //! (docs/design.md). Against that, [`check`] measures each face's claimed visible region (a
 //! [`Visibility`]) by the exact area of its symmetric difference with the answer.
 
-pub mod fraction;
-pub mod project;
-pub mod rational;
-pub mod trapezoids;
+pub(crate) mod fraction;
+pub(crate) mod project;
+pub(crate) mod rational;
+pub(crate) mod trapezoids;
 
 use rayon::prelude::*;
 
@@ -27,11 +27,11 @@ use rational::{q, QPt, Q};
 use trapezoids::face_areas;
 
 /// Allowed disagreement relative to a face's projected area.
-pub const REL_TOL: f64 = 1e-9;
+pub(crate) const REL_TOL: f64 = 1e-9;
 /// Allowed disagreement from rounding alone, in ulps (2^-52) of the scene's largest screen
 /// coordinate times the face's projected perimeter: any f64 output of a face's outline is
 /// that far from the exact one (a sliver face may have less area than that).
-pub const ROUNDING_ULPS: f64 = 16.0;
+pub(crate) const ROUNDING_ULPS: f64 = 16.0;
 
 /// One face's claim against the exact answer.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,7 +46,7 @@ pub struct FaceCheck {
     pub mismatch: f64,
     /// The face's exact projected area.
     pub projected: f64,
-    /// The allowed mismatch: [`REL_TOL`] of the projected area plus [`ROUNDING_ULPS`].
+    /// The allowed mismatch: 1e-9 of the projected area plus 16 ulps of rounding.
     pub tolerance: f64,
 }
 
@@ -79,7 +79,7 @@ impl ExactReport {
         self.faces.iter().map(|f| f.claimed).sum()
     }
 
-    /// True when every face agrees and the totals agree to [`REL_TOL`] of the projected area.
+    /// True when every face agrees and the totals agree to 1e-9 of the projected area.
     pub fn agrees(&self) -> bool {
         self.disagreements().is_empty()
             && (self.claimed() - self.visible).abs() <= REL_TOL * self.projected

@@ -11,7 +11,7 @@ use super::rational::{box_of, orient, q, QPt, Q};
 
 /// One planar piece of a face, projected exactly.
 #[derive(Debug, Clone)]
-pub struct ExactPiece {
+pub(crate) struct ExactPiece {
     /// Global face id.
     pub face: u32,
     /// The projected ring (either orientation).
@@ -24,14 +24,14 @@ pub struct ExactPiece {
 
 impl ExactPiece {
     /// Depth at a screen point.
-    pub fn depth(&self, p: &QPt) -> Q {
+    pub(crate) fn depth(&self, p: &QPt) -> Q {
         &self.plane[0] * &p.x + &self.plane[1] * &p.y + &self.plane[2]
     }
 }
 
 /// Every piece of every face that shows area (edge-on pieces and pieces wholly behind the
 /// near plane show none and hide nothing), in global face order.
-pub fn exact_pieces(scene: &Scene, camera: &Camera) -> Vec<ExactPiece> {
+pub(crate) fn exact_pieces(scene: &Scene, camera: &Camera) -> Vec<ExactPiece> {
     let m: Vec<Vec<Q>> = (0..4)
         .map(|r| (0..4).map(|c| q(camera.matrix[(r, c)])).collect())
         .collect();

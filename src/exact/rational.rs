@@ -1,11 +1,11 @@
 //! Exact rational numbers and screen points for the exact check, with f64 bounds that are
 //! only ever used to skip work (never to decide an answer).
 
-pub use super::fraction::Q;
+pub(crate) use super::fraction::Q;
 
 /// An exact screen point.
 #[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
-pub struct QPt {
+pub(crate) struct QPt {
     /// x.
     pub x: Q,
     /// y.
@@ -13,13 +13,13 @@ pub struct QPt {
 }
 
 /// The exact value of a finite f64.
-pub fn q(x: f64) -> Q {
+pub(crate) fn q(x: f64) -> Q {
     Q::from_float(x).unwrap_or_else(|| Q::int(0))
 }
 
 /// An f64 interval surely holding `v` (its f64 approximation, within a few ulps, widened by
 /// sixteen ulps each way).
-pub fn bounds(v: &Q) -> [f64; 2] {
+pub(crate) fn bounds(v: &Q) -> [f64; 2] {
     let f = v.to_f64().unwrap_or(f64::NAN);
     if !f.is_finite() {
         return [f64::NEG_INFINITY, f64::INFINITY];
@@ -39,7 +39,7 @@ fn ulp(f: f64) -> f64 {
 
 /// Exact sign of the turn a → b → c: from the f64 approximations where their error bound
 /// settles it, else in exact arithmetic.
-pub fn orient(a: &QPt, b: &QPt, c: &QPt) -> i32 {
+pub(crate) fn orient(a: &QPt, b: &QPt, c: &QPt) -> i32 {
     let f = |v: &Q| v.to_f64().unwrap_or(f64::NAN);
     let (ax, ay, bx, by, cx, cy) = (f(&a.x), f(&a.y), f(&b.x), f(&b.y), f(&c.x), f(&c.y));
     let (t1, t2) = ((bx - ax) * (cy - ay), (cx - ax) * (by - ay));
@@ -62,7 +62,7 @@ pub fn orient(a: &QPt, b: &QPt, c: &QPt) -> i32 {
 }
 
 /// Sign of a rational (-1, 0, +1).
-pub fn sign(v: &Q) -> i32 {
+pub(crate) fn sign(v: &Q) -> i32 {
     if v.is_zero() {
         0
     } else if v.is_positive() {
@@ -73,7 +73,7 @@ pub fn sign(v: &Q) -> i32 {
 }
 
 /// Exact winding number of the closed ring `r` around `p` (p must not lie on the ring).
-pub fn winding(r: &[QPt], p: &QPt) -> i32 {
+pub(crate) fn winding(r: &[QPt], p: &QPt) -> i32 {
     let n = r.len();
     let mut w = 0;
     for i in 0..n {
@@ -90,7 +90,7 @@ pub fn winding(r: &[QPt], p: &QPt) -> i32 {
 }
 
 /// f64 bounds [xmin, xmax, ymin, ymax] surely holding the points.
-pub fn box_of<'a>(pts: impl IntoIterator<Item = &'a QPt>) -> [f64; 4] {
+pub(crate) fn box_of<'a>(pts: impl IntoIterator<Item = &'a QPt>) -> [f64; 4] {
     let mut b = [
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -110,7 +110,7 @@ pub fn box_of<'a>(pts: impl IntoIterator<Item = &'a QPt>) -> [f64; 4] {
 }
 
 /// True when two f64 boxes [xmin, xmax, ymin, ymax] share a point.
-pub fn boxes_meet(a: &[f64; 4], b: &[f64; 4]) -> bool {
+pub(crate) fn boxes_meet(a: &[f64; 4], b: &[f64; 4]) -> bool {
     a[0] <= b[1] && b[0] <= a[1] && a[2] <= b[3] && b[2] <= a[3]
 }
 

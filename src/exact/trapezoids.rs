@@ -53,7 +53,7 @@ impl Seg {
 /// and answer differ (the symmetric difference). Which trapezoid is which is decided
 /// exactly; each trapezoid's area is then measured in f64 (relative error ~1e-16).
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct FaceAreas {
+pub(crate) struct FaceAreas {
     /// Exactly visible area.
     pub visible: f64,
     /// Area of the claimed region (inside the face or not).
@@ -66,7 +66,11 @@ pub struct FaceAreas {
 
 /// The exact areas of face `face` (its pieces `own`) among `pieces`, against the claimed
 /// visible region `claim` (rings with exact coordinates; nonzero winding).
-pub fn face_areas(own: &[&ExactPiece], pieces: &[ExactPiece], claim: &[Vec<QPt>]) -> FaceAreas {
+pub(crate) fn face_areas(
+    own: &[&ExactPiece],
+    pieces: &[ExactPiece],
+    claim: &[Vec<QPt>],
+) -> FaceAreas {
     let mut out = FaceAreas::default();
     if own.is_empty() {
         return out;

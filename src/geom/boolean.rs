@@ -42,7 +42,7 @@ fn overlay(rect: &Rect, capacity: usize) -> Option<FloatOverlay<Pt2, i64>> {
 /// `subject` (counter-clockwise) minus the union of `clips` (each counter-clockwise), on the
 /// grid of `rect`, which must hold `subject` and every clip. NonZero fill: equal windings
 /// never cancel, so overlapping clips subtract once.
-pub fn subtract(subject: &[Pt2], rect: &Rect, clips: &[Ring]) -> MultiPolygon {
+pub(crate) fn subtract(subject: &[Pt2], rect: &Rect, clips: &[Ring]) -> MultiPolygon {
     let capacity = subject.len() + clips.iter().map(Vec::len).sum::<usize>();
     let Some(mut ov) = overlay(rect, capacity) else {
         return Vec::new();
@@ -56,7 +56,7 @@ pub fn subtract(subject: &[Pt2], rect: &Rect, clips: &[Ring]) -> MultiPolygon {
 
 /// The union of rings of equal orientation (NonZero fill), on the grid of `rect`, which must
 /// hold them all.
-pub fn union<'a>(rings: impl IntoIterator<Item = &'a Ring>, rect: &Rect) -> MultiPolygon {
+pub(crate) fn union<'a>(rings: impl IntoIterator<Item = &'a Ring>, rect: &Rect) -> MultiPolygon {
     let Some(mut ov) = overlay(rect, 64) else {
         return Vec::new();
     };
@@ -66,15 +66,16 @@ pub fn union<'a>(rings: impl IntoIterator<Item = &'a Ring>, rect: &Rect) -> Mult
     ov.overlay(OverlayRule::Subject, FillRule::NonZero)
 }
 
+#[cfg(test)]
 /// Area of the union of multipolygons, on one grid over all of them.
-pub fn union_area(parts: &[&MultiPolygon]) -> f64 {
+pub(crate) fn union_area(parts: &[&MultiPolygon]) -> f64 {
     let rect = Rect::of_points(parts.iter().flat_map(|m| m.iter().flatten().flatten()));
     multipolygon_area(&union(parts.iter().flat_map(|m| m.iter().flatten()), &rect))
 }
 
 /// Area of the symmetric difference of two multipolygons (even-odd rings), on one grid over
 /// both: 0 exactly when they cover the same region, to the grid's precision.
-pub fn xor_area(a: &MultiPolygon, b: &MultiPolygon) -> f64 {
+pub(crate) fn xor_area(a: &MultiPolygon, b: &MultiPolygon) -> f64 {
     let rect = Rect::of_points(a.iter().chain(b.iter()).flatten().flatten());
     let Some(mut ov) = overlay(&rect, 64) else {
         return 0.0;

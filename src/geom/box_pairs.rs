@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use crate::count::Span;
 
 /// A box as [min, max].
-pub type Bounds3 = [[f64; 3]; 2];
+pub(crate) type Bounds3 = [[f64; 3]; 2];
 
 /// Above this many boxes the sorts and the cells run on all threads (small meshes stay off
 /// the thread pool: 200k one-box objects would each wait on it).
@@ -19,9 +19,10 @@ const PARALLEL_ABOVE: usize = 1024;
 /// Most grid cells a box enters, on average: bounds the grid's memory.
 const MAX_CELLS_PER_BOX: f64 = 8.0;
 
+#[cfg(test)]
 /// Indices `(i, j)`, `i < j`, of every pair of overlapping boxes among `boxes`, ascending.
 /// Boxes with a NaN or an empty extent are ignored.
-pub fn overlapping_pairs(boxes: &[Bounds3]) -> Vec<(u32, u32)> {
+pub(crate) fn overlapping_pairs(boxes: &[Bounds3]) -> Vec<(u32, u32)> {
     filter_map_pairs(boxes, |i, j| Some((i, j)), Span::NONE)
 }
 
@@ -31,7 +32,7 @@ pub fn overlapping_pairs(boxes: &[Bounds3]) -> Vec<(u32, u32)> {
 /// The work goes to `span` as it is done: the boxes entered in the grid and sorted first,
 /// then the cells by chunks (most of the work), then the results sorted (none:
 /// [`Span::NONE`]).
-pub fn filter_map_pairs<T: Send>(
+pub(crate) fn filter_map_pairs<T: Send>(
     boxes: &[Bounds3],
     f: impl Fn(u32, u32) -> Option<T> + Sync,
     span: Span,
@@ -127,7 +128,7 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
 }
 
 /// True when the closed boxes share a point.
-pub fn overlap(a: &Bounds3, b: &Bounds3) -> bool {
+pub(crate) fn overlap(a: &Bounds3, b: &Bounds3) -> bool {
     (0..3).all(|k| a[0][k] <= b[1][k] && b[0][k] <= a[1][k])
 }
 

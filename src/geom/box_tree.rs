@@ -19,14 +19,14 @@ struct Node {
 
 /// A tree over a slice of boxes (kept by the caller; items are their indices).
 #[derive(Debug, Clone)]
-pub struct BoxTree {
+pub(crate) struct BoxTree {
     nodes: Vec<Node>,
     order: Vec<u32>,
 }
 
 impl BoxTree {
     /// The tree of `boxes` (empty boxes are left out).
-    pub fn new(boxes: &[Box3]) -> BoxTree {
+    pub(crate) fn new(boxes: &[Box3]) -> BoxTree {
         let mut order: Vec<u32> = (0..boxes.len() as u32)
             .filter(|&i| !boxes[i as usize].is_empty())
             .collect();
@@ -46,7 +46,12 @@ impl BoxTree {
     /// True when `f` holds for some box (index into the slice the tree was built on) that
     /// meets the closed box `q`; boxes are visited in a fixed order, and the walk stops at
     /// the first for which `f` holds.
-    pub fn any_meeting(&self, boxes: &[Box3], q: &Box3, mut f: impl FnMut(u32) -> bool) -> bool {
+    pub(crate) fn any_meeting(
+        &self,
+        boxes: &[Box3],
+        q: &Box3,
+        mut f: impl FnMut(u32) -> bool,
+    ) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
@@ -72,7 +77,7 @@ impl BoxTree {
     /// every value of a box within `b`, `value` may return anything not less than the
     /// current least `r` for a box it need not look at, and boxes whose bound is not below
     /// the current least are skipped (they cannot lower it). Starts from `r`.
-    pub fn least(
+    pub(crate) fn least(
         &self,
         mut r: f64,
         bound: impl Fn(&Box3) -> f64,

@@ -8,7 +8,7 @@ use super::predicates::orient2d;
 /// How strictly [`is_convex_ccw`] reads "convex counter-clockwise". Every variant is exact
 /// (signs of `orient2d` and of coordinate differences).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Strictness {
+pub(crate) enum Strictness {
     /// Every corner turns properly left and the ring winds round once. Repeated points and
     /// collinear corners are refused; any three corners then make a proper triangle.
     Strict,
@@ -27,7 +27,7 @@ pub enum Strictness {
 /// True when the ring `r` (last point not repeated) is convex and counter-clockwise in the
 /// sense `strictness` names. O(n).
 #[inline]
-pub fn is_convex_ccw(r: &[Pt2], strictness: Strictness) -> bool {
+pub(crate) fn is_convex_ccw(r: &[Pt2], strictness: Strictness) -> bool {
     match strictness {
         Strictness::Strict => strictly_convex(r),
         Strictness::AllowCollinear => convex_with_area(r),
@@ -101,7 +101,7 @@ fn reverses(a: Pt2, b: Pt2, c: Pt2) -> bool {
 /// corner, each turn less than half a turn, winds round once exactly when this is 2: the
 /// edge directions then rotate monotonically and pass each half's boundary once per turn.
 /// Reversing the ring reverses every edge, which swaps the halves: the count is the same.
-pub fn half_changes(r: &[Pt2]) -> usize {
+pub(crate) fn half_changes(r: &[Pt2]) -> usize {
     let n = r.len();
     let mut upper = (0..n).filter_map(|i| {
         let (a, b) = (r[i], r[(i + 1) % n]);

@@ -8,7 +8,7 @@ use super::{newell_indexed, P3, V3};
 /// The corners of one polygon: corner `k` is `table[at[k]]`. Read like a slice of points
 /// (`c[k]`, [`Corners::len`], [`Corners::iter`]); no point is copied. The points are world
 /// points ([`P3`]) unless said otherwise (the screen's are `[f64; 3]`).
-pub struct Corners<'a, T = P3> {
+pub(crate) struct Corners<'a, T = P3> {
     at: &'a [u32],
     table: &'a [T],
 }
@@ -34,44 +34,47 @@ impl<T> Copy for Corners<'_, T> {}
 impl<'a, T: Copy> Corners<'a, T> {
     /// The corners `table[at[0]], table[at[1]], …` (every index must be in `table`).
     #[inline]
-    pub fn new(at: &'a [u32], table: &'a [T]) -> Self {
+    pub(crate) fn new(at: &'a [u32], table: &'a [T]) -> Self {
         Corners { at, table }
     }
 
     /// Number of corners.
     #[inline]
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.at.len()
     }
 
+    #[cfg(test)]
     /// True when there is no corner.
     #[inline]
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.at.is_empty()
     }
 
     /// The corners' points, in order.
     #[inline]
-    pub fn iter(&self) -> impl ExactSizeIterator<Item = &'a T> + Clone + 'a {
+    pub(crate) fn iter(&self) -> impl ExactSizeIterator<Item = &'a T> + Clone + 'a {
         let table = self.table;
         self.at.iter().map(move |&i| &table[i as usize])
     }
 
+    #[cfg(test)]
     /// The corners' points, copied out.
-    pub fn to_vec(&self) -> Vec<T> {
+    pub(crate) fn to_vec(self) -> Vec<T> {
         self.iter().copied().collect()
     }
 
+    #[cfg(test)]
     /// The corners' indices into the table.
     #[inline]
-    pub fn indices(&self) -> &'a [u32] {
+    pub(crate) fn indices(&self) -> &'a [u32] {
         self.at
     }
 }
 
 impl Corners<'_, P3> {
     /// Newell's normal of the polygon ([`crate::geom::newell`] of [`Corners::to_vec`]).
-    pub fn newell(&self) -> V3 {
+    pub(crate) fn newell(&self) -> V3 {
         newell_indexed(self.table, self.at)
     }
 }

@@ -7,7 +7,7 @@ use super::Rect;
 
 /// Square cells of side `cell` from `origin`, `nx` by `ny` of them (row-major index).
 #[derive(Debug, Clone, Copy)]
-pub struct Cells {
+pub(crate) struct Cells {
     /// The corner of cell (0, 0).
     pub origin: Pt2,
     /// The side of a cell.
@@ -21,7 +21,7 @@ pub struct Cells {
 impl Cells {
     /// `n` by `n` cells over `b`: the side is `b`'s longer side over `n` (1 where that side is
     /// 0 or not finite), from `b`'s least corner.
-    pub fn square(b: &Rect, n: usize) -> Cells {
+    pub(crate) fn square(b: &Rect, n: usize) -> Cells {
         Cells {
             origin: [b.xmin, b.ymin],
             cell: side(b, n),
@@ -32,7 +32,7 @@ impl Cells {
 
     /// Cells of [`Cells::square`]'s side over `b`, only as many along each axis as cover `b`
     /// (one where `b` is empty, from the origin).
-    pub fn fitted(b: &Rect, n: usize) -> Cells {
+    pub(crate) fn fitted(b: &Rect, n: usize) -> Cells {
         let cell = side(b, n);
         if b.is_empty() {
             return Cells {
@@ -52,18 +52,13 @@ impl Cells {
     }
 
     /// Number of cells.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.nx * self.ny
-    }
-
-    /// True when there are no cells.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
     }
 
     /// The cell column and row of `p`, clamped to the grid.
     #[inline]
-    pub fn coords(&self, p: Pt2) -> (usize, usize) {
+    pub(crate) fn coords(&self, p: Pt2) -> (usize, usize) {
         let f =
             |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
         (
@@ -74,14 +69,14 @@ impl Cells {
 
     /// The row-major index of `p`'s cell.
     #[inline]
-    pub fn index(&self, p: Pt2) -> usize {
+    pub(crate) fn index(&self, p: Pt2) -> usize {
         let (x, y) = self.coords(p);
         y * self.nx + x
     }
 }
 
 /// Cells per side for about `items` entries, one a cell: √items rounded up, from 1 to `max`.
-pub fn per_side(items: f64, max: usize) -> usize {
+pub(crate) fn per_side(items: f64, max: usize) -> usize {
     (items.sqrt().ceil() as usize).clamp(1, max)
 }
 

@@ -4,7 +4,7 @@ use super::poly2::Pt2;
 use super::predicates::orient2d;
 
 /// Convex hull (Andrew's monotone chain, exact turns), counter-clockwise, no collinear points.
-pub fn convex_hull(mut pts: Vec<Pt2>) -> Vec<Pt2> {
+pub(crate) fn convex_hull(mut pts: Vec<Pt2>) -> Vec<Pt2> {
     pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
     pts.dedup();
     if pts.len() < 3 {
@@ -33,13 +33,13 @@ pub fn convex_hull(mut pts: Vec<Pt2>) -> Vec<Pt2> {
 
 /// True when some three consecutive points of the ring make a proper turn (exact): the
 /// ring encloses area.
-pub fn has_turn(r: &[Pt2]) -> bool {
+pub(crate) fn has_turn(r: &[Pt2]) -> bool {
     let n = r.len();
     (0..n).any(|i| orient2d(r[i], r[(i + 1) % n], r[(i + 2) % n]) != 0.0)
 }
 
 /// True when convex counter-clockwise `outer` (with area) contains every point of `inner` (closed).
-pub fn covers_convex(outer: &[Pt2], inner: &[Pt2]) -> bool {
+pub(crate) fn covers_convex(outer: &[Pt2], inner: &[Pt2]) -> bool {
     if !has_turn(outer) {
         return false;
     }

@@ -18,7 +18,7 @@ struct Tri {
 
 /// The convex hull of `points` as outward triangles (indices into `points`). Empty when the
 /// points do not span a volume (fewer than four, or all coplanar).
-pub fn convex_hull(points: &[P3]) -> Vec<[u32; 3]> {
+pub(crate) fn convex_hull(points: &[P3]) -> Vec<[u32; 3]> {
     let Some(start) = initial_tetrahedron(points) else {
         return Vec::new();
     };
@@ -65,7 +65,7 @@ const RELATIVE_TOLERANCE: f64 = 1e-9;
 /// point inside a facet or the solid). Each facet is taken from the plane through its three
 /// least points, so that the coplanar triangles of the exact hull, whose planes differ by
 /// rounding, give one polygon.
-pub fn hull_facets(points: &[P3]) -> Vec<Vec<u32>> {
+pub(crate) fn hull_facets(points: &[P3]) -> Vec<Vec<u32>> {
     let radius = points.iter().map(|p| p.coords.norm()).fold(0.0, f64::max);
     let tolerance = RELATIVE_TOLERANCE * radius;
     let mut triples: Vec<[usize; 3]> = convex_hull(points)

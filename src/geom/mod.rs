@@ -1,35 +1,34 @@
 //! Geometry shared by every stage, and the one home of its predicates: exact orientation
 //! tests, Newell normals, rectangles, polygons and the adapter to the 2D boolean engine.
 
-pub mod boolean;
-pub mod box3;
-pub mod box_pairs;
-pub mod box_tree;
-pub mod convexity;
-pub mod corners;
-pub mod grid;
-pub mod hull2;
-pub mod hull3;
+pub(crate) mod boolean;
+pub(crate) mod box3;
+pub(crate) mod box_pairs;
+pub(crate) mod box_tree;
+pub(crate) mod convexity;
+pub(crate) mod corners;
+pub(crate) mod grid;
+pub(crate) mod hull2;
+pub(crate) mod hull3;
 pub(crate) mod key_hash;
-pub mod normal;
-pub mod poly2;
-pub mod polymesh;
-pub mod predicates;
-pub mod rect;
-pub mod ring_check;
+pub(crate) mod normal;
+pub(crate) mod poly2;
+pub(crate) mod polymesh;
+pub(crate) mod predicates;
+pub(crate) mod rect;
+pub(crate) mod ring_check;
 pub(crate) mod rng;
-pub mod solid_angle;
-pub mod tri_box;
-pub mod tri_intersect;
-pub mod triangle;
+pub(crate) mod solid_angle;
+pub(crate) mod tri_box;
+pub(crate) mod tri_intersect;
+pub(crate) mod triangle;
 
-pub use box3::Box3;
-pub use corners::Corners;
-pub use normal::{newell, newell_indexed};
-pub use poly2::{MultiPolygon, Polygon, Pt2, Ring};
-pub use polymesh::PolyMesh;
-pub use predicates::{orient2d, orient3d, orient3d_refs, winding, winding_step};
-pub use rect::Rect;
+pub(crate) use box3::Box3;
+pub(crate) use corners::Corners;
+pub(crate) use normal::{newell, newell_indexed};
+pub(crate) use polymesh::PolyMesh;
+pub(crate) use predicates::{orient2d, orient3d, orient3d_refs, winding, winding_step};
+pub(crate) use rect::Rect;
 
 /// A point in 3-space (f64).
 pub type P3 = nalgebra::Point3<f64>;
@@ -41,4 +40,4 @@ pub type M4 = nalgebra::Matrix4<f64>;
 /// Largest coordinate magnitude accepted anywhere (input vertices, transformed points,
 /// numbers in scene files): far from f64's limits, so that products in the predicates and
 /// areas stay finite.
-pub const MAX_COORD: f64 = 1e12;
+pub(crate) const MAX_COORD: f64 = 1e12;

@@ -6,12 +6,12 @@ use super::{P3, V3};
 /// Newell's normal of the polygon `pts` (closed, last point not repeated): a vector
 /// normal to its best-fit plane, of length twice its area, pointing to the side from which
 /// it runs counter-clockwise. Zero for fewer than three points or no area.
-pub fn newell(pts: &[P3]) -> V3 {
+pub(crate) fn newell(pts: &[P3]) -> V3 {
     newell_by(pts.len(), |i| pts[i])
 }
 
 /// [`newell`] of the polygon whose corners are `verts[idx[0]], verts[idx[1]], …`.
-pub fn newell_indexed(verts: &[P3], idx: &[u32]) -> V3 {
+pub(crate) fn newell_indexed(verts: &[P3], idx: &[u32]) -> V3 {
     newell_by(idx.len(), |i| verts[idx[i] as usize])
 }
 

@@ -4,16 +4,16 @@
 use super::predicates::winding;
 
 /// A point of the screen plane.
-pub type Pt2 = [f64; 2];
+pub(crate) type Pt2 = [f64; 2];
 /// A closed ring (the last point is not repeated).
-pub type Ring = Vec<Pt2>;
+pub(crate) type Ring = Vec<Pt2>;
 /// A polygon: outer ring (counter-clockwise) first, then holes (clockwise).
-pub type Polygon = Vec<Ring>;
+pub(crate) type Polygon = Vec<Ring>;
 /// A set of disjoint polygons.
-pub type MultiPolygon = Vec<Polygon>;
+pub(crate) type MultiPolygon = Vec<Polygon>;
 
 /// Signed area of a ring (shoelace; positive for counter-clockwise).
-pub fn ring_area(r: &[Pt2]) -> f64 {
+pub(crate) fn ring_area(r: &[Pt2]) -> f64 {
     let n = r.len();
     if n < 3 {
         return 0.0;
@@ -29,29 +29,29 @@ pub fn ring_area(r: &[Pt2]) -> f64 {
 /// Distance between two points (sqrt of the sum of squares, not hypot: screen and page
 /// coordinates are far from overflow, and this is several times faster).
 #[inline]
-pub fn dist(a: Pt2, b: Pt2) -> f64 {
+pub(crate) fn dist(a: Pt2, b: Pt2) -> f64 {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     (dx * dx + dy * dy).sqrt()
 }
 
 /// Length of a polyline.
-pub fn polyline_length(l: &[Pt2]) -> f64 {
+pub(crate) fn polyline_length(l: &[Pt2]) -> f64 {
     l.windows(2).map(|w| dist(w[0], w[1])).sum()
 }
 
 /// Area of a polygon with holes (outer minus holes, by signed ring areas).
-pub fn polygon_area(p: &Polygon) -> f64 {
+pub(crate) fn polygon_area(p: &Polygon) -> f64 {
     p.iter().map(|r| ring_area(r)).sum()
 }
 
 /// Total area of a multipolygon.
-pub fn multipolygon_area(m: &MultiPolygon) -> f64 {
+pub(crate) fn multipolygon_area(m: &MultiPolygon) -> f64 {
     m.iter().map(polygon_area).sum()
 }
 
 /// Where a point lies relative to a region.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Side {
+pub(crate) enum Side {
     /// Strictly inside.
     Inside,
     /// On the boundary.
@@ -61,7 +61,7 @@ pub enum Side {
 }
 
 /// Exact location of `p` relative to a multipolygon (non-zero winding over all rings).
-pub fn locate(m: &MultiPolygon, p: Pt2) -> Side {
+pub(crate) fn locate(m: &MultiPolygon, p: Pt2) -> Side {
     let mut total = 0;
     for poly in m {
         for r in poly {
@@ -80,7 +80,7 @@ pub fn locate(m: &MultiPolygon, p: Pt2) -> Side {
 
 /// Canonical form: every ring starts at its lexicographically smallest point (x, then y),
 /// holes sorted after the outer ring, polygons sorted by their outer ring's start.
-pub fn canonicalize(m: &mut MultiPolygon) {
+pub(crate) fn canonicalize(m: &mut MultiPolygon) {
     let key = |p: &Pt2, q: &Pt2| p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]));
     for poly in m.iter_mut() {
         for r in poly.iter_mut() {

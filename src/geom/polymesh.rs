@@ -5,7 +5,7 @@ use super::P3;
 /// Vertices and polygonal faces (each a list of vertex indices, counter-clockwise seen from
 /// outside for solids). No invariants are promised: cleanup checks and repairs them.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct PolyMesh {
+pub(crate) struct PolyMesh {
     /// Vertex positions.
     pub vertices: Vec<P3>,
     /// Faces as vertex index lists.
@@ -14,12 +14,12 @@ pub struct PolyMesh {
 
 impl PolyMesh {
     /// A mesh from its parts.
-    pub fn new(vertices: Vec<P3>, faces: Vec<Vec<u32>>) -> Self {
+    pub(crate) fn new(vertices: Vec<P3>, faces: Vec<Vec<u32>>) -> Self {
         PolyMesh { vertices, faces }
     }
 
     /// Appends `other` beside this mesh: its vertices after ours, its faces renumbered.
-    pub fn append(&mut self, other: &PolyMesh) {
+    pub(crate) fn append(&mut self, other: &PolyMesh) {
         let base = self.vertices.len() as u32;
         self.vertices.extend(&other.vertices);
         self.faces.extend(
@@ -31,14 +31,15 @@ impl PolyMesh {
     }
 
     /// Positions of the corners of face `f`.
-    pub fn face_points(&self, f: usize) -> impl Iterator<Item = &P3> + '_ {
+    pub(crate) fn face_points(&self, f: usize) -> impl Iterator<Item = &P3> + '_ {
         self.faces[f]
             .iter()
             .map(move |&i| &self.vertices[i as usize])
     }
 
+    #[cfg(test)]
     /// The face's vector area (half the sum of cross products; Newell's normal).
-    pub fn face_vector_area(&self, f: usize) -> super::V3 {
+    pub(crate) fn face_vector_area(&self, f: usize) -> super::V3 {
         let pts: Vec<&P3> = self.face_points(f).collect();
         let mut n = super::V3::zeros();
         let o = pts[0];

@@ -7,7 +7,7 @@ use super::P3;
 
 /// Exact sign of the turn a → b → c: > 0 left (counter-clockwise), < 0 right, 0 collinear.
 #[inline]
-pub fn orient2d(a: Pt2, b: Pt2, c: Pt2) -> f64 {
+pub(crate) fn orient2d(a: Pt2, b: Pt2, c: Pt2) -> f64 {
     robust::orient2d(
         robust::Coord { x: a[0], y: a[1] },
         robust::Coord { x: b[0], y: b[1] },
@@ -19,13 +19,13 @@ pub fn orient2d(a: Pt2, b: Pt2, c: Pt2) -> f64 {
 /// `d` lies below it (a, b, c counter-clockwise seen from above), < 0 above, 0 exactly on it.
 /// The magnitude approximates six times the tetrahedron's volume.
 #[inline]
-pub fn orient3d(a: &P3, b: &P3, c: &P3, d: &P3) -> f64 {
+pub(crate) fn orient3d(a: &P3, b: &P3, c: &P3, d: &P3) -> f64 {
     robust::orient3d(coord3(a), coord3(b), coord3(c), coord3(d))
 }
 
 /// [`orient3d`] against a plane given by three reference points.
 #[inline]
-pub fn orient3d_refs(refs: &[P3; 3], d: &P3) -> f64 {
+pub(crate) fn orient3d_refs(refs: &[P3; 3], d: &P3) -> f64 {
     orient3d(&refs[0], &refs[1], &refs[2], d)
 }
 
@@ -40,7 +40,7 @@ fn coord3(p: &P3) -> robust::Coord3D<f64> {
 
 /// Winding number of the closed ring `r` around `p`, or None when `p` lies on the ring
 /// (exact).
-pub fn winding(r: &[Pt2], p: Pt2) -> Option<i32> {
+pub(crate) fn winding(r: &[Pt2], p: Pt2) -> Option<i32> {
     let n = r.len();
     let mut w = 0;
     for i in 0..n {
@@ -53,7 +53,7 @@ pub fn winding(r: &[Pt2], p: Pt2) -> Option<i32> {
 /// the ray from `p` toward +x, else 0), or None when `p` lies on it (exact). Only an edge
 /// through `p`, or meeting the ray's line at or right of `p`, gives anything but 0.
 #[inline]
-pub fn winding_step(a: Pt2, b: Pt2, p: Pt2) -> Option<i32> {
+pub(crate) fn winding_step(a: Pt2, b: Pt2, p: Pt2) -> Option<i32> {
     let o = orient2d(a, b, p);
     if o == 0.0 && on_segment_collinear(a, b, p) {
         return None;

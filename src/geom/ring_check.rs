@@ -17,7 +17,7 @@ use super::predicates::orient2d;
 
 /// What is wrong with a ring.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RingDefect {
+pub(crate) enum RingDefect {
     /// Fewer than three points.
     TooShort,
     /// Two vertices at the same point.
@@ -32,7 +32,7 @@ pub enum RingDefect {
 }
 
 /// The first defect of a ring that should turn counter-clockwise (`ccw`) or clockwise.
-pub fn ring_defect(r: &[Pt2], ccw: bool) -> Option<RingDefect> {
+pub(crate) fn ring_defect(r: &[Pt2], ccw: bool) -> Option<RingDefect> {
     if r.len() < 3 {
         return Some(RingDefect::TooShort);
     }
@@ -62,9 +62,10 @@ pub fn ring_defect(r: &[Pt2], ccw: bool) -> Option<RingDefect> {
     ((turn > 0.0) != ccw).then_some(RingDefect::WrongOrientation)
 }
 
+#[cfg(test)]
 /// Every defect of a multipolygon's rings: (polygon, ring, defect), outer rings CCW first,
 /// holes CW after.
-pub fn multipolygon_defects(m: &MultiPolygon) -> Vec<(usize, usize, RingDefect)> {
+pub(crate) fn multipolygon_defects(m: &MultiPolygon) -> Vec<(usize, usize, RingDefect)> {
     let mut out = Vec::new();
     for (p, poly) in m.iter().enumerate() {
         for (k, r) in poly.iter().enumerate() {
@@ -78,12 +79,12 @@ pub fn multipolygon_defects(m: &MultiPolygon) -> Vec<(usize, usize, RingDefect)>
 
 /// A ring that is not valid after the rounding is dropped when |area| is at most this many
 /// ulps (2^-52) of the largest coordinate magnitude times the ring's perimeter.
-pub const SLIVER_ULPS: f64 = 8.0;
+pub(crate) const SLIVER_ULPS: f64 = 8.0;
 
 /// Repairs the rings of a multipolygon made by the boolean engine (see the module
 /// documentation): every ring comes out valid or is a kept, reported defect. Returns the
 /// number of rings dropped.
-pub fn repair(m: &mut MultiPolygon) -> usize {
+pub(crate) fn repair(m: &mut MultiPolygon) -> usize {
     let mut dropped = 0;
     for poly in m.iter_mut() {
         for (k, r) in poly.iter_mut().enumerate() {

@@ -7,7 +7,11 @@ use super::{P3, V3};
 /// Generalized winding number of the faces (`faces`, each a list of indices into `verts`)
 /// around `p`: the sum of the signed solid angles of their fan triangles over 4π
 /// (Van Oosterom–Strackee). Its sign is exact only away from the surface.
-pub fn winding_number<'a>(verts: &[P3], faces: impl IntoIterator<Item = &'a [u32]>, p: &P3) -> f64 {
+pub(crate) fn winding_number<'a>(
+    verts: &[P3],
+    faces: impl IntoIterator<Item = &'a [u32]>,
+    p: &P3,
+) -> f64 {
     let mut total = 0.0;
     let mut v: Vec<V3> = Vec::new();
     for f in faces {

@@ -5,7 +5,7 @@ use super::{P3, V3};
 
 /// Separating-axis test: does triangle `t` meet the closed box with centre `c` and
 /// half-sizes `h`? (Akenine-Möller's 13 axes.)
-pub fn tri_meets_box(t: &[P3; 3], c: &P3, h: &V3) -> bool {
+pub(crate) fn tri_meets_box(t: &[P3; 3], c: &P3, h: &V3) -> bool {
     let v = [t[0] - c, t[1] - c, t[2] - c];
     let e = [v[1] - v[0], v[2] - v[1], v[0] - v[2]];
     let separated = |a: &V3| {

@@ -5,7 +5,7 @@ use super::{orient2d, orient3d, P3};
 
 /// Exact closed intersection test of two non-degenerate triangles: they meet exactly when an
 /// edge of one meets the other (non-coplanar), or in the plane's 2D test (coplanar).
-pub fn triangles_intersect(t: &[P3; 3], u: &[P3; 3]) -> bool {
+pub(crate) fn triangles_intersect(t: &[P3; 3], u: &[P3; 3]) -> bool {
     // Closed projections strictly apart (along either triangle's dominant axis) mean the
     // triangles are apart: a cheap first test (orient2d), and one that needs no exact zero
     // of orient3d where a triangle stands on another's plane (a prism's side on its cap).
@@ -57,7 +57,7 @@ fn projections_apart(a: &[[f64; 2]; 3], b: &[[f64; 2]; 3]) -> bool {
 }
 
 /// The two coordinates kept when projecting a triangle's plane along its dominant axis.
-pub fn plane_axes(t: &[P3; 3]) -> (usize, usize) {
+pub(crate) fn plane_axes(t: &[P3; 3]) -> (usize, usize) {
     let n = (t[1] - t[0]).cross(&(t[2] - t[0])).abs();
     if n.x >= n.y && n.x >= n.z {
         (1, 2)
@@ -69,7 +69,7 @@ pub fn plane_axes(t: &[P3; 3]) -> (usize, usize) {
 }
 
 /// Exact: the closed segment pq meets the closed triangle t.
-pub fn segment_meets_triangle(p: &P3, q: &P3, t: &[P3; 3]) -> bool {
+pub(crate) fn segment_meets_triangle(p: &P3, q: &P3, t: &[P3; 3]) -> bool {
     let (sp, sq) = (
         orient3d(&t[0], &t[1], &t[2], p),
         orient3d(&t[0], &t[1], &t[2], q),
@@ -99,7 +99,7 @@ fn segment_meets_triangle_sided(p: &P3, q: &P3, sp: f64, sq: f64, t: &[P3; 3]) -
 }
 
 /// Exact: `p` lies in the closed triangle `t` (either orientation).
-pub fn point_in_triangle_2d(p: [f64; 2], t: &[[f64; 2]; 3]) -> bool {
+pub(crate) fn point_in_triangle_2d(p: [f64; 2], t: &[[f64; 2]; 3]) -> bool {
     let s = [
         orient2d(t[0], t[1], p),
         orient2d(t[1], t[2], p),
@@ -109,7 +109,7 @@ pub fn point_in_triangle_2d(p: [f64; 2], t: &[[f64; 2]; 3]) -> bool {
 }
 
 /// Closed segments ab and cd meet.
-pub fn segments_2d(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+pub(crate) fn segments_2d(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
     let (d1, d2) = (orient2d(c, d, a), orient2d(c, d, b));
     let (d3, d4) = (orient2d(a, b, c), orient2d(a, b, d));
     if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))

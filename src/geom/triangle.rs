@@ -5,7 +5,7 @@ use super::P3;
 /// The point of triangle (a, b, c) nearest to `p` (Ericson, Real-Time Collision Detection,
 /// 5.1.5: the Voronoi region of `p` decides the vertex, edge or face). A degenerate triangle
 /// answers its nearest corner when the face region cannot be solved.
-pub fn closest_on_triangle(p: &P3, a: &P3, b: &P3, c: &P3) -> P3 {
+pub(crate) fn closest_on_triangle(p: &P3, a: &P3, b: &P3, c: &P3) -> P3 {
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(&ap), ac.dot(&ap));
     if d1 <= 0.0 && d2 <= 0.0 {

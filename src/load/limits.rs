@@ -8,7 +8,7 @@ use crate::scene::{Content, Object};
 /// The default limit on a scene's faces, instances expanded: what a render fits in memory on
 /// the machine kepler is developed on (24 GiB, at about 1.5 KB per face at the peak of a
 /// render, measured on large meshes and instanced scenes), with room to spare.
-pub const DEFAULT_MAX_FACES: usize = 12_000_000;
+pub(crate) const DEFAULT_MAX_FACES: usize = 12_000_000;
 
 /// What a load accepts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -8,7 +8,7 @@ use crate::progress::{Phase, Progress, Stage};
 
 /// One named group of faces from a mesh file (an OBJ `o`/`g` group, or the whole file).
 #[derive(Debug, Clone, PartialEq)]
-pub struct MeshGroup {
+pub(crate) struct MeshGroup {
     /// The group's name: the OBJ `o`/`g` name, or the file stem.
     pub name: String,
     /// The group's vertices and faces (polygons are kept, never triangulated).
@@ -19,7 +19,7 @@ pub struct MeshGroup {
 
 impl MeshGroup {
     /// An empty group with the given name.
-    pub fn new(name: impl Into<String>) -> Self {
+    pub(crate) fn new(name: impl Into<String>) -> Self {
         MeshGroup {
             name: name.into(),
             mesh: PolyMesh::default(),
@@ -30,7 +30,7 @@ impl MeshGroup {
 
 /// The contents of one mesh file: its groups, in file order.
 #[derive(Debug, Clone, PartialEq)]
-pub struct MeshFile {
+pub(crate) struct MeshFile {
     /// The file the meshes came from.
     pub path: PathBuf,
     /// The groups of faces, in file order; never empty, and every group has faces.
@@ -76,7 +76,11 @@ fn format_of(path: &Path) -> Result<Format> {
 /// `at` is the node that asked for it (a scene file's `mesh` node), where an unknown
 /// extension, a missing file, a directory or a device is reported (None: the file itself).
 /// The load's phases [`Phase::Read`] and [`Phase::Parse`] count bytes in `progress`.
-pub fn load_mesh(path: &Path, at: Option<&Location>, progress: &Progress) -> Result<MeshFile> {
+pub(crate) fn load_mesh(
+    path: &Path,
+    at: Option<&Location>,
+    progress: &Progress,
+) -> Result<MeshFile> {
     if let (Err(e), Some(at)) = (format_of(path), at) {
         return Err(Error::invalid(at.clone(), e.to_string()));
     }
@@ -93,7 +97,7 @@ pub fn load_mesh(path: &Path, at: Option<&Location>, progress: &Progress) -> Res
 /// As [`load_mesh`], without I/O errors; an empty input is [`Error::Invalid`].
 ///
 /// The load's phase [`Phase::Parse`], counting the bytes parsed in `progress`.
-pub fn parse_mesh(path: &Path, bytes: &[u8], progress: &Progress) -> Result<MeshFile> {
+pub(crate) fn parse_mesh(path: &Path, bytes: &[u8], progress: &Progress) -> Result<MeshFile> {
     let format = format_of(path)?;
     if bytes.is_empty() {
         return Err(Error::invalid(Location::file(path), "empty file"));

@@ -4,22 +4,20 @@ mod args;
 mod camera_node;
 mod geometry;
 mod kdl;
-mod limits;
-pub mod mesh_file;
-pub mod obj;
-pub mod ply;
+pub(crate) mod limits;
+pub(crate) mod mesh_file;
+pub(crate) mod obj;
+pub(crate) mod ply;
 mod read;
-pub mod scene_file;
+pub(crate) mod scene_file;
 mod source;
-pub mod stl;
+pub(crate) mod stl;
 mod text;
 mod transform;
 
 use std::path::Path;
 
-pub use limits::{LoadOptions, DEFAULT_MAX_FACES};
-pub use mesh_file::{load_mesh, parse_mesh, MeshFile, MeshGroup};
-pub use scene_file::load_scene_file;
+pub(crate) use limits::LoadOptions;
 
 use crate::error::{Error, Result, Warnings};
 use crate::progress::Progress;
@@ -31,9 +29,9 @@ use crate::scene::{Object, Scene};
 /// appended to `warnings`. A scene with more faces than `opts.max_faces` once its instances
 /// are placed is an error, found from counts before anything is expanded.
 ///
-/// Where it is goes to `progress` (stage [`crate::Stage::Load`]): a mesh file's bytes read
-/// and parsed and its faces cleaned up, each as a phase of its own ([`crate::Phase::Read`],
-/// [`crate::Phase::Parse`], [`crate::Phase::Cleanup`]), for the scene file's meshes as for a
+/// Where it is goes to `progress` (stage [`crate::stats::Stage::Load`]): a mesh file's bytes read
+/// and parsed and its faces cleaned up, each as a phase of its own ([`crate::stats::Phase::Read`],
+/// [`crate::stats::Phase::Parse`], [`crate::stats::Phase::Cleanup`]), for the scene file's meshes as for a
 /// mesh file given alone. The scene is the same whatever watches it.
 pub fn load_scene(
     path: &Path,

@@ -21,7 +21,7 @@ const IGNORED: [&str; 8] = ["vt", "vn", "vp", "usemtl", "mtllib", "s", "l", "p"]
 /// vertices, NaN or huge coordinates, no faces at all), each at the offending `file:line:col`.
 ///
 /// The bytes parsed go to `done` as it goes, once per step of bytes.
-pub fn parse_obj(path: &Path, bytes: &[u8], done: Count) -> Result<MeshFile> {
+pub(crate) fn parse_obj(path: &Path, bytes: &[u8], done: Count) -> Result<MeshFile> {
     let text = decode(path, bytes, 1)?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut parser = ObjParser::new(path);

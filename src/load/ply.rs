@@ -19,7 +19,7 @@ use crate::geom::P3;
 /// indices out of range, faces with fewer than 3 vertices and NaN or huge coordinates.
 ///
 /// The bytes parsed go to `done` as it goes, once per step of bytes.
-pub fn parse_ply(path: &Path, bytes: &[u8], done: Count) -> Result<MeshFile> {
+pub(crate) fn parse_ply(path: &Path, bytes: &[u8], done: Count) -> Result<MeshFile> {
     let mut cursor = Cursor::new(done);
     let header = parse_header(path, bytes)?;
     let roles = Roles::find(path, &header)?;

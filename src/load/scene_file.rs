@@ -29,7 +29,7 @@ const TOP_NODES: [&str; 5] = ["camera", "include", "prototype", "object", "insta
 /// more faces than `opts.max_faces` is an error at its node, found from counts before
 /// anything is expanded. The scene file's nodes go to `progress` as the load stage as a
 /// whole, each mesh file in it by its phases (read, parse, cleanup).
-pub fn load_scene_file(
+pub(crate) fn load_scene_file(
     path: &Path,
     opts: &LoadOptions,
     warnings: &mut Warnings,
@@ -79,7 +79,7 @@ struct Prototype {
 
 /// The deepest chain of prototypes placing prototypes accepted (bounds the recursion of the
 /// later stages, which walk instances recursively).
-pub const MAX_PROTOTYPE_DEPTH: usize = 64;
+pub(crate) const MAX_PROTOTYPE_DEPTH: usize = 64;
 
 /// A file being loaded, and the include node in it that is being followed, if any.
 struct Open {

@@ -27,7 +27,7 @@ const TRIANGLE: u64 = 50;
 /// [`Error::Invalid`] for NaN or huge coordinates and facets with fewer than 3 vertices.
 ///
 /// The bytes parsed go to `done` as it goes, once per step of bytes.
-pub fn parse_stl(path: &Path, bytes: &[u8], done: Count) -> Result<MeshFile> {
+pub(crate) fn parse_stl(path: &Path, bytes: &[u8], done: Count) -> Result<MeshFile> {
     let len = bytes.len() as u64;
     let count = triangle_count(bytes);
     let mut cursor = Cursor::new(done);

@@ -6,13 +6,11 @@
 //! - [`solidity`]: proven solids, open meshes capped, slits closed.
 //! - [`trees`]: object trees B(T) for flat meshes.
 
-pub mod inbox;
-pub mod solidity;
-pub mod trees;
+pub(crate) mod inbox;
+pub(crate) mod solidity;
+pub(crate) mod trees;
 
-pub use inbox::{compute_inboxes, mesh_inbox};
-pub use solidity::{mark_solids, solidity};
-pub use trees::bvtree::{HierarchyKind, ObjectTree};
+pub(crate) use trees::bvtree::{HierarchyKind, ObjectTree};
 
 use crate::progress::{Phase, Progress, Stage};
 use crate::scene::Scene;
@@ -37,8 +35,8 @@ pub struct PrepareOptions {
 /// leaf object gets no inboxes: an inbox prunes only other objects, so there is nothing for it
 /// to do ("model no more than a scene needs").
 ///
-/// Where it is goes to `progress` (stage [`crate::Stage::Prepare`]): the phases
-/// [`crate::Phase::Solidity`], [`crate::Phase::Inboxes`] and [`crate::Phase::Trees`], each
+/// Where it is goes to `progress` (stage [`crate::stats::Stage::Prepare`]): the phases
+/// [`crate::stats::Phase::Solidity`], [`crate::stats::Phase::Inboxes`] and [`crate::stats::Phase::Trees`], each
 /// counting the faces of the meshes it handles (a shared prototype's once). The prepared
 /// scene is the same whatever watches it.
 pub fn prepare(scene: &mut Scene, opts: &PrepareOptions, progress: &Progress) {

@@ -48,7 +48,7 @@ mod orbit;
 mod platonic;
 mod prism;
 
-pub use prism::{antiprism, cuboid, prism, MAX_SIDES};
+pub(crate) use prism::{antiprism, cuboid, prism, MAX_SIDES};
 
 use crate::geom::{PolyMesh, P3};
 use crate::scene::Mesh;
@@ -62,13 +62,13 @@ fn catalogue() -> impl Iterator<Item = &'static (&'static str, Build)> {
 }
 
 /// The snake_case names `by_name` knows: the 5 Platonic then the 13 Archimedean solids.
-pub fn names() -> Vec<&'static str> {
+pub(crate) fn names() -> Vec<&'static str> {
     catalogue().map(|&(name, _)| name).collect()
 }
 
 /// The named Platonic or Archimedean solid (unit edges, centred at the origin), or `None` for an
 /// unknown name. Names are the snake_case ones listed by [`names`], e.g. `"snub_cube"`.
-pub fn by_name(name: &str) -> Option<PolyMesh> {
+pub(crate) fn by_name(name: &str) -> Option<PolyMesh> {
     catalogue()
         .find(|&&(known, _)| known == name)
         .map(|(_, build)| build())

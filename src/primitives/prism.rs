@@ -5,13 +5,13 @@ use std::f64::consts::PI;
 use crate::geom::{PolyMesh, P3};
 
 /// The largest number of sides [`prism`] and [`antiprism`] accept (keeps meshes allocatable).
-pub const MAX_SIDES: u32 = 1 << 16;
+pub(crate) const MAX_SIDES: u32 = 1 << 16;
 
 /// The uniform n-gonal prism: two regular n-gons joined by n squares, unit edges, centred at the
 /// origin with the n-gons horizontal (normal ±z). `None` unless 3 ≤ n ≤ [`MAX_SIDES`].
 ///
 /// Vertices 0..n are the bottom n-gon (z = −1/2), n..2n the top one straight above them.
-pub fn prism(n: u32) -> Option<PolyMesh> {
+pub(crate) fn prism(n: u32) -> Option<PolyMesh> {
     if !(3..=MAX_SIDES).contains(&n) {
         return None;
     }
@@ -29,7 +29,7 @@ pub fn prism(n: u32) -> Option<PolyMesh> {
 /// unless 3 ≤ n ≤ [`MAX_SIDES`].
 ///
 /// Vertices 0..n are the bottom n-gon, n..2n the top one.
-pub fn antiprism(n: u32) -> Option<PolyMesh> {
+pub(crate) fn antiprism(n: u32) -> Option<PolyMesh> {
     if !(3..=MAX_SIDES).contains(&n) {
         return None;
     }
@@ -50,7 +50,7 @@ pub fn antiprism(n: u32) -> Option<PolyMesh> {
 ///
 /// Vertex `i` takes its x from `hi` when bit 0 of `i` is set (else from `lo`), y likewise from
 /// bit 1, z from bit 2. A box flat on some axis is degenerate but still returned.
-pub fn cuboid(lo: P3, hi: P3) -> PolyMesh {
+pub(crate) fn cuboid(lo: P3, hi: P3) -> PolyMesh {
     let (lo, hi) = (lo.inf(&hi), lo.sup(&hi));
     let corner = |i: u32| {
         P3::from(std::array::from_fn(|axis| {

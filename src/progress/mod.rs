@@ -9,7 +9,7 @@
 //!   phases reach the bar once the work ahead is done.
 
 mod lane;
-pub mod stage;
+pub(crate) mod stage;
 
 use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
@@ -18,7 +18,7 @@ use std::time::{Duration, Instant};
 use crate::count::{Count, Tally};
 pub(crate) use lane::Lane;
 
-pub use stage::{Phase, Stage, Unit};
+pub(crate) use stage::{Phase, Stage};
 
 impl Tally for Progress {
     fn add(&self, n: usize) {

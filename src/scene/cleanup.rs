@@ -22,14 +22,14 @@ use super::object::{Face, Mesh};
 use super::topology::is_closed_oriented;
 
 /// Relative distance from the face plane above which a face counts as non-planar.
-pub const PLANAR_TOL: f64 = 1e-9;
+pub(crate) const PLANAR_TOL: f64 = 1e-9;
 /// Relative distance from the face plane above which a non-planar face is split.
-pub const SPLIT_TOL: f64 = 0.25;
+pub(crate) const SPLIT_TOL: f64 = 0.25;
 /// Relative area (|vector area| / diameter²) below which a face counts as zero-area.
-pub const AREA_TOL: f64 = 1e-14;
+pub(crate) const AREA_TOL: f64 = 1e-14;
 
 /// Where each face came from, for messages.
-pub struct Origin<'a> {
+pub(crate) struct Origin<'a> {
     /// The source file.
     pub file: &'a Path,
     /// The position of each face (may be empty: then the file is named alone).
@@ -48,7 +48,7 @@ impl Origin<'_> {
 
 /// Checks and repairs `raw`, returning the clean mesh; warnings are appended to `warnings`.
 /// The faces cleaned go to `done` as they are, once per chunk of faces.
-pub fn cleanup(
+pub(crate) fn cleanup(
     raw: &PolyMesh,
     origin: &Origin,
     warnings: &mut Warnings,
@@ -133,7 +133,7 @@ fn check_indices(raw: &PolyMesh, origin: &Origin) -> Result<()> {
 
 /// The paper's FLATTEN step 4: sort the vertex list to find duplicates, combine them, and
 /// return the unique vertices (in order of first occurrence) with the old-to-new index map.
-pub fn merge_duplicate_vertices(verts: &[P3]) -> (Vec<P3>, Vec<u32>) {
+pub(crate) fn merge_duplicate_vertices(verts: &[P3]) -> (Vec<P3>, Vec<u32>) {
     // -0.0 and +0.0 are the same coordinate: fold -0 into +0 (x + 0.0) both for sorting and
     // for grouping, so that equal points always sit next to each other in the sorted order.
     let folded = |p: &P3| [p.x + 0.0, p.y + 0.0, p.z + 0.0];
@@ -265,7 +265,7 @@ fn clean_face(
 
 /// Size, orientation and flatness of a polygon in space.
 #[derive(Debug, Clone, Copy)]
-pub struct FaceShape {
+pub(crate) struct FaceShape {
     /// Newell normal (twice the vector area).
     pub normal: V3,
     /// |normal|: twice the area.
@@ -278,7 +278,7 @@ pub struct FaceShape {
 
 impl FaceShape {
     /// Measures the polygon `pts`.
-    pub fn of(pts: &[P3]) -> Self {
+    pub(crate) fn of(pts: &[P3]) -> Self {
         let n = pts.len();
         let normal = newell(pts);
         let bbox = crate::geom::Box3::from_points(pts.iter());

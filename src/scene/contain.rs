@@ -16,11 +16,11 @@ use crate::scene::Object;
 use crate::geom::tri_box::tri_meets_box;
 
 /// Relative margin by which a checked box is shrunk (of the object's largest CBOX side).
-pub const MARGIN: f64 = 1e-9;
+pub(crate) const MARGIN: f64 = 1e-9;
 
 /// Why a box is not inside an object.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Outside {
+pub(crate) enum Outside {
     /// The box has no interior (after the margin).
     Flat,
     /// No leaf of the object is a closed solid, so nothing can hold a box.
@@ -33,7 +33,7 @@ pub enum Outside {
         face: usize,
     },
     /// The box meets no face but lies outside every closed solid that could hold it.
-    Outside,
+    Beyond,
 }
 
 impl std::fmt::Display for Outside {
@@ -45,7 +45,7 @@ impl std::fmt::Display for Outside {
                 let leaf = if leaf.is_empty() { "the object" } else { leaf };
                 write!(f, "face {face} of {leaf} passes through it")
             }
-            Outside::Outside => write!(f, "it lies outside the object's solids"),
+            Outside::Beyond => write!(f, "it lies outside the object's solids"),
         }
     }
 }
@@ -53,7 +53,7 @@ impl std::fmt::Display for Outside {
 /// The box `b` (in the frame `object.cbox` is in) when it lies inside one closed solid of
 /// `object` clear of its faces by the margin; else `b` shrunk by the margin, when that lies
 /// inside one; else why not.
-pub fn inside(object: &Object, b: &Box3) -> Result<Box3, Outside> {
+pub(crate) fn inside(object: &Object, b: &Box3) -> Result<Box3, Outside> {
     let scale = object.cbox.size().iter().fold(0.0f64, |a, &x| a.max(x));
     let m = V3::repeat(MARGIN * scale);
     let shrunk = Box3::new(b.lo + m, b.hi - m);
@@ -84,7 +84,7 @@ fn held(object: &Object, b: &Box3) -> Result<(), Outside> {
             .collect();
         if !Box3::from_points(world.iter()).contains_box(b) {
             if why == Outside::NoSolid {
-                why = Outside::Outside;
+                why = Outside::Beyond;
             }
             return;
         }
@@ -113,7 +113,7 @@ fn held(object: &Object, b: &Box3) -> Result<(), Outside> {
         if (w.abs() - 1.0).abs() < 0.25 {
             found = true;
         } else if why == Outside::NoSolid {
-            why = Outside::Outside;
+            why = Outside::Beyond;
         }
     });
     if found {
@@ -144,7 +144,7 @@ mod tests {
         // Poking out of one side by 1e-6: a face passes through it.
         let e = inside(&cube, &b([0.2, 0.2, 0.2], [1.000001, 0.5, 0.5])).unwrap_err();
         assert!(
-            matches!(e, Outside::Outside | Outside::Crossed { .. }),
+            matches!(e, Outside::Beyond | Outside::Crossed { .. }),
             "{e:?}"
         );
         assert_eq!(
@@ -161,12 +161,12 @@ mod tests {
         );
         assert!(inside(&g, &b([1.2, 0.1, 0.1], [1.8, 0.9, 0.9])).is_ok());
         let e = inside(&g, &b([0.5, 0.1, 0.1], [1.5, 0.9, 0.9])).unwrap_err();
-        assert_eq!(e, Outside::Outside);
+        assert_eq!(e, Outside::Beyond);
         // A hollow: an L-shaped solid's notch is outside it though inside its CBOX.
         let l = crate::scene::testing::leaf("l", &l_prism());
         assert!(l.mesh().unwrap().closed);
         let e = inside(&l, &b([1.2, 1.2, 0.2], [1.8, 1.8, 0.8])).unwrap_err();
-        assert!(matches!(e, Outside::Outside), "{e:?}");
+        assert!(matches!(e, Outside::Beyond), "{e:?}");
         let e = inside(&l, &b([0.5, 0.5, 0.2], [1.5, 1.5, 0.8])).unwrap_err();
         assert!(matches!(e, Outside::Crossed { face: _, .. }), "{e:?}");
         assert!(inside(&l, &b([0.1, 0.1, 0.1], [0.9, 1.9, 0.9])).is_ok());

@@ -5,7 +5,7 @@ use std::fmt;
 use std::ops::Range;
 
 /// A face's index in the global face order. Distinct from a view's
-/// [`PieceId`](crate::view::PieceId): a warped face is one face but several planar pieces.
+/// planar piece: a warped face is one face but several planar pieces.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct FaceId(pub u32);
 

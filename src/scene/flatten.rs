@@ -23,7 +23,7 @@ pub struct FlatMesh {
 /// Flattens `scene` in the paper's four steps: (1) recurse into subobjects, (2) number the
 /// vertices uniquely throughout, (3) append the vertex lists and combine the face sets,
 /// (4) sort the vertex list to find duplicates, combine and renumber them.
-pub fn flatten(scene: &Scene) -> FlatMesh {
+pub(crate) fn flatten(scene: &Scene) -> FlatMesh {
     let mut vertices = Vec::new();
     let mut faces = Vec::with_capacity(scene.face_count());
     let mut groups = Vec::new();
@@ -86,14 +86,14 @@ impl FlatMesh {
 
 /// Shortest round-trip decimal form of `x` (exponent form for very small or large
 /// magnitudes, no trailing `.0` on integers), with -0 written as 0.
-pub fn num(x: f64) -> String {
+pub(crate) fn num(x: f64) -> String {
     let mut s = String::new();
     write_num(&mut s, x);
     s
 }
 
 /// [`num`] appended to `s` (no allocation of its own: the JSON writer's hot path).
-pub fn write_num(s: &mut String, x: f64) {
+pub(crate) fn write_num(s: &mut String, x: f64) {
     use std::fmt::Write as _;
     // Writing to a String cannot fail.
     let _ = if x == 0.0 {

@@ -1,33 +1,32 @@
 //! The scene database: Franklin's object tree with CBOX/INBOX, instancing, cleanup and FLATTEN.
 
-pub mod cleanup;
-pub mod contain;
-pub mod face_id;
-pub mod flatten;
-pub mod object;
-pub mod object_tree;
-pub mod proof;
-pub mod texture;
-pub mod topology;
-pub mod triangulate;
+pub(crate) mod cleanup;
+pub(crate) mod contain;
+pub(crate) mod face_id;
+pub(crate) mod flatten;
+pub(crate) mod object;
+pub(crate) mod object_tree;
+pub(crate) mod proof;
+pub(crate) mod texture;
+pub(crate) mod topology;
+pub(crate) mod triangulate;
 
 use std::path::PathBuf;
 
 use crate::geom::{Box3, M4, P3, V3};
 
-pub use face_id::FaceId;
-pub use flatten::{flatten, FlatMesh};
-pub use object::{Content, Face, Instance, Mesh, Object};
-pub use proof::{CapFailure, ProvenPieces, Solidity};
-pub use texture::{Texture, TextureFrame};
+pub(crate) use face_id::FaceId;
+pub(crate) use object::{Content, Face, Mesh, Object};
+pub(crate) use proof::{CapFailure, ProvenPieces, Solidity};
+pub(crate) use texture::{Texture, TextureFrame};
 
 /// Vertical field of view of a perspective camera that names none (an eye point on the
 /// command line, or a scene file's camera block), degrees.
-pub const DEFAULT_FOV_DEG: f64 = 45.0;
+pub(crate) const DEFAULT_FOV_DEG: f64 = 45.0;
 
 /// A camera as a scene file states it (the view stage turns it into a matrix).
 #[derive(Debug, Clone, PartialEq)]
-pub enum CameraSpec {
+pub(crate) enum CameraSpec {
     /// Orthographic, looking along `dir`.
     Orthographic {
         /// Viewing direction.
@@ -54,14 +53,14 @@ pub struct Scene {
     /// The root object; its subobjects are the scene's top-level objects.
     pub root: Object,
     /// The scene file's camera block, if any.
-    pub camera: Option<CameraSpec>,
+    pub(crate) camera: Option<CameraSpec>,
     /// The file the scene came from.
     pub source: PathBuf,
 }
 
 /// One leaf object placed in the world: its path, its mesh and its world transform.
 #[derive(Debug, Clone)]
-pub struct Leaf<'a> {
+pub(crate) struct Leaf<'a> {
     /// Object path from the top level, names joined by '/'.
     pub path: String,
     /// The leaf's vertices and faces (in its own coordinates).
@@ -74,19 +73,19 @@ pub struct Leaf<'a> {
 
 impl Leaf<'_> {
     /// True when the transform mirrors (negative determinant): face windings must be reversed.
-    pub fn mirrors(&self) -> bool {
+    pub(crate) fn mirrors(&self) -> bool {
         self.transform.fixed_view::<3, 3>(0, 0).determinant() < 0.0
     }
 
     /// World position of vertex `k`.
-    pub fn world_vertex(&self, k: u32) -> P3 {
+    pub(crate) fn world_vertex(&self, k: u32) -> P3 {
         self.transform
             .transform_point(&self.mesh.vertices[k as usize])
     }
 
     /// World positions of all vertices, in order ([`Leaf::world_vertex`] of each: the same
     /// bits wherever they are made, which lets the screen and the drawing share them).
-    pub fn world_vertices(&self) -> impl ExactSizeIterator<Item = P3> + '_ {
+    pub(crate) fn world_vertices(&self) -> impl ExactSizeIterator<Item = P3> + '_ {
         self.mesh
             .vertices
             .iter()
@@ -105,7 +104,7 @@ impl Scene {
     }
 
     /// The leaves in global face order (depth-first, instances expanded).
-    pub fn leaves(&self) -> Vec<Leaf<'_>> {
+    pub(crate) fn leaves(&self) -> Vec<Leaf<'_>> {
         let mut out = Vec::new();
         let mut first_face = 0;
         self.root

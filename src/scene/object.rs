@@ -17,7 +17,7 @@ pub struct Face {
     /// Indices into the object's vertices, counter-clockwise seen from outside for solids.
     pub vertices: Vec<u32>,
     /// Surface markings in the face's texture coordinates (the paper's first use of texture).
-    pub texture: Option<Arc<Texture>>,
+    pub(crate) texture: Option<Arc<Texture>>,
 }
 
 impl Face {
@@ -42,17 +42,17 @@ pub struct Mesh {
     pub closed: bool,
     /// Whether back faces may be culled, decided exactly by the prepare stage (None until
     /// then: an unprepared mesh is never culled).
-    pub solidity: Option<Solidity>,
+    pub(crate) solidity: Option<Solidity>,
     /// Where the whole mesh is not a solid ([`Mesh::solidity`] says why), the pieces of it
     /// that are: their back faces may be culled, away from their caps (None when no piece
     /// is proven, or the whole is).
-    pub proven: Option<ProvenPieces>,
+    pub(crate) proven: Option<ProvenPieces>,
     /// The virtual triangles capping the holes of a [`Solidity::Capped`] mesh (or of the
     /// proven pieces of [`Mesh::proven`]), counter-clockwise
     /// seen from outside the capped solid (empty otherwise). Never drawn, never in the output,
     /// never occluders or targets: the view only asks whether a cap facing the viewer lies over
     /// a back face ([`mod@crate::prepare::solidity::caps`]).
-    pub caps: Vec<[P3; 3]>,
+    pub(crate) caps: Vec<[P3; 3]>,
 }
 
 impl Mesh {
@@ -104,7 +104,7 @@ impl Mesh {
     }
 
     /// The generalized winding number of the faces around `p`
-    /// ([`winding_number`](crate::geom::solid_angle::winding_number)): about 1 inside a
+    /// (the sum of its faces' signed solid angles over 4π): about 1 inside a
     /// closed outward solid, 0 outside.
     pub fn winding_number(&self, p: &P3) -> f64 {
         crate::geom::solid_angle::winding_number(
@@ -152,7 +152,7 @@ pub struct Object {
     /// saturating at `usize::MAX`.
     faces: usize,
     /// The object tree of a leaf mesh (paper 002), built by the prepare stage.
-    pub tree: Option<Arc<ObjectTree>>,
+    pub(crate) tree: Option<Arc<ObjectTree>>,
     /// Vertices in the subtree, instances expanded; saturating.
     vertices: usize,
 }

@@ -4,7 +4,7 @@
 
 /// Whether a mesh is a proven solid, or why not.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Solidity {
+pub(crate) enum Solidity {
     /// Closed, consistently and outward oriented, free of self-intersection: back faces
     /// may be culled.
     Solid,
@@ -31,7 +31,7 @@ pub enum Solidity {
 /// free of self-intersection and outward, so its back faces may be culled, away from its
 /// caps. The culling argument is piece by piece ([`mod@crate::prepare::solidity`]).
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub struct ProvenPieces {
+pub(crate) struct ProvenPieces {
     /// By face of the mesh: true on a proven piece.
     pub faces: Vec<bool>,
     /// Number of edge-connected pieces (of the capped surface, for an open mesh).
@@ -42,14 +42,14 @@ pub struct ProvenPieces {
 
 impl ProvenPieces {
     /// Number of the mesh's faces on proven pieces.
-    pub fn proven_faces(&self) -> usize {
+    pub(crate) fn proven_faces(&self) -> usize {
         self.faces.iter().filter(|&&f| f).count()
     }
 }
 
 /// Why an open mesh with its holes capped is not a solid.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum CapFailure {
+pub(crate) enum CapFailure {
     /// Capping was not tried (the mesh was decided before caps existed, or is too small to
     /// enclose anything).
     NotTried,
@@ -77,17 +77,17 @@ pub enum CapFailure {
 
 impl Solidity {
     /// True when every back face may be culled.
-    pub fn is_solid(self) -> bool {
+    pub(crate) fn is_solid(self) -> bool {
         self == Solidity::Solid
     }
 
     /// True when back faces may be culled away from the caps.
-    pub fn is_capped(self) -> bool {
+    pub(crate) fn is_capped(self) -> bool {
         matches!(self, Solidity::Capped(_))
     }
 
     /// Why back faces are not culled (empty for a solid; for a capped mesh, where not).
-    pub fn reason(self) -> String {
+    pub(crate) fn reason(self) -> String {
         match self {
             Solidity::Solid => String::new(),
             Solidity::Open(why) => format!("open (an edge has one face); {}", why.reason()),
@@ -108,7 +108,7 @@ impl Solidity {
 
     /// One word for the state: solid, open, capped, inconsistent, degenerate,
     /// self-intersecting, inside-out.
-    pub fn word(self) -> &'static str {
+    pub(crate) fn word(self) -> &'static str {
         match self {
             Solidity::Solid => "solid",
             Solidity::Open(_) => "open",
@@ -123,7 +123,7 @@ impl Solidity {
 
 impl CapFailure {
     /// Why capping failed, in words.
-    pub fn reason(self) -> String {
+    pub(crate) fn reason(self) -> String {
         match self {
             CapFailure::NotTried => "capping not tried".into(),
             CapFailure::MeshDegenerate => {

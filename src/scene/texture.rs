@@ -5,7 +5,7 @@ use crate::geom::{P3, V3};
 /// Markings drawn on a face, in the face's texture coordinates: points, lines between
 /// them, and polygons over them (the paper's texture components 2-4).
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct Texture {
+pub(crate) struct Texture {
     /// The point set.
     pub points: Vec<[f64; 2]>,
     /// Lines as pairs of point indices.
@@ -19,7 +19,7 @@ pub struct Texture {
 /// and the parity that makes the y-vector's z component positive. A horizontal plane uses
 /// x = (1,0,0), y = (0,1,0). The paper's vertical axis is world z.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TextureFrame {
+pub(crate) struct TextureFrame {
     /// The origin: the plane's point nearest (0,0,0).
     pub origin: P3,
     /// Unit x-vector, in the plane, horizontal.
@@ -34,7 +34,7 @@ const HORIZONTAL_EPS: f64 = 1e-12;
 impl TextureFrame {
     /// The frame of the plane through `point` with (not necessarily unit) normal `normal`.
     /// Returns None for a zero normal.
-    pub fn of_plane(point: &P3, normal: &V3) -> Option<Self> {
+    pub(crate) fn of_plane(point: &P3, normal: &V3) -> Option<Self> {
         let len = normal.norm();
         if len == 0.0 || !len.is_finite() {
             return None;
@@ -60,12 +60,12 @@ impl TextureFrame {
     }
 
     /// World point of texture coordinates (s, t).
-    pub fn to_world(&self, st: [f64; 2]) -> P3 {
+    pub(crate) fn to_world(self, st: [f64; 2]) -> P3 {
         self.origin + self.x * st[0] + self.y * st[1]
     }
 
     /// Texture coordinates of a world point (projected onto the plane).
-    pub fn to_texture(&self, p: &P3) -> [f64; 2] {
+    pub(crate) fn to_texture(self, p: &P3) -> [f64; 2] {
         let d = p - self.origin;
         [d.dot(&self.x), d.dot(&self.y)]
     }

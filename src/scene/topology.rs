@@ -6,13 +6,13 @@ use super::object::Face;
 
 /// True when every undirected edge is used by exactly two faces, once in each direction:
 /// the faces bound a closed, consistently oriented solid.
-pub fn is_closed_oriented(faces: &[Face]) -> bool {
+pub(crate) fn is_closed_oriented(faces: &[Face]) -> bool {
     edge_topology(faces) == Topology::Closed
 }
 
 /// How the edges of a face set join up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Topology {
+pub(crate) enum Topology {
     /// Every edge used by exactly two faces, once in each direction.
     Closed,
     /// Some edge used by one face only (and none used inconsistently).
@@ -26,7 +26,7 @@ pub enum Topology {
 /// edge comes twice, once each way. Once twice the same way, or three times, is
 /// inconsistent; once only, open (unless it runs from a vertex to itself, its own reverse).
 /// No hashing and no search: one sort and one pass.
-pub fn edge_topology(faces: &[Face]) -> Topology {
+pub(crate) fn edge_topology(faces: &[Face]) -> Topology {
     Traversals::of(faces).topology()
 }
 

@@ -12,7 +12,7 @@ const SMALL: usize = 64;
 /// Triangulates the polygon `pts` (simple, not necessarily planar or convex), projected along
 /// the dominant axis of `normal`. Returns index triples into `pts`, each counter-clockwise
 /// seen from the side `normal` points to. Falls back to a fan if the polygon is not simple.
-pub fn ear_clip(pts: &[P3], normal: &V3) -> Vec<[usize; 3]> {
+pub(crate) fn ear_clip(pts: &[P3], normal: &V3) -> Vec<[usize; 3]> {
     ear_clip_simple(pts, normal).unwrap_or_else(|| {
         let (_, _, flip) = projection_axes(normal);
         fan(pts.len(), flip)
@@ -22,7 +22,7 @@ pub fn ear_clip(pts: &[P3], normal: &V3) -> Vec<[usize; 3]> {
 /// [`ear_clip`], or None where it would fall back to a fan: no ear was found, so the
 /// polygon, projected along the dominant axis of `normal`, is not simple. Every decision is
 /// an exact orient2d on input coordinates.
-pub fn ear_clip_simple(pts: &[P3], normal: &V3) -> Option<Vec<[usize; 3]>> {
+pub(crate) fn ear_clip_simple(pts: &[P3], normal: &V3) -> Option<Vec<[usize; 3]>> {
     let (ax, ay, flip) = projection_axes(normal);
     let p2: Vec<[f64; 2]> = pts.iter().map(|p| [p[ax], p[ay]]).collect();
     if pts.len() > SMALL {
@@ -59,7 +59,7 @@ pub fn ear_clip_simple(pts: &[P3], normal: &V3) -> Option<Vec<[usize; 3]>> {
 
 /// Exact: `pts`, projected along the dominant axis of `normal` as [`ear_clip_simple`]
 /// projects it, is a strictly convex ring winding the way `normal` says.
-pub fn strictly_convex_face(pts: &[P3], normal: &V3) -> bool {
+pub(crate) fn strictly_convex_face(pts: &[P3], normal: &V3) -> bool {
     let (ax, ay, flip) = projection_axes(normal);
     let project = |p: &P3| [p[ax], p[ay]];
     // Counter-clockwise in projection: reversed where the projection flips.
@@ -73,7 +73,7 @@ pub fn strictly_convex_face(pts: &[P3], normal: &V3) -> bool {
 
 /// Coordinate axes to project on (dropping the normal's dominant axis), and whether the
 /// projection reverses orientation.
-pub fn projection_axes(n: &V3) -> (usize, usize, bool) {
+pub(crate) fn projection_axes(n: &V3) -> (usize, usize, bool) {
     let a = n.abs();
     let drop = if a.x >= a.y && a.x >= a.z {
         0
@@ -183,7 +183,7 @@ fn strictly_convex(p: &[[f64; 2]], flip: bool) -> bool {
 /// the normal, as [`ear_clip_simple`] promises). For any ring, convex or not, the triangles'
 /// boundaries add up to the ring's (each chord is run once each way), so as a 2-chain they
 /// are the fan's: the same signed areas, volumes and winding numbers, with small boxes.
-pub fn balanced(n: usize) -> Vec<[usize; 3]> {
+pub(crate) fn balanced(n: usize) -> Vec<[usize; 3]> {
     let mut tris = Vec::with_capacity(n - 2);
     let (a, b) = (n / 3, 2 * n / 3);
     tris.push([0, a, b]);

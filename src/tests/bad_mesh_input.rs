@@ -4,7 +4,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
-use crate::load::{load_mesh, parse_mesh};
+use crate::load::mesh_file::{load_mesh, parse_mesh};
 use crate::Error;
 use kepler_testkit::Rng;
 

@@ -7,9 +7,10 @@ use std::sync::Arc;
 
 use super::common::*;
 use crate::geom::{M4, P3, V3};
+use crate::query::PointVisibility;
 use crate::scene::{CapFailure, Content, Mesh, Object, Scene, Solidity};
 use crate::view::{Camera, Facing, View};
-use crate::visibility::{visp, PointVisibility};
+use crate::visibility::visp::visp;
 
 /// A box [0,1]×[0,1]×[0,h] with its top (z = h) missing: 5 faces, open at the top.
 fn open_box(h: f64) -> Mesh {

@@ -65,7 +65,7 @@ fn force_cull(mut scene: Scene) -> Scene {
 }
 
 fn solidity_of(scene: &Scene) -> Solidity {
-    crate::prepare::solidity(scene.leaves()[0].mesh)
+    crate::prepare::solidity::solidity(scene.leaves()[0].mesh)
 }
 
 /// An octahedron whose top apex is pulled down and out through the side: closed and

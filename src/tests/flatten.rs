@@ -4,7 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::scene::{flatten, FlatMesh};
+use crate::scene::flatten::flatten;
+use crate::FlatMesh;
 
 fn corners(f: &FlatMesh) -> Vec<Vec<[f64; 3]>> {
     f.faces

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use super::common::{cuboid, mesh, prim, top, translate};
 use crate::geom::{Box3, PolyMesh, M4, P3, V3};
-use crate::prepare::{compute_inboxes, mesh_inbox};
+use crate::prepare::inbox::{compute_inboxes, mesh_inbox};
 use crate::primitives;
 use crate::scene::{Mesh, Object, Scene};
 use crate::view::Camera;

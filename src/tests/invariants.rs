@@ -6,9 +6,11 @@ use super::common::*;
 use crate::geom::poly2::{locate, Pt2, Side};
 use crate::geom::winding;
 use crate::geom::{P3, V3};
+use crate::query::PointVisibility;
 use crate::scene::{Mesh, Scene};
 use crate::view::{Camera, Facing, View};
-use crate::visibility::{visp, PointVisibility, Visibility};
+use crate::visibility::visp::visp;
+use crate::visibility::Visibility;
 use crate::FaceId;
 
 fn random_triangles(rng: &mut Rng, n: usize, offset: f64, scale: f64) -> Scene {

@@ -261,7 +261,7 @@ fn crossing_faces_draw_their_intersection_exactly() {
 #[test]
 fn example_drawings_have_no_zero_length_strokes() {
     use crate::emit::lines::is_dot;
-    use crate::view::CameraRequest;
+    use crate::CameraRequest;
     use crate::{render, Outputs, RenderOptions};
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes");
     for name in ["assembly", "town", "polyhedra"] {

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crate::geom::P3;
-use crate::load::{load_mesh, MeshFile};
+use crate::load::mesh_file::{load_mesh, MeshFile};
 use crate::Pos;
 use kepler_testkit::{model, models_dir};
 

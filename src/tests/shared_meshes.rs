@@ -8,7 +8,8 @@ use super::common::{model, models};
 use crate::emit::lines::edges::{EdgeOptions, EdgeSet};
 use crate::geom::ring_check::multipolygon_defects;
 use crate::geom::V3;
-use crate::{render, Camera, LineOptions, Outputs, RenderOptions};
+use crate::lines::LineOptions;
+use crate::{render, Camera, Outputs, RenderOptions};
 
 /// The shared meshes, by file name.
 const MESHES: [&str; 15] = [

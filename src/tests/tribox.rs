@@ -4,8 +4,9 @@
 //! degenerate bound sets; inputs lie inside; at most 18 faces; volumes below the CBOX's.
 
 use crate::geom::{Box3, M4, P3, V3};
+use crate::tribox::boundary::Case;
 use crate::tribox::bounds::face_normal;
-use crate::tribox::{Case, Tribox};
+use crate::tribox::Tribox;
 use kepler_testkit::Rng;
 
 /// A whole number in 0..n, as a float.

@@ -3,10 +3,10 @@
 //! shared meshes the tribox sits between the convex hull and the CBOX.
 
 use super::common::*;
+use crate::geom::hull3::hull_volume;
 use crate::geom::poly2::MultiPolygon;
 use crate::geom::{PolyMesh, P3, V3};
 use crate::scene::{Mesh, Object, Scene};
-use crate::tribox::hull::hull_volume;
 use crate::tribox::interfere::interfere;
 use crate::tribox::{Hierarchy, HierarchyOptions, Tribox};
 use crate::view::{substitute, LodOptions};

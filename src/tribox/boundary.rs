@@ -26,7 +26,7 @@ use super::bounds::Tribox;
 
 /// The paper's four topological configurations of a corner (Fig. 5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Case {
+pub(crate) enum Case {
     /// p inside all three principal half-spaces: p is a vertex.
     One,
     /// p beyond the corner's x plane (α_A).
@@ -40,7 +40,7 @@ pub enum Case {
 /// Arithmetic done by one boundary evaluation, to compare with the paper's bound of
 /// "24 shifts and at most 112 additions" (and at most 24 tests).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct OpCount {
+pub(crate) struct OpCount {
     /// Additions and subtractions of bounds.
     pub additions: u32,
     /// Halvings (the paper's shifts).
@@ -52,7 +52,7 @@ pub struct OpCount {
 /// The boundary of a tribox: 32 vertices (4 per corner) and 18 faces, face `f` on plane `f`
 /// (numbered as in [`crate::tribox::bounds`]). Faces may repeat vertices' positions.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Boundary {
+pub(crate) struct Boundary {
     /// Vertices, four per corner in corner order.
     pub vertices: Vec<P3>,
     /// The 18 faces, counter-clockwise seen from outside, indexing `vertices`.
@@ -85,7 +85,7 @@ enum Sym {
 
 impl Boundary {
     /// Evaluates the boundary of a tribox with tight bounds.
-    pub fn evaluate(t: &Tribox) -> Boundary {
+    pub(crate) fn evaluate(t: &Tribox) -> Boundary {
         let mut b = Builder::default();
         let mut cases = [Case::One; 8];
         for (c, case) in cases.iter_mut().enumerate() {
@@ -101,12 +101,12 @@ impl Boundary {
     }
 
     /// Enclosed volume (divergence theorem over fan triangles; degenerate faces add 0).
-    pub fn volume(&self) -> f64 {
+    pub(crate) fn volume(&self) -> f64 {
         volume(&self.vertices, &self.faces)
     }
 
     /// Surface area (sum of the faces' vector-area lengths).
-    pub fn area(&self) -> f64 {
+    pub(crate) fn area(&self) -> f64 {
         self.faces
             .iter()
             .map(|f| newell_indexed(&self.vertices, f).norm() * 0.5)
@@ -117,7 +117,7 @@ impl Boundary {
     /// rounding noise merged, zero-length edges removed, faces with fewer than three corners
     /// or zero area dropped, unused vertices dropped. A single point or a segment gives an
     /// empty mesh; a flat tribox gives its polygon twice, once per side.
-    pub fn mesh(&self) -> PolyMesh {
+    pub(crate) fn mesh(&self) -> PolyMesh {
         let eps = noise(&self.vertices);
         let (verts, remap) = merge_close(&self.vertices, eps);
         let mut faces = Vec::new();
@@ -303,7 +303,7 @@ fn principal_corners(a: usize, max: bool) -> [usize; 4] {
 }
 
 /// Volume enclosed by closed, outward faces.
-pub fn volume(verts: &[P3], faces: &[Vec<u32>]) -> f64 {
+pub(crate) fn volume(verts: &[P3], faces: &[Vec<u32>]) -> f64 {
     let Some(r) = verts.first() else { return 0.0 };
     let mut v = 0.0;
     for f in faces {

@@ -7,13 +7,15 @@
 //! Faces (bounds) are numbered 0..18: face 2k is the min side of direction k (outward normal
 //! −d_k, offset −lo\[k\]), face 2k+1 its max side (outward normal d_k, offset hi\[k\]).
 
-use crate::geom::{Box3, M4, P3, V3};
+#[cfg(test)]
+use crate::geom::Box3;
+use crate::geom::{M4, P3, V3};
 
 use super::boundary::Boundary;
 use super::combos;
 
 /// The nine directions of D, in the paper's order: x, y, z, x+y, x+z, y+z, x−z, y−x, z−y.
-pub const DIRECTIONS: [[i8; 3]; 9] = [
+pub(crate) const DIRECTIONS: [[i8; 3]; 9] = [
     [1, 0, 0],
     [0, 1, 0],
     [0, 0, 1],
@@ -25,13 +27,10 @@ pub const DIRECTIONS: [[i8; 3]; 9] = [
     [0, -1, 1],
 ];
 
-/// Names of the nine directions, for messages and tables.
-pub const DIRECTION_NAMES: [&str; 9] = ["x", "y", "z", "x+y", "x+z", "y+z", "x-z", "y-x", "z-y"];
-
 /// The projection of `p` on direction `k`: sums and differences of coordinates, computed the
 /// same way everywhere so that a point is exactly inside the tribox built from it.
 #[inline]
-pub fn project(p: &P3, k: usize) -> f64 {
+pub(crate) fn project(p: &P3, k: usize) -> f64 {
     match k {
         0 => p.x,
         1 => p.y,
@@ -46,13 +45,13 @@ pub fn project(p: &P3, k: usize) -> f64 {
 }
 
 /// Direction `k` as a vector.
-pub fn direction(k: usize) -> V3 {
+pub(crate) fn direction(k: usize) -> V3 {
     let d = DIRECTIONS[k];
     V3::new(f64::from(d[0]), f64::from(d[1]), f64::from(d[2]))
 }
 
 /// Outward normal of face `f` (unnormalised: ±d_k).
-pub fn face_normal(f: usize) -> V3 {
+pub(crate) fn face_normal(f: usize) -> V3 {
     let d = direction(f / 2);
     if f.is_multiple_of(2) {
         -d
@@ -63,7 +62,7 @@ pub fn face_normal(f: usize) -> V3 {
 
 /// A tribox: `lo[k] ≤ p·d_k ≤ hi[k]` for the nine directions. Empty when `lo > hi` somewhere.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Tribox {
+pub(crate) struct Tribox {
     /// Least projection on each direction.
     pub lo: [f64; 9],
     /// Greatest projection on each direction.
@@ -78,7 +77,7 @@ impl Default for Tribox {
 
 impl Tribox {
     /// The empty tribox (the identity of [`Tribox::merge`]).
-    pub fn empty() -> Self {
+    pub(crate) fn empty() -> Self {
         Tribox {
             lo: [f64::INFINITY; 9],
             hi: [f64::NEG_INFINITY; 9],
@@ -86,7 +85,7 @@ impl Tribox {
     }
 
     /// The tribox of a point set: one pass updating 18 bounds (section 3).
-    pub fn from_points<'a>(points: impl IntoIterator<Item = &'a P3>) -> Self {
+    pub(crate) fn from_points<'a>(points: impl IntoIterator<Item = &'a P3>) -> Self {
         let mut t = Tribox::empty();
         for p in points {
             t.add_point(p);
@@ -95,7 +94,7 @@ impl Tribox {
     }
 
     /// The tribox with the given 18 face offsets (face `f` is `n_f·x ≤ offsets[f]`).
-    pub fn from_offsets(offsets: &[f64; 18]) -> Self {
+    pub(crate) fn from_offsets(offsets: &[f64; 18]) -> Self {
         Tribox {
             lo: std::array::from_fn(|k| -offsets[2 * k]),
             hi: std::array::from_fn(|k| offsets[2 * k + 1]),
@@ -103,12 +102,12 @@ impl Tribox {
     }
 
     /// The 18 face offsets: face `f` is the half-space `face_normal(f)·x ≤ offsets[f]`.
-    pub fn offsets(&self) -> [f64; 18] {
+    pub(crate) fn offsets(&self) -> [f64; 18] {
         std::array::from_fn(|f| self.offset(f))
     }
 
     /// Offset of face `f`.
-    pub fn offset(&self, f: usize) -> f64 {
+    pub(crate) fn offset(&self, f: usize) -> f64 {
         if f.is_multiple_of(2) {
             -self.lo[f / 2]
         } else {
@@ -117,7 +116,7 @@ impl Tribox {
     }
 
     /// Grows the tribox to hold `p`.
-    pub fn add_point(&mut self, p: &P3) {
+    pub(crate) fn add_point(&mut self, p: &P3) {
         for k in 0..9 {
             let v = project(p, k);
             self.lo[k] = self.lo[k].min(v);
@@ -126,7 +125,7 @@ impl Tribox {
     }
 
     /// The tribox of the union (merging up the object tree).
-    pub fn merge(&self, o: &Tribox) -> Tribox {
+    pub(crate) fn merge(&self, o: &Tribox) -> Tribox {
         Tribox {
             lo: std::array::from_fn(|k| self.lo[k].min(o.lo[k])),
             hi: std::array::from_fn(|k| self.hi[k].max(o.hi[k])),
@@ -135,12 +134,12 @@ impl Tribox {
 
     /// True when no point satisfies the bounds as stored (some `lo > hi`). Bounds that are
     /// not tight may describe an empty set without this: see [`Tribox::tightened`].
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         (0..9).any(|k| self.lo[k] > self.hi[k] || self.lo[k].is_nan() || self.hi[k].is_nan())
     }
 
     /// Closed containment of a point (18 comparisons).
-    pub fn contains(&self, p: &P3) -> bool {
+    pub(crate) fn contains(&self, p: &P3) -> bool {
         (0..9).all(|k| {
             let v = project(p, k);
             self.lo[k] <= v && v <= self.hi[k]
@@ -152,14 +151,15 @@ impl Tribox {
     /// sets bounded by the same nine directions are disjoint exactly when one of those
     /// directions, or a cross product of two of them, separates them; this test checks the
     /// nine face directions only, so it is conservative (never says "apart" wrongly).
-    pub fn interferes(&self, o: &Tribox) -> bool {
+    pub(crate) fn interferes(&self, o: &Tribox) -> bool {
         !self.is_empty()
             && !o.is_empty()
             && (0..9).all(|k| self.lo[k] <= o.hi[k] && o.lo[k] <= self.hi[k])
     }
 
+    #[cfg(test)]
     /// The axis-aligned box of the x, y and z bounds (the paper's B(S), the CBOX).
-    pub fn cbox(&self) -> Box3 {
+    pub(crate) fn cbox(&self) -> Box3 {
         Box3::new(
             P3::new(self.lo[0], self.lo[1], self.lo[2]),
             P3::new(self.hi[0], self.hi[1], self.hi[2]),
@@ -167,13 +167,13 @@ impl Tribox {
     }
 
     /// Width of the slab of direction `k` measured along the unit direction.
-    pub fn thickness(&self, k: usize) -> f64 {
+    pub(crate) fn thickness(&self, k: usize) -> f64 {
         (self.hi[k] - self.lo[k]) / direction(k).norm()
     }
 
     /// The same tribox with every bound tight (each face plane touching the polytope):
     /// section 3's boundary evaluation needs tight bounds. See [`combos::tighten`].
-    pub fn tightened(&self) -> Tribox {
+    pub(crate) fn tightened(&self) -> Tribox {
         if self.is_empty() {
             return Tribox::empty();
         }
@@ -186,12 +186,13 @@ impl Tribox {
     }
 
     /// The boundary (section 3) of the tightened bounds.
-    pub fn boundary(&self) -> Boundary {
+    pub(crate) fn boundary(&self) -> Boundary {
         Boundary::evaluate(&self.tightened())
     }
 
+    #[cfg(test)]
     /// Volume, from the boundary.
-    pub fn volume(&self) -> f64 {
+    pub(crate) fn volume(&self) -> f64 {
         if self.is_empty() {
             return 0.0;
         }
@@ -201,7 +202,7 @@ impl Tribox {
     /// A conservative tribox of the set after the affine transform `m`: the tribox of the
     /// transformed boundary vertices. It holds every transformed point of the set, and it is
     /// the tightest tribox of the transformed tribox.
-    pub fn transformed(&self, m: &M4) -> Tribox {
+    pub(crate) fn transformed(&self, m: &M4) -> Tribox {
         if self.is_empty() {
             return *self;
         }
@@ -218,7 +219,7 @@ impl Tribox {
     /// Outward simplification (section 3): face planes that can be pushed out by at most
     /// `tol` (a distance) until their face vanishes are pushed there, smallest push first.
     /// The result contains the original.
-    pub fn simplified(&self, tol: f64) -> Tribox {
+    pub(crate) fn simplified(&self, tol: f64) -> Tribox {
         if self.is_empty() {
             return *self;
         }

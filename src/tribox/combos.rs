@@ -118,7 +118,7 @@ fn snap(x: f64) -> f64 {
 /// is lowered only when a combination beats it by more than the combination's own rounding
 /// (8 ulps of the terms), so the bounds of a point set, tight already, stay exactly as they
 /// are and every point stays inside.
-pub fn tighten(offsets: &[f64; 18]) -> [f64; 18] {
+pub(crate) fn tighten(offsets: &[f64; 18]) -> [f64; 18] {
     let t = table();
     std::array::from_fn(|f| {
         let mut best = offsets[f];
@@ -133,7 +133,7 @@ pub fn tighten(offsets: &[f64; 18]) -> [f64; 18] {
 }
 
 /// The support in face `f`'s direction of the polytope of all faces but `f`.
-pub fn relaxed(offsets: &[f64; 18], f: usize) -> f64 {
+pub(crate) fn relaxed(offsets: &[f64; 18], f: usize) -> f64 {
     table()[f]
         .iter()
         .filter(|c| !c.uses(f))
@@ -144,7 +144,7 @@ pub fn relaxed(offsets: &[f64; 18], f: usize) -> f64 {
 /// Outward simplification of tight `offsets`: repeatedly, the face whose plane can move out
 /// the least distance (at most `tol`) before the face vanishes is moved there. Only outward
 /// moves, so the result contains the input polytope.
-pub fn simplify(offsets: &[f64; 18], tol: f64) -> [f64; 18] {
+pub(crate) fn simplify(offsets: &[f64; 18], tol: f64) -> [f64; 18] {
     let mut o = *offsets;
     let mut done = [false; 18];
     loop {

@@ -52,7 +52,7 @@ impl Default for HierarchyOptions {
 
 /// A split plane: direction `k` at value `at`; the first child is `p·d_k ≤ at`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Split {
+pub(crate) struct Split {
     /// Direction index (0..9, the paper's order).
     pub k: usize,
     /// Plane offset.
@@ -61,7 +61,7 @@ pub struct Split {
 
 /// A node of the tree: one cell of the solid and its tribox.
 #[derive(Debug, Clone)]
-pub struct Node {
+pub(crate) struct Node {
     /// The tribox of the cell.
     pub tribox: Tribox,
     /// Level in the tree (root 0).
@@ -70,13 +70,11 @@ pub struct Node {
     pub children: Option<(Split, [usize; 2])>,
     /// Sampled largest distance from the tribox's boundary to the solid.
     pub error: f64,
-    /// Faces of the solid in this cell (after clipping).
-    pub polygons: usize,
 }
 
 /// The binary tree of triboxes of one solid.
 #[derive(Debug, Clone)]
-pub struct Hierarchy {
+pub(crate) struct Hierarchy {
     /// Nodes; the root is node 0.
     pub nodes: Vec<Node>,
 }
@@ -108,7 +106,7 @@ impl Cell {
 
 impl Hierarchy {
     /// Builds the hierarchy of a mesh (its vertices in the frame the triboxes are wanted in).
-    pub fn build(mesh: &Mesh, opts: &HierarchyOptions) -> Hierarchy {
+    pub(crate) fn build(mesh: &Mesh, opts: &HierarchyOptions) -> Hierarchy {
         let polygons: Vec<Vec<P3>> = mesh
             .faces
             .iter()
@@ -148,7 +146,6 @@ impl Hierarchy {
             } else {
                 b.surface.error(&tribox, b.solid.is_some())
             },
-            polygons: cell.polygons.len(),
         });
         if depth >= o.max_depth || tribox.is_empty() {
             return id;
@@ -171,7 +168,7 @@ impl Hierarchy {
     }
 
     /// The cut at `depth`: nodes at that level, and leaves above it, in tree order.
-    pub fn cut(&self, depth: usize) -> Vec<usize> {
+    pub(crate) fn cut(&self, depth: usize) -> Vec<usize> {
         let mut out = Vec::new();
         let mut stack = vec![0];
         while let Some(n) = stack.pop() {
@@ -187,17 +184,17 @@ impl Hierarchy {
     }
 
     /// Depth of the deepest node.
-    pub fn depth(&self) -> usize {
+    pub(crate) fn depth(&self) -> usize {
         self.nodes.iter().map(|n| n.depth).max().unwrap_or(0)
     }
 
     /// The error of a cut: the largest error of its nodes.
-    pub fn cut_error(&self, cut: &[usize]) -> f64 {
+    pub(crate) fn cut_error(&self, cut: &[usize]) -> f64 {
         cut.iter().map(|&n| self.nodes[n].error).fold(0.0, f64::max)
     }
 
     /// The shallowest cut whose error is at most `tol` (the deepest cut if none is).
-    pub fn cut_within(&self, tol: f64) -> Vec<usize> {
+    pub(crate) fn cut_within(&self, tol: f64) -> Vec<usize> {
         let deepest = self.depth();
         (0..=deepest)
             .map(|d| self.cut(d))
@@ -207,7 +204,7 @@ impl Hierarchy {
 
     /// The union of the cut's triboxes as one polygon mesh (each tribox simplified by `tol`
     /// and cleaned up), with the number of faces of each tribox.
-    pub fn cut_mesh(&self, cut: &[usize], tol: f64) -> PolyMesh {
+    pub(crate) fn cut_mesh(&self, cut: &[usize], tol: f64) -> PolyMesh {
         let mut out = PolyMesh::default();
         for &n in cut {
             out.append(&self.nodes[n].tribox.simplified(tol).boundary().mesh());

@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-pub use crate::geom::tri_intersect::triangles_intersect;
+pub(crate) use crate::geom::tri_intersect::triangles_intersect;
 use crate::geom::{P3, V3};
 use crate::prepare::trees::bvtree::{HierarchyKind, ObjectTree};
 use crate::prepare::trees::leaf_trees;
@@ -48,14 +48,15 @@ struct Tri {
     t: Tribox,
 }
 
+#[cfg(test)]
 /// Interference of every pair of leaf objects of `scene`, without trees.
-pub fn interfere(scene: &Scene) -> Interference {
+pub(crate) fn interfere(scene: &Scene) -> Interference {
     interfere_with(scene, Method::Brute)
 }
 
 /// Interference of every pair of leaf objects of `scene`, faces compared by `method`. The
 /// answers are the same whatever the method: both test the same triangles exactly.
-pub fn interfere_with(scene: &Scene, method: Method) -> Interference {
+pub(crate) fn interfere_with(scene: &Scene, method: Method) -> Interference {
     let leaves = scene.leaves();
     let trees = object_trees(scene, &leaves, method);
     let mut triangles: HashMap<usize, FaceTriangles> = HashMap::new();

@@ -12,7 +12,7 @@ use super::screen::{Facing, Piece};
 
 /// How a leaf's back faces are treated in one view.
 #[derive(Debug, Clone)]
-pub enum BackCull<'a> {
+pub(crate) enum BackCull<'a> {
     /// Two-sided: no back face is culled.
     None,
     /// A proven solid seen from outside its convex hull: every back face is culled.
@@ -36,7 +36,7 @@ pub enum BackCull<'a> {
 impl<'a> BackCull<'a> {
     /// The treatment of `leaf` in `camera`'s view; `all_in_front` says every vertex of the
     /// leaf is in front of the near plane (always, orthographic).
-    pub fn of_leaf(leaf: &Leaf<'a>, camera: &Camera, all_in_front: bool) -> BackCull<'a> {
+    pub(crate) fn of_leaf(leaf: &Leaf<'a>, camera: &Camera, all_in_front: bool) -> BackCull<'a> {
         if !all_in_front {
             return BackCull::None;
         }
@@ -61,7 +61,7 @@ impl<'a> BackCull<'a> {
     }
 
     /// True when `piece` (described, facing decided) may be culled.
-    pub fn culls(&self, piece: &Piece) -> bool {
+    pub(crate) fn culls(&self, piece: &Piece) -> bool {
         piece.facing == Facing::Back
             && match self {
                 BackCull::None => false,
@@ -79,7 +79,7 @@ impl<'a> BackCull<'a> {
 /// The screen rectangles of the caps that are not strictly back-facing, padded for the
 /// rounding of the projection, binned in a uniform grid.
 #[derive(Debug, Clone)]
-pub struct CapWindows {
+pub(crate) struct CapWindows {
     /// Union of the windows.
     frame: Rect,
     /// The grid's cells over the frame.
@@ -94,7 +94,7 @@ impl CapWindows {
     /// The windows of `caps` (prototype coordinates) placed by `leaf` in `camera`'s view;
     /// None when a cap corner is behind the near plane (perspective) or not finite: then the
     /// eye may be inside the capped solid's hull and nothing is culled.
-    pub fn new(caps: &[[P3; 3]], leaf: &Leaf, camera: &Camera) -> Option<CapWindows> {
+    pub(crate) fn new(caps: &[[P3; 3]], leaf: &Leaf, camera: &Camera) -> Option<CapWindows> {
         let mirrors = leaf.mirrors();
         let persp = camera.projection == Projection::Perspective;
         let mut rects = Vec::new();
@@ -159,7 +159,7 @@ impl CapWindows {
     }
 
     /// True when `r` touches some window (closed test).
-    pub fn touches(&self, r: &Rect) -> bool {
+    pub(crate) fn touches(&self, r: &Rect) -> bool {
         if !self.frame.overlaps_closed(r) {
             return false;
         }
@@ -173,14 +173,10 @@ impl CapWindows {
         })
     }
 
+    #[cfg(test)]
     /// Number of windows.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.rects.len()
-    }
-
-    /// True when no cap faces the viewer: every back face may be culled.
-    pub fn is_empty(&self) -> bool {
-        self.rects.is_empty()
     }
 }
 

@@ -4,7 +4,7 @@ use crate::error::{Error, Result};
 use crate::geom::{M4, P3, V3};
 use crate::scene::{CameraSpec, Scene};
 
-pub use crate::scene::DEFAULT_FOV_DEG;
+pub(crate) use crate::scene::DEFAULT_FOV_DEG;
 
 /// What a caller asks of the camera (the command line's `--dir`, `--eye`, `--target`,
 /// `--fov`, `--ortho`, `--up`); what it leaves unset comes from the scene's camera block, then
@@ -17,7 +17,7 @@ pub struct CameraRequest {
     pub eye: Option<P3>,
     /// With `eye`: the point looked at (default: the centre of the scene's CBOX).
     pub target: Option<P3>,
-    /// Vertical field of view in degrees, for `eye` (default [`DEFAULT_FOV_DEG`]) or alone
+    /// Vertical field of view in degrees, for `eye` (default 45) or alone
     /// for the scene's perspective camera.
     pub fov_deg: Option<f64>,
     /// Orthographic along `target - eye` instead of perspective: with `eye`, or alone for
@@ -154,7 +154,7 @@ impl Camera {
     }
 
     /// The camera a scene file states (perspective: near plane from the eye-target distance).
-    pub fn from_spec(spec: &CameraSpec) -> Result<Camera> {
+    pub(crate) fn from_spec(spec: &CameraSpec) -> Result<Camera> {
         match *spec {
             CameraSpec::Orthographic { dir, up } => Camera::orthographic(dir, up),
             CameraSpec::Perspective {

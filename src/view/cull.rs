@@ -29,7 +29,7 @@ const MAX_TESTS_PER_LEVEL: usize = 64;
 
 /// An object found HIDDEN as a whole, with its place in the global face order.
 #[derive(Debug, Clone, Copy)]
-pub struct HiddenObject<'a> {
+pub(crate) struct HiddenObject<'a> {
     /// The object (a shared prototype's part appears once per placement, told apart by
     /// `first_face`).
     pub object: &'a Object,
@@ -41,7 +41,7 @@ pub struct HiddenObject<'a> {
 
 /// The result of culling a scene for one camera.
 #[derive(Debug, Clone, Default)]
-pub struct Cull<'a> {
+pub(crate) struct Cull<'a> {
     /// The leaves outside every hidden subtree, in global face order.
     pub leaves: Vec<Leaf<'a>>,
     /// Hidden objects, in global face order (disjoint: a hidden object's parts are not listed).
@@ -59,7 +59,7 @@ pub struct Cull<'a> {
 
 impl<'a> Cull<'a> {
     /// No culling: every leaf of the scene.
-    pub fn none(scene: &'a Scene) -> Cull<'a> {
+    pub(crate) fn none(scene: &'a Scene) -> Cull<'a> {
         Cull {
             leaves: scene.leaves(),
             hidden: Vec::new(),
@@ -71,7 +71,7 @@ impl<'a> Cull<'a> {
     }
 
     /// Culls `scene` for `camera` with the inboxes the prepare stage computed.
-    pub fn new(scene: &'a Scene, camera: &Camera) -> Cull<'a> {
+    pub(crate) fn new(scene: &'a Scene, camera: &Camera) -> Cull<'a> {
         let mut w = Walker {
             camera,
             levels: Vec::new(),
@@ -84,7 +84,7 @@ impl<'a> Cull<'a> {
     }
 
     /// Faces in hidden subtrees and hidden components.
-    pub fn hidden_faces(&self) -> u64 {
+    pub(crate) fn hidden_faces(&self) -> u64 {
         self.hidden.iter().map(|h| h.face_count as u64).sum::<u64>()
             + self
                 .hidden_parts
@@ -94,7 +94,7 @@ impl<'a> Cull<'a> {
     }
 
     /// The hidden faces (local indices, ascending) of leaf `k`.
-    pub fn hidden_in_leaf(&self, k: usize) -> &[u32] {
+    pub(crate) fn hidden_in_leaf(&self, k: usize) -> &[u32] {
         self.hidden_parts.get(k).map_or(&[], Vec::as_slice)
     }
 }

@@ -8,12 +8,12 @@ use super::camera::{Camera, Projection};
 use super::screen::ScreenFaces;
 
 /// Largest screen coordinate accepted: products of two (areas) stay far from overflow.
-pub const SCREEN_LIMIT: f64 = 1e30;
+pub(crate) const SCREEN_LIMIT: f64 = 1e30;
 
 /// An error naming `camera` when a point projected by it is not finite or beyond
 /// [`SCREEN_LIMIT`] (world coordinates are at most 1e12, so only a narrow perspective view
 /// gets there).
-pub fn check_screen(screen: &ScreenFaces, camera: &Camera) -> Result<()> {
+pub(crate) fn check_screen(screen: &ScreenFaces, camera: &Camera) -> Result<()> {
     let mut worst = 0.0f64;
     // The points corners name (a vertex behind the near plane has a point no corner names).
     for p in screen.corner_at.iter().map(|&i| &screen.points[i as usize]) {

@@ -13,7 +13,7 @@ const MAX_ASPECT: f64 = 1.6;
 
 /// The framed part of the screen plane.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Frame {
+pub(crate) struct Frame {
     /// Framed rectangle, margin included.
     pub rect: Rect,
     /// Size of the drawing (its longer side without the margin).
@@ -26,7 +26,7 @@ impl Frame {
     /// The frame of a drawing whose screen bounds are `b`: limited, for a perspective
     /// camera, to its field of view, then given a 5% margin. An empty drawing gets the
     /// unit square.
-    pub fn of(camera: &Camera, b: Rect) -> Frame {
+    pub(crate) fn of(camera: &Camera, b: Rect) -> Frame {
         let b = field_of_view(camera, b);
         if b.is_empty() {
             let unit_square = Rect::new(0.0, 0.0, 1.0, 1.0);
@@ -46,7 +46,7 @@ impl Frame {
     }
 
     /// Pixels per screen unit of a picture `size` pixels along its longer side.
-    pub fn pixels_per_unit(&self, size: u32) -> f64 {
+    pub(crate) fn pixels_per_unit(&self, size: u32) -> f64 {
         f64::from(size.max(1)) / self.rect.longer_side()
     }
 }

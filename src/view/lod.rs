@@ -72,7 +72,7 @@ pub struct LodStats {
 }
 
 /// The scene with every object under `opts.px` pixels replaced by its tribox substitute.
-pub fn substitute(scene: &Scene, camera: &Camera, opts: &LodOptions) -> (Scene, LodStats) {
+pub(crate) fn substitute(scene: &Scene, camera: &Camera, opts: &LodOptions) -> (Scene, LodStats) {
     let ppu = scene_pixels_per_unit(scene, camera, opts.size);
     let mut s = Substituter {
         camera,
@@ -109,7 +109,7 @@ pub fn substitute(scene: &Scene, camera: &Camera, opts: &LodOptions) -> (Scene, 
 }
 
 /// Pixels per screen unit for the whole scene's projection.
-pub fn scene_pixels_per_unit(scene: &Scene, camera: &Camera, size: u32) -> f64 {
+pub(crate) fn scene_pixels_per_unit(scene: &Scene, camera: &Camera, size: u32) -> f64 {
     let mut pts = Vec::new();
     for leaf in scene.leaves() {
         for v in &leaf.mesh.vertices {
@@ -254,10 +254,10 @@ impl Substituter<'_> {
 }
 
 /// Most triboxes in a component-aware substitute.
-pub const MAX_COMPONENT_TRIBOXES: usize = 8;
+pub(crate) const MAX_COMPONENT_TRIBOXES: usize = 8;
 /// A component-aware substitute is used when its triboxes' volumes add up to at most this
 /// share of the single tribox's volume.
-pub const COMPONENT_GAIN: f64 = 0.8;
+pub(crate) const COMPONENT_GAIN: f64 = 0.8;
 
 /// Component-aware substitute of a mesh with an object tree (paper 002): the triboxes of a
 /// cut through the upper BV-tree (the components and their merges), grown from the root by

@@ -9,26 +9,25 @@
 //! - [`frame`]: the part of the screen plane a picture shows.
 //! - [`mod@turntable`]: cameras carried round the scene, and one frame for all of them.
 
-pub mod backfaces;
-pub mod camera;
-pub mod cull;
-pub mod finite;
-pub mod frame;
-pub mod lod;
-pub mod piece_id;
-pub mod ring_index;
-pub mod screen;
-pub mod tree;
-pub mod turntable;
+pub(crate) mod backfaces;
+pub(crate) mod camera;
+pub(crate) mod cull;
+pub(crate) mod finite;
+pub(crate) mod frame;
+pub(crate) mod lod;
+pub(crate) mod piece_id;
+pub(crate) mod ring_index;
+pub(crate) mod screen;
+pub(crate) mod tree;
+pub(crate) mod turntable;
 
-pub use camera::{Camera, CameraRequest, Projection};
-pub use cull::Cull;
-pub use frame::Frame;
-pub use lod::{substitute, LodOptions, LodStats};
-pub use piece_id::PieceId;
-pub use screen::{Facing, Piece, ScreenFaces};
-pub use tree::{ObjectNode, ViewTree};
-pub use turntable::{turntable, turntable_frame};
+pub(crate) use camera::{Camera, Projection};
+pub(crate) use cull::Cull;
+pub(crate) use frame::Frame;
+pub(crate) use lod::{substitute, LodOptions, LodStats};
+pub(crate) use piece_id::PieceId;
+pub(crate) use screen::{Facing, ScreenFaces};
+pub(crate) use tree::ViewTree;
 
 use crate::progress::{Phase, Progress, Stage};
 use crate::scene::{FaceId, Scene};
@@ -39,9 +38,9 @@ pub struct View {
     /// The camera.
     pub camera: Camera,
     /// Faces in screen space, as planar pieces.
-    pub screen: ScreenFaces,
+    pub(crate) screen: ScreenFaces,
     /// The object tree with screen bounds.
-    pub tree: ViewTree,
+    pub(crate) tree: ViewTree,
     /// What culling hid before projection: subtrees, their faces, and objects tested.
     pub culled: CullSummary,
 }
@@ -123,7 +122,12 @@ impl View {
     ///
     /// As the view stage's phases in `progress`: [`Phase::Project`] counting the kept leaves'
     /// faces projected, then [`Phase::Tree`] every face placed in the view tree.
-    pub fn from_cull(scene: &Scene, camera: Camera, cull: &Cull, progress: &Progress) -> View {
+    pub(crate) fn from_cull(
+        scene: &Scene,
+        camera: Camera,
+        cull: &Cull,
+        progress: &Progress,
+    ) -> View {
         let kept = cull.leaves.iter().map(|l| l.mesh.faces.len()).sum();
         progress.enter_phase(Stage::View, Phase::Project, kept);
         let screen = ScreenFaces::from_cull(cull, &camera, progress.count());

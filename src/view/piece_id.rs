@@ -7,12 +7,12 @@ use std::fmt;
 /// face are consecutive and pieces follow global face order, so comparing two pieces'
 /// ids compares their faces' order (the coplanar tie rule).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct PieceId(pub u32);
+pub(crate) struct PieceId(pub u32);
 
 impl PieceId {
     /// The index as a `usize`, for indexing per-piece arrays.
     #[inline]
-    pub fn index(self) -> usize {
+    pub(crate) fn index(self) -> usize {
         self.0 as usize
     }
 }

@@ -20,19 +20,19 @@ use crate::geom::Rect;
 const RUN: usize = 16;
 
 /// Rings longer than this get an index.
-pub const INDEXED_ABOVE: usize = 64;
+pub(crate) const INDEXED_ABOVE: usize = 64;
 
 /// A binary tree of boxes over runs of a ring's points (level 0: runs of 16 points;
 /// each level above: pairs of boxes merged).
 #[derive(Debug, Clone, PartialEq)]
-pub struct RingIndex {
+pub(crate) struct RingIndex {
     len: usize,
     levels: Vec<Vec<Rect>>,
 }
 
 impl RingIndex {
     /// The index of a ring of screen points (x, y, depth; depth is ignored).
-    pub fn new(pts: &[[f64; 3]]) -> RingIndex {
+    pub(crate) fn new(pts: &[[f64; 3]]) -> RingIndex {
         let mut level: Vec<Rect> = pts
             .chunks(RUN)
             .map(|run| {
@@ -56,19 +56,15 @@ impl RingIndex {
         }
     }
 
+    #[cfg(test)]
     /// Number of points of the indexed ring.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.len
-    }
-
-    /// True for an index of no points.
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
     }
 
     /// Indices (ascending) of the points of the cut ring for `window`: runs whose box is
     /// strictly outside the window keep their first and last point, the others all theirs.
-    pub fn cut(&self, window: &Rect, out: &mut Vec<u32>) {
+    pub(crate) fn cut(&self, window: &Rect, out: &mut Vec<u32>) {
         out.clear();
         let top = self.levels.len() - 1;
         for k in 0..self.levels[top].len() {

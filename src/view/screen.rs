@@ -7,7 +7,9 @@ use crate::count::Count;
 use crate::geom::convexity::{is_convex_ccw, Strictness};
 use crate::geom::poly2::{ring_area, Pt2};
 use crate::geom::{newell, orient2d, orient3d_refs, Corners, Rect, P3};
-use crate::scene::{FaceId, Leaf, Scene};
+#[cfg(test)]
+use crate::scene::Scene;
+use crate::scene::{FaceId, Leaf};
 
 use super::backfaces::BackCull;
 use super::camera::{Camera, Projection};
@@ -17,7 +19,7 @@ use super::ring_index::{RingIndex, INDEXED_ABOVE};
 
 /// How a projected face presents itself to the viewer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Facing {
+pub(crate) enum Facing {
     /// Counter-clockwise in projection: its front (outer) side faces the viewer.
     Front,
     /// Clockwise in projection.
@@ -31,7 +33,7 @@ pub enum Facing {
 /// One planar piece of a face in screen space (a planar face is one piece; a warped face is
 /// split into planar triangles here, so that every piece has a plane).
 #[derive(Debug, Clone, Copy)]
-pub struct Piece {
+pub(crate) struct Piece {
     /// The face this piece belongs to.
     pub face: FaceId,
     /// First corner in [`ScreenFaces::corner_at`].
@@ -61,14 +63,14 @@ pub struct Piece {
 
 impl Piece {
     /// True when this piece can hide anything (not edge-on, not clipped away, not culled).
-    pub fn is_occluder(&self) -> bool {
+    pub(crate) fn is_occluder(&self) -> bool {
         matches!(self.facing, Facing::Front | Facing::Back) && !self.culled
     }
 }
 
 /// Leaf object info kept for output.
 #[derive(Debug, Clone)]
-pub struct LeafInfo {
+pub(crate) struct LeafInfo {
     /// Object path.
     pub path: String,
     /// Its first face.
@@ -81,14 +83,14 @@ pub struct LeafInfo {
 
 impl LeafInfo {
     /// The leaf's faces.
-    pub fn faces(&self) -> Range<FaceId> {
+    pub(crate) fn faces(&self) -> Range<FaceId> {
         self.first_face..self.first_face.offset(self.face_count)
     }
 }
 
 /// All faces in screen space, as planar pieces in global face order.
 #[derive(Debug, Clone, Default)]
-pub struct ScreenFaces {
+pub(crate) struct ScreenFaces {
     /// The planar pieces; pieces of one face are consecutive, faces in global order.
     pub pieces: Vec<Piece>,
     /// Where each face's pieces start: face `f`'s pieces are
@@ -116,15 +118,16 @@ pub struct ScreenFaces {
 }
 
 impl ScreenFaces {
+    #[cfg(test)]
     /// Projects every face of `scene` with `camera`.
-    pub fn build(scene: &Scene, camera: &Camera) -> ScreenFaces {
+    pub(crate) fn build(scene: &Scene, camera: &Camera) -> ScreenFaces {
         Self::from_cull(&Cull::none(scene), camera, Count::NONE)
     }
 
     /// Projects the faces of the leaves a cull kept; faces of hidden subtrees get no pieces.
     ///
     /// The faces of the kept leaves go to `done` as they are projected, once per chunk.
-    pub fn from_cull(cull: &Cull, camera: &Camera, done: Count) -> ScreenFaces {
+    pub(crate) fn from_cull(cull: &Cull, camera: &Camera, done: Count) -> ScreenFaces {
         let mut out = ScreenFaces {
             det_sign: camera.matrix.determinant().signum(),
             camera: Some(*camera),
@@ -156,28 +159,28 @@ impl ScreenFaces {
     }
 
     /// Number of faces (not pieces).
-    pub fn face_count(&self) -> usize {
+    pub(crate) fn face_count(&self) -> usize {
         self.face_starts.len() - 1
     }
 
     /// The piece `p`.
     #[inline]
-    pub fn piece(&self, p: PieceId) -> &Piece {
+    pub(crate) fn piece(&self, p: PieceId) -> &Piece {
         &self.pieces[p.index()]
     }
 
     /// Every piece id, in order.
-    pub fn piece_ids(&self) -> impl ExactSizeIterator<Item = PieceId> + Clone {
+    pub(crate) fn piece_ids(&self) -> impl ExactSizeIterator<Item = PieceId> + Clone {
         (0..self.pieces.len() as u32).map(PieceId)
     }
 
     /// Indices into [`ScreenFaces::pieces`] of the pieces of the faces in `faces`.
-    pub fn piece_span(&self, faces: Range<FaceId>) -> Range<usize> {
+    pub(crate) fn piece_span(&self, faces: Range<FaceId>) -> Range<usize> {
         self.face_starts[faces.start.index()] as usize..self.face_starts[faces.end.index()] as usize
     }
 
     /// The pieces of the faces in `faces`, in order.
-    pub fn pieces_in(
+    pub(crate) fn pieces_in(
         &self,
         faces: Range<FaceId>,
     ) -> impl ExactSizeIterator<Item = PieceId> + Clone {
@@ -186,14 +189,14 @@ impl ScreenFaces {
     }
 
     /// The pieces of face `f`.
-    pub fn pieces_of(&self, f: FaceId) -> impl ExactSizeIterator<Item = PieceId> + Clone {
+    pub(crate) fn pieces_of(&self, f: FaceId) -> impl ExactSizeIterator<Item = PieceId> + Clone {
         self.pieces_in(f..f.offset(1))
     }
 
     /// How face `f` presents itself: its single piece's facing, or for a warped face split
     /// into pieces, the sign of the pieces' summed projected area (clipped or edge-on when no
     /// piece shows area).
-    pub fn face_facing(&self, f: FaceId) -> Facing {
+    pub(crate) fn face_facing(&self, f: FaceId) -> Facing {
         let pieces = self.pieces_of(f);
         if pieces.len() == 1 {
             return self.piece(PieceId(self.face_starts[f.index()])).facing;
@@ -222,42 +225,42 @@ impl ScreenFaces {
 
     /// True when some piece of face `f` can hide something (projected, not culled, not
     /// edge-on).
-    pub fn face_is_occluder(&self, f: FaceId) -> bool {
+    pub(crate) fn face_is_occluder(&self, f: FaceId) -> bool {
         self.pieces_of(f).any(|p| self.piece(p).is_occluder())
     }
 
     /// The world points of all pieces of face `f` (the face's own corners when it is one piece).
-    pub fn face_world_pts(&self, f: FaceId) -> Vec<P3> {
+    pub(crate) fn face_world_pts(&self, f: FaceId) -> Vec<P3> {
         self.pieces_of(f)
             .flat_map(|p| self.world_pts(p).iter().copied())
             .collect()
     }
 
     /// The leaf object of face `f` (which must have pieces).
-    pub fn leaf_of_face(&self, f: FaceId) -> &LeafInfo {
+    pub(crate) fn leaf_of_face(&self, f: FaceId) -> &LeafInfo {
         &self.leaves[self.leaf_index_of_face(f) as usize]
     }
 
     /// The index in [`ScreenFaces::leaves`] of face `f`'s leaf (`f` must have pieces).
-    pub fn leaf_index_of_face(&self, f: FaceId) -> u32 {
+    pub(crate) fn leaf_index_of_face(&self, f: FaceId) -> u32 {
         self.piece(PieceId(self.face_starts[f.index()])).leaf
     }
 
     /// The corners of piece `p`: their indices in `world` and `points`.
     #[inline]
-    pub fn corners(&self, p: PieceId) -> &[u32] {
+    pub(crate) fn corners(&self, p: PieceId) -> &[u32] {
         let pc = self.piece(p);
         &self.corner_at[pc.start as usize..(pc.start + pc.len) as usize]
     }
 
     /// The projected points (x, y, depth) of piece `p`.
     #[inline]
-    pub fn pts(&self, p: PieceId) -> Corners<'_, [f64; 3]> {
+    pub(crate) fn pts(&self, p: PieceId) -> Corners<'_, [f64; 3]> {
         Corners::new(self.corners(p), &self.points)
     }
 
     /// The projected ring of piece `p` in (x, y), counter-clockwise.
-    pub fn ring_ccw(&self, p: PieceId) -> Vec<Pt2> {
+    pub(crate) fn ring_ccw(&self, p: PieceId) -> Vec<Pt2> {
         let mut r: Vec<Pt2> = self.pts(p).iter().map(|q| [q[0], q[1]]).collect();
         if self.piece(p).facing == Facing::Back {
             r.reverse();
@@ -267,12 +270,12 @@ impl ScreenFaces {
 
     /// The world points of piece `p`.
     #[inline]
-    pub fn world_pts(&self, p: PieceId) -> Corners<'_> {
+    pub(crate) fn world_pts(&self, p: PieceId) -> Corners<'_> {
         Corners::new(self.corners(p), &self.world)
     }
 
     /// The three world reference points of piece `p`'s plane.
-    pub fn plane_refs(&self, p: PieceId) -> [P3; 3] {
+    pub(crate) fn plane_refs(&self, p: PieceId) -> [P3; 3] {
         let w = self.world_pts(p);
         self.piece(p).refs.map(|k| w[k as usize])
     }
@@ -280,7 +283,7 @@ impl ScreenFaces {
     /// The factor that makes `orient3d` over piece `p`'s [`ScreenFaces::plane_refs`]
     /// positive for points in front of its plane (toward the viewer): from the turn of its
     /// projected reference points and the camera's orientation sign (0 when edge-on).
-    pub fn front_sign(&self, p: PieceId) -> f64 {
+    pub(crate) fn front_sign(&self, p: PieceId) -> f64 {
         -f64::from(self.piece(p).ref_turn) * self.det_sign
     }
 
@@ -380,7 +383,7 @@ impl ScreenFaces {
     }
 
     /// The run boxes of piece `p`, when it has more than [`INDEXED_ABOVE`] points.
-    pub fn ring_index(&self, p: PieceId) -> Option<&RingIndex> {
+    pub(crate) fn ring_index(&self, p: PieceId) -> Option<&RingIndex> {
         if self.piece(p).len as usize <= INDEXED_ABOVE {
             return None;
         }
@@ -394,7 +397,7 @@ impl ScreenFaces {
 /// orient3d = 0 against three of them), else the triangles of an ear-clipping triangulation.
 /// Exact planarity is what makes "G in front of F's plane" and "F behind G's plane" the same
 /// question, so VTPs and VISP agree by construction; axis-aligned and primitive faces stay whole.
-pub fn planar_pieces(idx: &[u32], world: &[P3]) -> Vec<Vec<u32>> {
+pub(crate) fn planar_pieces(idx: &[u32], world: &[P3]) -> Vec<Vec<u32>> {
     if idx.len() > 3 {
         let pts: Vec<P3> = idx.iter().map(|&k| world[k as usize]).collect();
         if !exactly_planar(&pts) {

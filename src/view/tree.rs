@@ -29,7 +29,7 @@ const MAX_CHILDREN: usize = 8;
 
 /// What a node holds.
 #[derive(Debug, Clone)]
-pub enum NodeKind {
+pub(crate) enum NodeKind {
     /// Child nodes: a range of [`ViewTree::children`].
     Inner(Range<u32>),
     /// Pieces: a range of [`ViewTree::pieces`].
@@ -39,7 +39,7 @@ pub enum NodeKind {
 /// What the walk tests first of a candidate occluder piece: its screen rectangle, nearest
 /// depth and face.
 #[derive(Debug, Clone, Copy)]
-pub struct PieceBound {
+pub(crate) struct PieceBound {
     /// Screen rectangle.
     pub rect: Rect,
     /// Greatest screen depth.
@@ -60,7 +60,7 @@ impl PieceBound {
 
 /// A node: a subtree with its screen bounds (the CBOX in the standard view).
 #[derive(Debug, Clone)]
-pub struct Node {
+pub(crate) struct Node {
     /// Screen rectangle of the occluding pieces below.
     pub rect: Rect,
     /// Least depth below.
@@ -75,20 +75,18 @@ pub struct Node {
 
 /// An INBOX seen from the camera: the convex hull of its projected corners and its depths.
 #[derive(Debug, Clone)]
-pub struct ScreenInbox {
+pub(crate) struct ScreenInbox {
     /// Convex hull, counter-clockwise.
     pub hull: Vec<Pt2>,
     /// Bounding rectangle of the hull.
     pub rect: Rect,
     /// Depth of the farthest corner.
     pub zmin: f64,
-    /// Node of the object owning the box.
-    pub node: u32,
 }
 
 /// A named object of the scene, as seen in this view.
 #[derive(Debug, Clone)]
-pub struct ObjectNode {
+pub(crate) struct ObjectNode {
     /// Path from the top level.
     pub path: String,
     /// Its node.
@@ -99,7 +97,7 @@ pub struct ObjectNode {
 
 /// The whole view tree.
 #[derive(Debug, Clone, Default)]
-pub struct ViewTree {
+pub(crate) struct ViewTree {
     /// All nodes; the root is the last.
     pub nodes: Vec<Node>,
     /// Child lists, each sorted front to back (greatest `zmax` first).
@@ -117,7 +115,7 @@ pub struct ViewTree {
 
 impl ViewTree {
     /// The root node.
-    pub fn root(&self) -> u32 {
+    pub(crate) fn root(&self) -> u32 {
         self.nodes.len() as u32 - 1
     }
 
@@ -126,7 +124,7 @@ impl ViewTree {
     ///
     /// The faces of each mesh go to `done` once its pieces are placed (every face of the
     /// scene in the end; hidden objects' faces at once).
-    pub fn build(
+    pub(crate) fn build(
         scene: &Scene,
         camera: &Camera,
         sf: &ScreenFaces,
@@ -146,7 +144,7 @@ impl ViewTree {
     }
 
     /// The object with this path.
-    pub fn object(&self, path: &str) -> Option<&ObjectNode> {
+    pub(crate) fn object(&self, path: &str) -> Option<&ObjectNode> {
         self.objects.iter().find(|o| o.path == path)
     }
 }
@@ -264,12 +262,7 @@ impl Builder<'_> {
         }
         let rect = Rect::of_points(hull.iter());
         let zmin = s.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
-        self.tree.inboxes.push(ScreenInbox {
-            hull,
-            rect,
-            zmin,
-            node,
-        });
+        self.tree.inboxes.push(ScreenInbox { hull, rect, zmin });
         self.tree.nodes[node as usize].inbox = Some(self.tree.inboxes.len() as u32 - 1);
     }
 

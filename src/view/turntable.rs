@@ -26,7 +26,7 @@ fn axis(scene: &Scene, up: V3) -> Result<(P3, V3)> {
 
 /// `n` cameras a full turn apart about the vertical axis through the scene's centre, the
 /// first being `base`.
-pub fn turntable(scene: &Scene, base: &Camera, up: V3, n: usize) -> Result<Vec<Camera>> {
+pub(crate) fn turntable(scene: &Scene, base: &Camera, up: V3, n: usize) -> Result<Vec<Camera>> {
     if n == 0 {
         return Err(Error::Usage("a turntable needs at least one view".into()));
     }
@@ -59,7 +59,7 @@ fn turned(base: &Camera, c: P3, up: V3, theta: f64) -> Camera {
 
 /// The screen rectangle that holds the scene in every view of a turntable about `up` from
 /// `base`; None when the bounding cylinder is not wholly in front of a perspective eye.
-pub fn turntable_frame(scene: &Scene, base: &Camera, up: V3) -> Option<Rect> {
+pub(crate) fn turntable_frame(scene: &Scene, base: &Camera, up: V3) -> Option<Rect> {
     let (c, up) = axis(scene, up).ok()?;
     let b = scene.cbox();
     if b.lo.x > b.hi.x || b.lo.x.is_nan() {

@@ -28,7 +28,7 @@ type Seg = (Pt2, Pt2, i32, u32);
 
 /// Reusable buffers of the cover test.
 #[derive(Debug, Default)]
-pub struct CoverScratch {
+pub(crate) struct CoverScratch {
     segs: Vec<Seg>,
     /// Per group of equal segments (in `segs` order): its first segment.
     group_start: Vec<u32>,
@@ -55,7 +55,7 @@ pub struct CoverScratch {
 /// region of a broken group is left out. The regions left out are the least set closed under
 /// that rule (the rule only grows with the set), so they do not depend on the regions'
 /// order; and every group that meets F keeps all its regions (net zero) or none.
-pub fn regions_cover<'a>(
+pub(crate) fn regions_cover<'a>(
     regions: impl Iterator<Item = &'a [Pt2]> + Clone,
     f: &[Pt2],
     b: &mut CoverScratch,

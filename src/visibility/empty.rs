@@ -8,7 +8,7 @@ use super::pass::Visibility;
 
 /// The reason nothing (or nothing in the camera's field of view) is visible, if so; `faces`
 /// is the scene's face count.
-pub fn why_empty(faces: usize, view: &View, vis: &Visibility) -> Option<String> {
+pub(crate) fn why_empty(faces: usize, view: &View, vis: &Visibility) -> Option<String> {
     if faces == 0 {
         return Some(
             "the scene has no faces: every face was dropped on loading (see the warnings above)"

@@ -17,7 +17,7 @@ pub enum Inclusion {
 /// Steps as in the paper: inside INBOX, IN; outside CBOX, OUT; a leaf, the generalized
 /// winding number w of its faces around P (IN when |w| > 1/2: exact in sign away from the
 /// surface, and for open meshes the natural extension); subobjects, IN if any is.
-pub fn include(a: &Object, xf: &M4, p: &P3) -> Inclusion {
+pub(crate) fn include(a: &Object, xf: &M4, p: &P3) -> Inclusion {
     let local = match xf.try_inverse() {
         Some(inv) => inv.transform_point(p),
         None => return Inclusion::Out,

@@ -1,20 +1,20 @@
 //! The visibility stage: VISFAC, VISFAC2, VISOBJ, VISP and INCLUDE (paper 001, ALGORITHMS),
 //! and the whole-scene pass that gives every face its visibility texture polygon (VTP).
 
-pub mod cover;
-pub mod empty;
-pub mod include;
-pub mod occlusion;
-pub mod pass;
-pub mod stats;
-pub mod visfac;
-pub mod visobj;
-pub mod visp;
-pub mod vtp_texture;
+pub(crate) mod cover;
+pub(crate) mod empty;
+pub(crate) mod include;
+pub(crate) mod occlusion;
+pub(crate) mod pass;
+pub(crate) mod stats;
+pub(crate) mod visfac;
+pub(crate) mod visobj;
+pub(crate) mod visp;
+#[cfg(test)]
+pub(crate) mod vtp_texture;
 
-pub use include::{include, Inclusion};
-pub use pass::{solve, FaceVisibility, PassOptions, Visibility};
-pub use stats::Counters;
-pub use visfac::{visfac, Verdict, Vtp};
-pub use visobj::visobj;
-pub use visp::{visp, PointVisibility};
+pub(crate) use include::include;
+pub(crate) use pass::{solve, PassOptions, Visibility};
+pub(crate) use stats::Counters;
+pub(crate) use visobj::visobj;
+pub(crate) use visp::visp;

@@ -10,7 +10,7 @@ use crate::view::{Facing, PieceId, Projection, ScreenFaces};
 
 /// The face being solved, prepared once for all its occluders.
 #[derive(Debug, Clone)]
-pub struct Target {
+pub(crate) struct Target {
     /// The piece (piece order follows global face order: it decides coplanar ties, the
     /// earlier face is in front).
     pub piece: PieceId,
@@ -34,7 +34,7 @@ pub struct Target {
 
 impl Target {
     /// Prepares piece `p` (which must not be edge-on or clipped).
-    pub fn new(sf: &ScreenFaces, p: PieceId) -> Target {
+    pub(crate) fn new(sf: &ScreenFaces, p: PieceId) -> Target {
         let pc = sf.piece(p);
         Target {
             piece: p,
@@ -51,14 +51,14 @@ impl Target {
 
     /// Exact side of world point `p`: > 0 in front of F's plane (toward the viewer), < 0 behind, 0 on it.
     #[inline]
-    pub fn side(&self, p: &P3) -> f64 {
+    pub(crate) fn side(&self, p: &P3) -> f64 {
         orient3d_refs(&self.refs, p) * self.front_sign
     }
 }
 
 /// What G does to F.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Occlusion {
+pub(crate) enum Occlusion {
     /// G hides nothing of F (behind it, coplanar and later, or no area in front).
     Nothing,
     /// G hides F within this projected region (counter-clockwise; may extend beyond F).
@@ -69,7 +69,7 @@ pub enum Occlusion {
 /// piece's screen and world points `pts` and `world`: all of them (`sf.pts(g)`,
 /// `sf.world_pts(g)`), or a cut of them that is the same inside F's rectangle
 /// ([`crate::view::ring_index`]).
-pub fn occluder_region(
+pub(crate) fn occluder_region(
     sf: &ScreenFaces,
     g: PieceId,
     pts: Corners<[f64; 3]>,
@@ -139,7 +139,7 @@ fn front_part(sf: &ScreenFaces, pts: Corners<[f64; 3]>, world: Corners, sides: &
 
 /// True when two counter-clockwise convex rings have disjoint interiors: some edge of one
 /// has the whole other ring on its outer closed side (exact).
-pub fn separated_convex(a: &[Pt2], b: &[Pt2]) -> bool {
+pub(crate) fn separated_convex(a: &[Pt2], b: &[Pt2]) -> bool {
     edge_separates(a, b) || edge_separates(b, a)
 }
 

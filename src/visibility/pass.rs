@@ -18,7 +18,7 @@ use super::visfac::{visfac, Scratch, Vtp};
 
 /// Options of the pass.
 #[derive(Debug, Clone, Copy)]
-pub struct PassOptions {
+pub(crate) struct PassOptions {
     /// Use INBOXes (VISFAC2's complete-hide test and hidden-subtree pruning).
     pub use_inbox: bool,
 }
@@ -120,7 +120,7 @@ const SEQUENTIAL_BELOW: usize = 64;
 ///
 /// Each of the `view.screen.pieces.len()` pieces goes to `done` as it is finished (one
 /// add per piece: a piece is a whole visibility solve; the result is the same).
-pub fn solve(view: &View, opts: PassOptions, done: Count) -> Visibility {
+pub(crate) fn solve(view: &View, opts: PassOptions, done: Count) -> Visibility {
     let mut counters = Counters {
         subtrees_tested: view.culled.tested,
         subtrees_hidden: view.culled.subtrees,

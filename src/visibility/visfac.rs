@@ -32,7 +32,7 @@ pub enum Verdict {
 
 /// A face's visibility texture polygon, in screen space.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Vtp {
+pub(crate) enum Vtp {
     /// Nothing hides the face: the VTP is the face itself.
     Whole,
     /// Nothing of the face is visible.
@@ -43,7 +43,7 @@ pub enum Vtp {
 
 /// Reusable buffers of one worker.
 #[derive(Debug, Default)]
-pub struct Scratch {
+pub(crate) struct Scratch {
     stack: Vec<u32>,
     /// Occluder regions with the piece each came from.
     occluders: Vec<(PieceId, Ring)>,
@@ -69,13 +69,19 @@ enum Walk {
 
 /// True when the INBOX (a solid box inside its object) hides all of F: F lies entirely
 /// behind the box's farthest corner, and inside its projected outline.
-pub fn inbox_hides(ib: &ScreenInbox, rect: &Rect, zmax: f64, ring: &[Pt2]) -> bool {
+pub(crate) fn inbox_hides(ib: &ScreenInbox, rect: &Rect, zmax: f64, ring: &[Pt2]) -> bool {
     zmax < ib.zmin && ib.rect.contains_rect(rect) && covers_convex(&ib.hull, ring)
 }
 
 /// VISFAC(A, F): the VTP of piece `f` against the subtree at node `a` (the whole scene when
 /// `a` is the root). `f` must be able to show something (not edge-on, clipped or culled).
-pub fn visfac(view: &View, a: u32, f: PieceId, scratch: &mut Scratch, stats: &mut Counters) -> Vtp {
+pub(crate) fn visfac(
+    view: &View,
+    a: u32,
+    f: PieceId,
+    scratch: &mut Scratch,
+    stats: &mut Counters,
+) -> Vtp {
     let target = Target::new(&view.screen, f);
     scratch.occluders.clear();
     stats.faces_walked += 1;

@@ -8,7 +8,7 @@ use super::visfac::{visfac, Scratch, Verdict, Vtp};
 
 /// VISOBJ(A, B) for the objects at `a` (a node) and with faces `b_faces` (a global id range).
 /// Faces of B seen edge-on show nothing and are left out; with no face left, VISIBLE.
-pub fn visobj(view: &View, a: u32, b_faces: std::ops::Range<FaceId>) -> Verdict {
+pub(crate) fn visobj(view: &View, a: u32, b_faces: std::ops::Range<FaceId>) -> Verdict {
     let mut scratch = Scratch::default();
     let mut stats = Counters::default();
     let (mut any_visible, mut any_hidden, mut any_mixed) = (false, false, false);

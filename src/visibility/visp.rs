@@ -21,7 +21,7 @@ pub enum PointVisibility {
 /// when P is strictly behind its plane and P's projection is strictly inside the face's.
 /// `on_face` names the face (global id) P lies on, so that coplanar faces earlier in global order hide it
 /// (DESIGN's coplanar rule). A point behind the near plane of a perspective camera is HIDDEN.
-pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<FaceId>) -> PointVisibility {
+pub(crate) fn visp(view: &View, a: u32, p: &P3, on_face: Option<FaceId>) -> PointVisibility {
     if !view.camera.in_front(p) {
         return PointVisibility::Hidden;
     }
@@ -59,7 +59,7 @@ pub fn visp(view: &View, a: u32, p: &P3, on_face: Option<FaceId>) -> PointVisibi
 }
 
 /// True when piece `g` hides world point `p` (screen point `q`).
-pub fn face_hides(view: &View, g: PieceId, p: &P3, q: Pt2, on_face: Option<FaceId>) -> bool {
+pub(crate) fn face_hides(view: &View, g: PieceId, p: &P3, q: Pt2, on_face: Option<FaceId>) -> bool {
     let sf = &view.screen;
     let piece = sf.piece(g);
     // A face never hides itself (nor do the planar pieces of a warped face hide each other).

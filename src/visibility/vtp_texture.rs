@@ -10,7 +10,7 @@ use super::Visibility;
 
 /// The world point of face `id`'s plane that projects to screen point (x, y): the line of
 /// points with that image meets the plane once (None when the face is edge-on).
-pub fn screen_to_face(view: &View, id: FaceId, xy: [f64; 2]) -> Option<P3> {
+pub(crate) fn screen_to_face(view: &View, id: FaceId, xy: [f64; 2]) -> Option<P3> {
     let pts = view.screen.face_world_pts(id);
     if pts.len() < 3 {
         return None;
@@ -29,14 +29,14 @@ pub fn screen_to_face(view: &View, id: FaceId, xy: [f64; 2]) -> Option<P3> {
 }
 
 /// The texture frame of face `id` (origin nearest the world origin, horizontal x axis).
-pub fn face_frame(view: &View, id: FaceId) -> Option<TextureFrame> {
+pub(crate) fn face_frame(view: &View, id: FaceId) -> Option<TextureFrame> {
     let pts = view.screen.face_world_pts(id);
     TextureFrame::of_plane(pts.first()?, &newell(&pts))
 }
 
 /// VTP(F) of face `id` in F's texture coordinates: every screen point of the visible region
 /// taken back to F's plane, then into the paper's local 2-D system of the face.
-pub fn vtp_in_texture(view: &View, vis: &Visibility, id: FaceId) -> Option<MultiPolygon> {
+pub(crate) fn vtp_in_texture(view: &View, vis: &Visibility, id: FaceId) -> Option<MultiPolygon> {
     let frame = face_frame(view, id)?;
     let map_ring = |r: &Vec<[f64; 2]>| -> Option<Vec<[f64; 2]>> {
         r.iter()

@@ -11,8 +11,9 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use kepler_hsr::lines::LineOptions;
+use kepler_hsr::RenderOptions;
 use kepler_hsr::{load_scene, render, Camera, CameraRequest, LoadOptions, Outputs};
-use kepler_hsr::{LineOptions, RenderOptions};
 use kepler_testkit::Rng;
 
 /// Faces above which a mutant is loaded and prepared but not rendered (a mutant that turns

@@ -6,14 +6,14 @@ use crate::geom::poly2::{MultiPolygon, Pt2, Side};
 use crate::geom::{orient2d, Rect};
 
 /// A closed parameter interval [t0, t1] along a segment a → b (point a + t (b - a)).
-pub type Interval = [f64; 2];
+pub(crate) type Interval = [f64; 2];
 
 /// Relative distance under which a point counts as on a region's boundary: the regions come
 /// from a fixed i64 grid that may move a boundary point by a few units in the last place.
 const BOUNDARY_EPS: f64 = 1e-12;
 
 /// Point at parameter `t` of the segment a → b (exactly a at 0 and b at 1).
-pub fn at(a: Pt2, b: Pt2, t: f64) -> Pt2 {
+pub(crate) fn at(a: Pt2, b: Pt2, t: f64) -> Pt2 {
     if t == 1.0 {
         return b;
     }
@@ -22,12 +22,12 @@ pub fn at(a: Pt2, b: Pt2, t: f64) -> Pt2 {
 
 /// The sub-intervals of [0, 1] where the segment a → b lies in the closed region `m`, sorted
 /// and disjoint (touching intervals merged). A zero-length segment gives nothing.
-pub fn intervals_in(a: Pt2, b: Pt2, m: &MultiPolygon) -> Vec<Interval> {
+pub(crate) fn intervals_in(a: Pt2, b: Pt2, m: &MultiPolygon) -> Vec<Interval> {
     intervals_in_region(a, b, &Region::new(m))
 }
 
 /// [`intervals_in`] for a region already indexed (many segments against one large region).
-pub fn intervals_in_region(a: Pt2, b: Pt2, region: &Region) -> Vec<Interval> {
+pub(crate) fn intervals_in_region(a: Pt2, b: Pt2, region: &Region) -> Vec<Interval> {
     if a == b || region.is_empty() {
         return Vec::new();
     }
@@ -106,7 +106,7 @@ fn push_merged(out: &mut Vec<Interval>, iv: Interval) {
 }
 
 /// Union of interval lists (each sorted and disjoint), sorted and merged.
-pub fn union(lists: &[Vec<Interval>]) -> Vec<Interval> {
+pub(crate) fn union(lists: &[Vec<Interval>]) -> Vec<Interval> {
     let mut all: Vec<Interval> = lists.iter().flatten().copied().collect();
     all.sort_by(|p, q| p[0].total_cmp(&q[0]));
     let mut out = Vec::with_capacity(all.len());
@@ -117,7 +117,7 @@ pub fn union(lists: &[Vec<Interval>]) -> Vec<Interval> {
 }
 
 /// The complement of sorted, disjoint intervals within [0, 1] (zero-length gaps dropped).
-pub fn complement(ivs: &[Interval]) -> Vec<Interval> {
+pub(crate) fn complement(ivs: &[Interval]) -> Vec<Interval> {
     let mut out = Vec::new();
     let mut t = 0.0;
     for iv in ivs {

@@ -103,7 +103,7 @@ impl EdgeOptions {
 
 /// One edge (or intersection segment) in world space with the faces beside it.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Edge {
+pub(crate) struct Edge {
     /// Leaf object the edge is drawn with.
     pub leaf: u32,
     /// World end points.
@@ -143,7 +143,12 @@ impl HalfEdge {
 ///
 /// The world faces whose edges are done go to `done`: each leaf's faces as its edges are
 /// found, grouped and classified.
-pub fn mesh_edges(world: &WorldFaces, view: &View, opts: &EdgeOptions, done: Count) -> Vec<Edge> {
+pub(crate) fn mesh_edges(
+    world: &WorldFaces,
+    view: &View,
+    opts: &EdgeOptions,
+    done: Count,
+) -> Vec<Edge> {
     let cos_crease = opts.crease_deg.to_radians().cos();
     let all = world.faces.len().max(1) as f64;
     let share = Share::new(done, world.faces.len());

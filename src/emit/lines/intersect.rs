@@ -9,7 +9,9 @@ use rayon::prelude::*;
 
 use crate::count::{Count, Share};
 use crate::geom::box_pairs::{filter_map_pairs, filter_map_pairs_of, overlap, Bounds3};
-use crate::geom::{newell, orient3d_refs, Corners, P3, V3};
+#[cfg(test)]
+use crate::geom::newell;
+use crate::geom::{orient3d_refs, Corners, P3, V3};
 use crate::scene::FaceId;
 
 use super::edges::{Edge, EdgeKind};
@@ -20,7 +22,7 @@ use super::world::{WorldFaces, NO_PIECE};
 ///
 /// The faces go to `done` as they are done: the faces that can cross nothing set aside
 /// first, then the search of the pairs left.
-pub fn intersection_edges(
+pub(crate) fn intersection_edges(
     world: &WorldFaces,
     keep: impl Fn(FaceId) -> bool + Sync,
     done: Count,
@@ -243,15 +245,17 @@ struct Side<'a> {
 }
 
 impl<'a> Side<'a> {
+    #[cfg(test)]
     fn new(pts: Corners<'a>, normal: &'a V3) -> Self {
         let refs = plane_refs(pts).map(|k| pts[k as usize]);
         Side { pts, normal, refs }
     }
 }
 
+#[cfg(test)]
 /// Segments of the intersection of the faces with corners `f` and `g` (empty unless they
 /// cross).
-pub fn cross(f: &[P3], g: &[P3]) -> Vec<[P3; 2]> {
+pub(crate) fn cross(f: &[P3], g: &[P3]) -> Vec<[P3; 2]> {
     let (nf, ng) = (newell(f), newell(g));
     let all: Vec<u32> = (0..f.len().max(g.len()) as u32).collect();
     let (f, g) = (

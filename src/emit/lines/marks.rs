@@ -17,7 +17,7 @@ use super::edges::EdgeKind;
 use super::{project_segment, strokes, Stroke};
 
 /// The visible parts of every face's markings, as strokes (kind [`EdgeKind::Plain`]).
-pub fn face_marks(scene: &Scene, view: &View, vis: &Visibility) -> Vec<Stroke> {
+pub(crate) fn face_marks(scene: &Scene, view: &View, vis: &Visibility) -> Vec<Stroke> {
     let mut groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>> = BTreeMap::new();
     for (li, leaf) in scene.leaves().iter().enumerate() {
         for (k, face) in leaf.mesh.faces.iter().enumerate() {

@@ -12,13 +12,13 @@
 //! Where several edges project onto one screen line, the line is stroked once
 //! ([`once`]).
 
-pub mod clip_segment;
-pub mod edges;
-pub mod intersect;
-pub mod marks;
-pub mod once;
-pub mod region;
-pub mod world;
+pub(crate) mod clip_segment;
+pub(crate) mod edges;
+pub(crate) mod intersect;
+pub(crate) mod marks;
+pub(crate) mod once;
+pub(crate) mod region;
+pub(crate) mod world;
 
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
@@ -75,7 +75,7 @@ pub struct Drawing {
 
 impl Drawing {
     /// The bare polylines, for JSON.
-    pub fn lines(&self) -> Lines {
+    pub(crate) fn lines(&self) -> Lines {
         let pts = |v: &[Stroke]| v.iter().map(|s| s.pts.clone()).collect();
         Lines {
             visible: pts(&self.visible),
@@ -112,7 +112,7 @@ impl Visibility {
 ///
 /// As the lines stage's phases, each counted in `progress`: [`Phase::World`] and
 /// [`Phase::Edges`] and [`Phase::Intersections`] by faces, then [`Phase::Clip`] by edges.
-pub fn draw(
+pub(crate) fn draw(
     scene: &Scene,
     view: &View,
     vis: &Visibility,
@@ -137,12 +137,12 @@ pub fn draw(
 
 /// The screen image of the world segment a → b, clipped to the near plane (perspective);
 /// None when nothing of it is in front.
-pub fn project_segment(camera: &Camera, a: &P3, b: &P3) -> Option<[Pt2; 2]> {
+pub(crate) fn project_segment(camera: &Camera, a: &P3, b: &P3) -> Option<[Pt2; 2]> {
     project_segment_depth(camera, a, b).map(|[p, q]| [[p[0], p[1]], [q[0], q[1]]])
 }
 
 /// [`project_segment`] with the screen depth of each end: (x, y, z).
-pub fn project_segment_depth(camera: &Camera, a: &P3, b: &P3) -> Option<[[f64; 3]; 2]> {
+pub(crate) fn project_segment_depth(camera: &Camera, a: &P3, b: &P3) -> Option<[[f64; 3]; 2]> {
     let (mut ha, mut hb) = (camera.clip_coords(a), camera.clip_coords(b));
     if camera.projection == Projection::Orthographic {
         return Some([[ha[0], ha[1], ha[2]], [hb[0], hb[1], hb[2]]]);
@@ -168,7 +168,12 @@ pub fn project_segment_depth(camera: &Camera, a: &P3, b: &P3) -> Option<[[f64; 3
 }
 
 /// Visible intervals of the screen segment a → b: on the closed VTP of any of `faces`.
-pub fn visible_intervals(a: Pt2, b: Pt2, faces: &[FaceId], vis: &Visibility) -> Vec<Interval> {
+pub(crate) fn visible_intervals(
+    a: Pt2,
+    b: Pt2,
+    faces: &[FaceId],
+    vis: &Visibility,
+) -> Vec<Interval> {
     let lists: Vec<Vec<Interval>> = faces
         .iter()
         .map(|&f| intervals_in(a, b, &vis.face(f).visible))
@@ -242,7 +247,7 @@ fn edge_pieces(view: &View, regions: &Regions, e: &Edge, hidden: bool) -> Pieces
 /// then chains and orders the pieces per (leaf, kind).
 ///
 /// The edges clipped go to `done`, once per chunk.
-pub fn split_edges(
+pub(crate) fn split_edges(
     view: &View,
     vis: &Visibility,
     edges: &[Edge],
@@ -301,7 +306,7 @@ pub fn split_edges(
 }
 
 /// Chained, ordered strokes of grouped segments.
-pub fn strokes(groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>>) -> Vec<Stroke> {
+pub(crate) fn strokes(groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>>) -> Vec<Stroke> {
     let mut out = Vec::new();
     for ((leaf, kind), segs) in groups {
         let lines = chain(&segs).into_iter().filter(|l| !is_dot(l)).collect();
@@ -319,7 +324,7 @@ const DOT: f64 = 1e-9;
 
 /// Whether polyline `pts` is a dot: its length is at most `DOT` (1e-9) times the magnitude of its
 /// coordinates (the scale of the rounding that made it).
-pub fn is_dot(pts: &[Pt2]) -> bool {
+pub(crate) fn is_dot(pts: &[Pt2]) -> bool {
     let scale = pts.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
     let length: f64 = pts
         .windows(2)
@@ -329,7 +334,7 @@ pub fn is_dot(pts: &[Pt2]) -> bool {
 }
 
 /// Total length of polylines.
-pub fn total_length(strokes: &[Stroke]) -> f64 {
+pub(crate) fn total_length(strokes: &[Stroke]) -> f64 {
     strokes
         .iter()
         .flat_map(|s| s.pts.windows(2))

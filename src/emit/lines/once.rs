@@ -20,14 +20,14 @@ use super::edges::EdgeKind;
 /// Distance, relative to the drawing's extent, under which two nearly parallel segments
 /// count as one line (far below anything a plotter or screen shows, far above f64 rounding
 /// of projected points).
-pub const ONCE_TOL: f64 = 4e-9;
+pub(crate) const ONCE_TOL: f64 = 4e-9;
 /// Largest sine of the angle between two segments that may count as one line (edges that
 /// meet at a vertex at any visible angle never do).
-pub const PARALLEL_SIN: f64 = 1e-6;
+pub(crate) const PARALLEL_SIN: f64 = 1e-6;
 
 /// A drawn segment with its rank (lower ranks are kept).
 #[derive(Debug, Clone, Copy)]
-pub struct Ranked {
+pub(crate) struct Ranked {
     /// Kind of its edge (earlier in [`EdgeKind::ALL`] ranks first).
     pub kind: EdgeKind,
     /// Index of its edge.
@@ -47,7 +47,7 @@ impl Ranked {
 /// higher-ranked segment (of equal ranks, the one of lesser least x, then the earlier): for
 /// each, its remaining pieces (in order along it). Segments of `keep` always win and lose
 /// nothing themselves (visible lines over hidden ones).
-pub fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
+pub(crate) fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
     let (tol, all) = all_ranked(segs, keep);
     let xmin = |s: &[Pt2; 2]| s[0][0].min(s[1][0]);
     let xmax = |s: &[Pt2; 2]| s[0][0].max(s[1][0]);

@@ -12,7 +12,7 @@ const FANOUT: usize = 16;
 
 /// A region and its ring edges, indexed when many.
 #[derive(Debug)]
-pub struct Region<'a> {
+pub(crate) struct Region<'a> {
     /// The region itself.
     pub m: &'a MultiPolygon,
     /// Every ring edge, ring after ring.
@@ -36,7 +36,7 @@ struct Tree {
 
 impl<'a> Region<'a> {
     /// The region `m` with its edges, indexed when it has many.
-    pub fn new(m: &'a MultiPolygon) -> Region<'a> {
+    pub(crate) fn new(m: &'a MultiPolygon) -> Region<'a> {
         let mut edges = Vec::new();
         for r in m.iter().flatten() {
             for i in 0..r.len() {
@@ -54,18 +54,18 @@ impl<'a> Region<'a> {
     }
 
     /// The bounding rectangle (empty for an empty region).
-    pub fn rect(&self) -> Rect {
+    pub(crate) fn rect(&self) -> Rect {
         self.rect
     }
 
     /// True when the region has no ring.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.m.is_empty()
     }
 
     /// The ring edges whose boxes meet the closed rectangle `r` (every one that does, perhaps
     /// others; each once).
-    pub fn edges_near(&self, r: &Rect) -> Vec<[Pt2; 2]> {
+    pub(crate) fn edges_near(&self, r: &Rect) -> Vec<[Pt2; 2]> {
         match &self.tree {
             None => self.edges.clone(),
             Some(t) => {
@@ -78,7 +78,7 @@ impl<'a> Region<'a> {
 
     /// Exact location of `p` (non-zero winding over all rings), as
     /// [`crate::geom::poly2::locate`].
-    pub fn locate(&self, p: Pt2) -> Side {
+    pub(crate) fn locate(&self, p: Pt2) -> Side {
         let Some(t) = &self.tree else {
             return locate(self.m, p);
         };
@@ -123,7 +123,7 @@ impl<'a> Region<'a> {
     }
 
     /// True when `p` lies within `eps` of a ring edge.
-    pub fn near_boundary(&self, p: Pt2, eps: f64) -> bool {
+    pub(crate) fn near_boundary(&self, p: Pt2, eps: f64) -> bool {
         let r = Rect::new(p[0] - eps, p[1] - eps, p[0] + eps, p[1] + eps);
         self.edges_near(&r)
             .iter()
@@ -215,7 +215,7 @@ fn hilbert(mut x: u32, mut y: u32) -> u64 {
 }
 
 /// Distance of `p` from the segment c → d.
-pub fn dist_to_segment(c: Pt2, d: Pt2, p: Pt2) -> f64 {
+pub(crate) fn dist_to_segment(c: Pt2, d: Pt2, p: Pt2) -> f64 {
     let (dx, dy) = (d[0] - c[0], d[1] - c[1]);
     let l2 = dx * dx + dy * dy;
     let t = if l2 > 0.0 {

@@ -17,7 +17,7 @@ const PARALLEL_ABOVE: usize = 4096;
 /// index of a point of its leaf in the world's point space (see [`WorldFaces::points_of`]),
 /// so that a scene's faces cost no allocation each.
 #[derive(Debug, Clone)]
-pub struct WorldFace {
+pub(crate) struct WorldFace {
     /// Index of the leaf object in [`Scene::leaves`] order.
     pub leaf: u32,
     /// Number of corners.
@@ -34,7 +34,7 @@ pub struct WorldFace {
 /// faces' own when the view projected the leaf (the same points, made by the same
 /// transform), so that the drawing does not hold them twice; the other leaves' are made here.
 #[derive(Debug, Clone, Default)]
-pub struct WorldFaces<'s> {
+pub(crate) struct WorldFaces<'s> {
     /// Faces by global id.
     pub faces: Vec<WorldFace>,
     /// The first part of the point space: world points shared with the screen faces
@@ -56,13 +56,17 @@ pub struct WorldFaces<'s> {
 }
 
 /// [`WorldFaces::clean_piece`] of a face on no piece proven free of self-intersection.
-pub const NO_PIECE: u32 = u32::MAX;
+pub(crate) const NO_PIECE: u32 = u32::MAX;
 
 impl<'s> WorldFaces<'s> {
     /// The world polygons of every face of `scene`, in global face order, sharing the points
     /// of `screen` where they are the same (None: every point made here). The faces made go
     /// to `done`, once per chunk.
-    pub fn build(scene: &Scene, screen: Option<&'s ScreenFaces>, done: Count) -> WorldFaces<'s> {
+    pub(crate) fn build(
+        scene: &Scene,
+        screen: Option<&'s ScreenFaces>,
+        done: Count,
+    ) -> WorldFaces<'s> {
         let leaves = scene.leaves();
         let corners = leaves
             .iter()
@@ -151,7 +155,7 @@ impl<'s> WorldFaces<'s> {
     }
 
     /// The world points of face `f`, in mesh order.
-    pub fn points_of(&self, f: usize) -> Corners<'_> {
+    pub(crate) fn points_of(&self, f: usize) -> Corners<'_> {
         let first = self.leaf_first[self.faces[f].leaf as usize];
         Corners::new(
             self.vertices_of(f),
@@ -160,13 +164,13 @@ impl<'s> WorldFaces<'s> {
     }
 
     /// The vertex indices of face `f` in its leaf mesh.
-    pub fn vertices_of(&self, f: usize) -> &[u32] {
+    pub(crate) fn vertices_of(&self, f: usize) -> &[u32] {
         let face = &self.faces[f];
         &self.vertices[face.first..face.first + face.len as usize]
     }
 
     /// The world bounding box of face `f`: min then max.
-    pub fn bbox_of(&self, f: usize) -> [[f64; 3]; 2] {
+    pub(crate) fn bbox_of(&self, f: usize) -> [[f64; 3]; 2] {
         let b = Box3::from_points(self.points_of(f).iter());
         [b.lo.into(), b.hi.into()]
     }

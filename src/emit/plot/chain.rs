@@ -8,7 +8,7 @@ use crate::geom::poly2::Pt2;
 
 /// Joins segments into polylines: each polyline follows unused segments that share an end
 /// point exactly, forward then backward. Deterministic (segments taken in input order).
-pub fn chain(segments: &[[Pt2; 2]]) -> Vec<Vec<Pt2>> {
+pub(crate) fn chain(segments: &[[Pt2; 2]]) -> Vec<Vec<Pt2>> {
     let mut at: KeyMap<(u64, u64), Vec<usize>> = KeyMap::default();
     for (i, s) in segments.iter().enumerate() {
         at.entry(key(s[0])).or_default().push(i);
@@ -53,7 +53,7 @@ fn extend(
 
 /// Orders polylines greedily from the first one: next is the one whose start or end is
 /// nearest the pen (reversed when its end is nearer). A uniform grid keeps it near-linear.
-pub fn order(mut lines: Vec<Vec<Pt2>>) -> Vec<Vec<Pt2>> {
+pub(crate) fn order(mut lines: Vec<Vec<Pt2>>) -> Vec<Vec<Pt2>> {
     lines.retain(|l| !l.is_empty());
     if lines.len() < 3 {
         return lines;
@@ -74,7 +74,7 @@ pub fn order(mut lines: Vec<Vec<Pt2>>) -> Vec<Vec<Pt2>> {
 /// Greedy nearest-neighbour order of strokes given by their (start, end) points, from
 /// stroke `first`: each next stroke is the one with an end nearest the pen, reversed (`true`)
 /// when that is its end. Ties go to the lower index.
-pub fn greedy(ends: &[[Pt2; 2]], first: usize) -> Vec<(usize, bool)> {
+pub(crate) fn greedy(ends: &[[Pt2; 2]], first: usize) -> Vec<(usize, bool)> {
     if ends.is_empty() {
         return Vec::new();
     }

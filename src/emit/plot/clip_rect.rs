@@ -8,7 +8,7 @@ use crate::geom::Rect;
 
 /// The parts of polyline `pts` inside the closed rectangle `r`, as polylines (a part that
 /// leaves and re-enters becomes two). Zero-length parts are dropped.
-pub fn clip_polyline(pts: &[Pt2], r: &Rect) -> Vec<Vec<Pt2>> {
+pub(crate) fn clip_polyline(pts: &[Pt2], r: &Rect) -> Vec<Vec<Pt2>> {
     let mut out: Vec<Vec<Pt2>> = Vec::new();
     let mut cur: Vec<Pt2> = Vec::new();
     for w in pts.windows(2) {
@@ -36,7 +36,7 @@ pub fn clip_polyline(pts: &[Pt2], r: &Rect) -> Vec<Vec<Pt2>> {
 type Side = (usize, f64);
 
 /// The part of segment a → b inside the closed rectangle `r`, or None.
-pub fn clip_segment(a: Pt2, b: Pt2, r: &Rect) -> Option<[Pt2; 2]> {
+pub(crate) fn clip_segment(a: Pt2, b: Pt2, r: &Rect) -> Option<[Pt2; 2]> {
     let inside = |p: Pt2| r.xmin <= p[0] && p[0] <= r.xmax && r.ymin <= p[1] && p[1] <= r.ymax;
     if inside(a) && inside(b) {
         return Some([a, b]);

@@ -7,7 +7,7 @@
 use crate::geom::poly2::{dist, Pt2};
 
 /// The dashes of polyline `pts` with pattern `dash` on, `gap` off (both > 0).
-pub fn dashes(pts: &[Pt2], dash: f64, gap: f64) -> Vec<Vec<Pt2>> {
+pub(crate) fn dashes(pts: &[Pt2], dash: f64, gap: f64) -> Vec<Vec<Pt2>> {
     let mut out = Vec::new();
     let mut cur: Vec<Pt2> = Vec::new();
     // Distance left in the current phase, and whether the pen is down in it.

@@ -13,7 +13,7 @@ use crate::geom::grid::{per_side, Cells};
 use crate::geom::poly2::{dist, Pt2};
 use crate::geom::Rect;
 
-/// Counts of what [`dedup`] removed.
+/// Counts of what removing repeated and overlapping segments removed.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct DedupStats {
     /// Segments looked at.
@@ -30,7 +30,11 @@ pub struct DedupStats {
 /// each with the index of the segment it comes from, in input order.
 ///
 /// The segments looked at go to `done`, once per chunk.
-pub fn dedup(segs: &[[Pt2; 2]], eps: f64, done: Count) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
+pub(crate) fn dedup(
+    segs: &[[Pt2; 2]],
+    eps: f64,
+    done: Count,
+) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
     let mut index = SegmentIndex::new(segs, eps);
     let mut kept: Vec<(usize, [Pt2; 2])> = Vec::with_capacity(segs.len());
     let mut stats = DedupStats {
@@ -83,7 +87,7 @@ pub fn dedup(segs: &[[Pt2; 2]], eps: f64, done: Count) -> (Vec<(usize, [Pt2; 2])
 }
 
 /// Segments in a grid, to ask which of them run along a new segment.
-pub struct SegmentIndex {
+pub(crate) struct SegmentIndex {
     grid: CellGrid,
     segs: Vec<[Pt2; 2]>,
     seen: Vec<usize>,
@@ -102,7 +106,7 @@ pub struct SegmentIndex {
 impl SegmentIndex {
     /// An empty index over the bounds of `extent` (segments outside still work, slower);
     /// `eps` is the coincidence tolerance.
-    pub fn new(extent: &[[Pt2; 2]], eps: f64) -> SegmentIndex {
+    pub(crate) fn new(extent: &[[Pt2; 2]], eps: f64) -> SegmentIndex {
         let grid = CellGrid::new(extent);
         let cells = grid.cells.len();
         SegmentIndex {
@@ -119,7 +123,7 @@ impl SegmentIndex {
     }
 
     /// Adds a segment.
-    pub fn insert(&mut self, s: [Pt2; 2]) {
+    pub(crate) fn insert(&mut self, s: [Pt2; 2]) {
         if self.cells_for != Some(s) {
             self.grid.cells_of(s[0], s[1], &mut self.cells);
             self.cells_for = Some(s);
@@ -130,7 +134,7 @@ impl SegmentIndex {
     }
 
     /// True when a segment of the index runs along a → b for more than `eps`.
-    pub fn overlaps(&mut self, a: Pt2, b: Pt2) -> bool {
+    pub(crate) fn overlaps(&mut self, a: Pt2, b: Pt2) -> bool {
         let mut covers = Vec::new();
         self.covers(a, b, &mut covers);
         !covers.is_empty()

@@ -49,10 +49,10 @@ impl Default for HatchOptions {
 }
 
 /// Number of tones: 0 (not hatched) to `TONES - 1` (cross-hatched).
-pub const TONES: u8 = 5;
+pub(crate) const TONES: u8 = 5;
 
 /// The tone of a face of brightness `shade` in [0, 1]: darkness in equal steps.
-pub fn tone(shade: f64) -> u8 {
+pub(crate) fn tone(shade: f64) -> u8 {
     let dark = (1.0 - shade).clamp(0.0, 1.0);
     ((dark * f64::from(TONES)) as u8).min(TONES - 1)
 }
@@ -72,7 +72,7 @@ fn families(tone: u8) -> &'static [(f64, f64)] {
 /// The hatching of a view: per visible face, its tone and the hatch segments (screen space,
 /// clipped to its VTP), tagged with the face's leaf object.
 #[derive(Debug, Clone, Default)]
-pub struct Hatching {
+pub(crate) struct Hatching {
     /// Hatch segments with their leaf.
     pub segments: Vec<(u32, [Pt2; 2])>,
     /// Every visible face with its leaf and tone.
@@ -83,7 +83,7 @@ pub struct Hatching {
 /// `light` the direction toward the light (world; default from the upper left, in front).
 ///
 /// The visible faces hatched go to `done`, once per chunk.
-pub fn hatch(
+pub(crate) fn hatch(
     scene: &Scene,
     view: &View,
     vis: &Visibility,
@@ -219,7 +219,7 @@ impl Family {
 /// rings of the union of its faces' visible regions, as closed polylines with the group's
 /// first leaf. `group` maps a leaf to the group whose faces are merged (a layer's object, or
 /// one for all).
-pub fn tone_outlines(
+pub(crate) fn tone_outlines(
     hatching: &Hatching,
     vis: &Visibility,
     group: impl Fn(u32) -> u32 + Sync,

@@ -19,7 +19,7 @@ use crate::geom::poly2::{dist, Pt2};
 ///
 /// The pairs tried go to `span`: its first half when the lines are joined at equal ends,
 /// the rest as the near pairs are tried, in chunks (none: [`Span::NONE`]).
-pub fn join(
+pub(crate) fn join(
     lines: Vec<Vec<Pt2>>,
     tolerance: f64,
     bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,

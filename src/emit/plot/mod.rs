@@ -10,17 +10,17 @@
 //! hidden pen ([`dash`]) and join dashes that meet; per layer, order all strokes
 //! ([`tour`]).
 
-pub mod chain;
-pub mod clip_rect;
-pub mod color;
-pub mod dash;
-pub mod dedup;
-pub mod hatch;
-pub mod join;
-pub mod page;
-pub mod picture;
-pub mod shade;
-pub mod tour;
+pub(crate) mod chain;
+pub(crate) mod clip_rect;
+pub(crate) mod color;
+pub(crate) mod dash;
+pub(crate) mod dedup;
+pub(crate) mod hatch;
+pub(crate) mod join;
+pub(crate) mod page;
+pub(crate) mod picture;
+pub(crate) mod shade;
+pub(crate) mod tour;
 
 use std::collections::BTreeMap;
 

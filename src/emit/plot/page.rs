@@ -10,10 +10,10 @@ use crate::geom::Rect;
 use crate::view::Frame;
 
 /// Millimetres per CSS pixel (1/96 inch): the unit of `--size` when no page is given.
-pub const MM_PER_PX: f64 = 25.4 / 96.0;
+pub(crate) const MM_PER_PX: f64 = 25.4 / 96.0;
 
 /// Margin around the drawing on a named page when none is asked for, in mm.
-pub const DEFAULT_PAGE_MARGIN_MM: f64 = 10.0;
+pub(crate) const DEFAULT_PAGE_MARGIN_MM: f64 = 10.0;
 
 /// A sheet of paper, in millimetres.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -90,7 +90,7 @@ impl PageSize {
 
 /// Where a framed drawing lands on the page: page size, scale, and the drawing's area.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Layout {
+pub(crate) struct Layout {
     /// The page.
     pub page: PageSize,
     /// Millimetres per screen unit.
@@ -107,7 +107,7 @@ impl Layout {
     /// [`DEFAULT_PAGE_MARGIN_MM`], and centred), or, without a page, on a page of the frame's
     /// shape whose longer side is `size_px` CSS pixels (the frame's own 5% margin, or
     /// `margin` mm when given).
-    pub fn new(
+    pub(crate) fn new(
         frame: &Frame,
         page: Option<PageSize>,
         margin: Option<f64>,
@@ -199,7 +199,7 @@ impl Layout {
 
     /// The page point (mm, y down) of a screen point.
     #[inline]
-    pub fn to_page(&self, p: Pt2) -> Pt2 {
+    pub(crate) fn to_page(self, p: Pt2) -> Pt2 {
         [
             self.area.xmin + self.scale * (p[0] - self.content.xmin),
             self.area.ymin + self.scale * (self.content.ymax - p[1]),

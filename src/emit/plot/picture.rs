@@ -163,7 +163,7 @@ impl Default for PictureOptions {
 
 /// The visible regions of the faces of one grey on the page, flat shaded.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Fill {
+pub(crate) struct Fill {
     /// Rings of the visible regions (even-odd fill; the regions are disjoint), in mm.
     pub rings: Vec<Ring>,
     /// Grey level.
@@ -172,7 +172,7 @@ pub struct Fill {
 
 /// Consecutive strokes of one layer drawn with one pen.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Run {
+pub(crate) struct Run {
     /// The pen.
     pub pen: Pen,
     /// Polylines in mm, in drawing order and direction.
@@ -181,7 +181,7 @@ pub struct Run {
 
 /// A layer: what a plotter draws in one go.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Layer {
+pub(crate) struct Layer {
     /// Layer number (the digits of its Inkscape label).
     pub number: u32,
     /// Name: the pen's or the top-level object's.
@@ -192,12 +192,12 @@ pub struct Layer {
 
 impl Layer {
     /// Every stroke of the layer in drawing order.
-    pub fn lines(&self) -> impl Iterator<Item = &Vec<Pt2>> {
+    pub(crate) fn lines(&self) -> impl Iterator<Item = &Vec<Pt2>> {
         self.runs.iter().flat_map(|r| r.lines.iter())
     }
 
     /// What a plotter does for this layer.
-    pub fn summary(&self) -> LayerSummary {
+    pub(crate) fn summary(&self) -> LayerSummary {
         let lines: Vec<&Vec<Pt2>> = self.lines().collect();
         let travel = super::tour::travel(&lines);
         LayerSummary {
@@ -243,7 +243,7 @@ pub struct PlotStats {
 
 /// Everything to draw, on a page in millimetres (y down).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Picture {
+pub(crate) struct Picture {
     /// The page.
     pub page: PageSize,
     /// Width of the outline pen in mm.
@@ -262,12 +262,12 @@ pub struct Picture {
 
 impl Picture {
     /// Stroke width of a pen in mm.
-    pub fn width(&self, pen: Pen) -> f64 {
+    pub(crate) fn width(&self, pen: Pen) -> f64 {
         self.pen_mm * pen.width_factor()
     }
 
     /// Polylines drawn: the fills' rings and the layers' strokes.
-    pub fn polylines(&self) -> usize {
+    pub(crate) fn polylines(&self) -> usize {
         let rings: usize = self.fills.iter().map(|f| f.rings.len()).sum();
         let strokes: usize = self
             .layers

@@ -15,7 +15,7 @@ fn view_axes(camera: &Camera) -> (V3, V3, V3) {
 
 /// The unit direction toward the light: `world` when given (and not zero), else from the
 /// upper left, in front of the picture (fixed to the camera).
-pub fn light_direction(camera: &Camera, world: Option<V3>) -> V3 {
+pub(crate) fn light_direction(camera: &Camera, world: Option<V3>) -> V3 {
     if let Some(l) = world.and_then(|l| l.try_normalize(0.0)) {
         return l;
     }
@@ -24,7 +24,7 @@ pub fn light_direction(camera: &Camera, world: Option<V3>) -> V3 {
 }
 
 /// The light's direction across the picture (screen x, y), when it has one.
-pub fn light_on_screen(camera: &Camera, light: &V3) -> Option<[f64; 2]> {
+pub(crate) fn light_on_screen(camera: &Camera, light: &V3) -> Option<[f64; 2]> {
     let (u, v, _) = view_axes(camera);
     let (x, y) = (light.dot(&u), light.dot(&v));
     let n = x.hypot(y);
@@ -33,7 +33,7 @@ pub fn light_on_screen(camera: &Camera, light: &V3) -> Option<[f64; 2]> {
 
 /// Brightness of face `f` in [0, 1]: the cosine between its normal (turned toward the
 /// viewer) and the light, 0 when it faces away from the light.
-pub fn face_shade(view: &View, f: FaceId, light: &V3) -> f64 {
+pub(crate) fn face_shade(view: &View, f: FaceId, light: &V3) -> f64 {
     let (_, _, w) = view_axes(&view.camera);
     let n: V3 = view
         .screen

@@ -59,7 +59,7 @@ const SPAN_SEARCH: f64 = 0.7;
 /// Pen-up travel of strokes drawn in order: Σ |end(i) − start(i+1)| (0 for one stroke or
 /// none: a fold from +0, where `sum` of no floats gives −0 and `kepler render --stats`
 /// printed "travel -0.0 mm").
-pub fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
+pub(crate) fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
     lines
         .windows(2)
         .map(|w| {
@@ -75,7 +75,7 @@ pub fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
 /// ([`SPAN_NEIGHBOURS`] and the others), and within them by the end slots searched, the
 /// strokes the first local search starts from and the kicks made, in chunks (none:
 /// [`Span::NONE`]).
-pub fn plan(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> {
+pub(crate) fn plan(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> {
     let order = plan_steps(ends, span);
     span.finish();
     order

@@ -15,7 +15,7 @@ use crate::visibility::Visibility;
 
 /// Polylines of a line drawing, in screen space.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct Lines {
+pub(crate) struct Lines {
     /// Visible polylines.
     pub visible: Vec<Vec<Pt2>>,
     /// Hidden polylines.
@@ -23,7 +23,7 @@ pub struct Lines {
 }
 
 /// Shortest round-trip form of a finite number, -0 as 0.
-pub fn num(x: f64) -> String {
+pub(crate) fn num(x: f64) -> String {
     crate::scene::flatten::num(x)
 }
 
@@ -61,7 +61,7 @@ fn list<T>(s: &mut String, items: &[T], mut each: impl FnMut(&mut String, &T)) {
 /// with `lines` when given.
 ///
 /// The solved faces written go to `done`, once per chunk of faces.
-pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>, done: Count) -> String {
+pub(crate) fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>, done: Count) -> String {
     let mut out = Sink {
         s: String::with_capacity(256 + vis.solved_count() * 128),
         to: None,
@@ -77,7 +77,7 @@ pub fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>, done: Count
 /// are those of [`to_json`].
 ///
 /// The solved faces written go to `done`, once per chunk of faces.
-pub fn write_json(
+pub(crate) fn write_json(
     view: &View,
     vis: &Visibility,
     lines: Option<&Lines>,
@@ -105,7 +105,7 @@ fn write_json_spilling(
 }
 
 /// How much text [`write_json`] gathers before it writes.
-pub const SPILL_AT: usize = 1 << 20;
+pub(crate) const SPILL_AT: usize = 1 << 20;
 
 /// Where the text goes: all kept in `s`, or `s` written to the writer of `to` whenever it
 /// is as long as `to`'s length.
@@ -225,7 +225,7 @@ fn rings(out: &mut Sink, items: &[Vec<Pt2>]) -> io::Result<()> {
 }
 
 /// A JSON string literal.
-pub fn json_string(x: &str) -> String {
+pub(crate) fn json_string(x: &str) -> String {
     serde_json::to_string(x).unwrap_or_else(|_| "\"\"".into())
 }
 
@@ -260,7 +260,7 @@ mod tests {
                 .unwrap();
                 let scene: &'static crate::Scene = Box::leak(Box::new(scene));
                 let opts = crate::RenderOptions {
-                    lines: crate::LineOptions {
+                    lines: crate::lines::LineOptions {
                         hidden: true,
                         ..Default::default()
                     },

@@ -17,7 +17,7 @@ use crate::emit::plot::picture::Picture;
 const MAX_SIDE: f64 = 32768.0;
 
 /// Pixels per mm of a picture drawn `size` pixels along its longer side, or at `dpi`.
-pub fn pixels_per_mm(pic: &Picture, size: u32, dpi: Option<f64>) -> f64 {
+pub(crate) fn pixels_per_mm(pic: &Picture, size: u32, dpi: Option<f64>) -> f64 {
     match dpi {
         Some(d) => d / 25.4,
         None => f64::from(size.max(1)) / pic.page.longer_side(),
@@ -25,7 +25,7 @@ pub fn pixels_per_mm(pic: &Picture, size: u32, dpi: Option<f64>) -> f64 {
 }
 
 /// Pixel size (width, height), each >= 1.
-pub fn pixel_size(pic: &Picture, px_per_mm: f64) -> (u32, u32) {
+pub(crate) fn pixel_size(pic: &Picture, px_per_mm: f64) -> (u32, u32) {
     let px = |v: f64| (v * px_per_mm).round().clamp(1.0, MAX_SIDE) as u32;
     (px(pic.page.width), px(pic.page.height))
 }
@@ -33,7 +33,12 @@ pub fn pixel_size(pic: &Picture, px_per_mm: f64) -> (u32, u32) {
 /// The PNG bytes of a picture.
 ///
 /// Each fill's rings and each run's strokes go to `done` as they are painted.
-pub fn to_png(pic: &Picture, size: u32, dpi: Option<f64>, done: Count) -> Result<Vec<u8>, Error> {
+pub(crate) fn to_png(
+    pic: &Picture,
+    size: u32,
+    dpi: Option<f64>,
+    done: Count,
+) -> Result<Vec<u8>, Error> {
     let pixmap = rasterise(pic, pixels_per_mm(pic, size, dpi), done)?;
     let (w, h) = (pixmap.width(), pixmap.height());
     // Opaque background: premultiplied RGBA equals straight RGBA.
@@ -48,7 +53,7 @@ pub fn to_png(pic: &Picture, size: u32, dpi: Option<f64>, done: Count) -> Result
 /// Draws the picture into a new pixmap at `k` pixels per mm.
 ///
 /// Each fill's rings and each run's strokes go to `done` once drawn.
-pub fn rasterise(pic: &Picture, k: f64, done: Count) -> Result<Pixmap, Error> {
+pub(crate) fn rasterise(pic: &Picture, k: f64, done: Count) -> Result<Pixmap, Error> {
     let (w, h) = pixel_size(pic, k);
     let mut pm =
         Pixmap::new(w, h).ok_or_else(|| Error::Usage(format!("cannot make a {w}x{h} picture")))?;

@@ -21,7 +21,7 @@ const INKSCAPE: &str = "http://www.inkscape.org/namespaces/inkscape";
 /// The SVG document of a picture.
 ///
 /// Each fill's rings and each run's strokes go to `done` as their paths are made.
-pub fn to_svg(pic: &Picture, done: Count) -> String {
+pub(crate) fn to_svg(pic: &Picture, done: Count) -> String {
     let (w, h) = (pic.page.width, pic.page.height);
     let mut doc = Document::new()
         .set("xmlns:inkscape", INKSCAPE)

@@ -26,7 +26,7 @@ const SHRINKS: [f64; 4] = [1e-9, 1e-7, 1e-5, 1e-3];
 /// (within `CONVEX_TOL` of the mesh's size). For a closed, consistently oriented surface this
 /// local convexity means convexity. One pass over the edges: linear in the mesh's size, even
 /// for faces of a million corners (a face is never scanned once per neighbour).
-pub fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
+pub(crate) fn is_convex(mesh: &Mesh, flipped: bool) -> bool {
     let cbox = Box3::from_points(mesh.vertices.iter());
     let scale = cbox.size().iter().fold(0.0f64, |a, &b| a.max(b));
     let tol = CONVEX_TOL * scale;
@@ -121,7 +121,7 @@ impl EdgeTwins {
 
 /// The largest box inside a convex mesh, verified to lie inside it; None when the
 /// optimisation fails or no shrink of its result verifies.
-pub fn convex_inbox(mesh: &Mesh, tris: &Triangles) -> Option<Box3> {
+pub(crate) fn convex_inbox(mesh: &Mesh, tris: &Triangles) -> Option<Box3> {
     let n = mesh.vertices.len() as f64;
     let centroid = P3::from(mesh.vertices.iter().map(|p| p.coords).sum::<V3>() / n);
     let cbox = Box3::from_points(mesh.vertices.iter());

@@ -16,7 +16,7 @@ use crate::geom::{Box3, P3, V3};
 use super::solid::Triangles;
 
 /// Clearance kept between the box and every face, relative to the mesh's size.
-pub const MARGIN: f64 = 1e-9;
+pub(crate) const MARGIN: f64 = 1e-9;
 /// Seed grid points per axis (cell centres), besides the CBOX centre and the vertex centroid.
 const GRID: usize = 4;
 /// Largest triangles from which a ray is cast inward to find a seed.
@@ -43,7 +43,7 @@ struct Field<'a> {
 
 /// The largest box a search finds inside the closed mesh with triangles `tris`, among boxes
 /// grown from points near `centroid` and on a grid over `cbox`. None when no seed is inside.
-pub fn grown_inbox(tris: &Triangles, cbox: &Box3, centroid: &P3) -> Option<Box3> {
+pub(crate) fn grown_inbox(tris: &Triangles, cbox: &Box3, centroid: &P3) -> Option<Box3> {
     let scale = cbox.size().iter().fold(0.0f64, |a, &b| a.max(b));
     let field = Field::new(tris, MARGIN * scale, None);
     let mut points = seed_points(cbox, centroid);
@@ -56,7 +56,12 @@ pub fn grown_inbox(tris: &Triangles, cbox: &Box3, centroid: &P3) -> Option<Box3>
 /// touching no face. Only the faces meeting `region` can touch such a box, so only they are
 /// tested; the seed's winding number is taken over every triangle. `scale` is the mesh's size
 /// (the clearance margin is relative to it).
-pub fn grown_inbox_in(tris: &Triangles, region: &Box3, centroid: &P3, scale: f64) -> Option<Box3> {
+pub(crate) fn grown_inbox_in(
+    tris: &Triangles,
+    region: &Box3,
+    centroid: &P3,
+    scale: f64,
+) -> Option<Box3> {
     let margin = MARGIN * scale;
     let m = V3::new(3.0 * margin, 3.0 * margin, 3.0 * margin);
     let reach = Box3::new(region.lo - m, region.hi + m);

@@ -12,7 +12,7 @@ use crate::geom::{Box3, P3, V3};
 
 /// A half-space `normal · x ≤ offset`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct HalfSpace {
+pub(crate) struct HalfSpace {
     /// Outward normal (any length).
     pub normal: V3,
     /// Offset.
@@ -29,7 +29,7 @@ const MAX_NEWTON: usize = 400;
 /// The largest box inside all `planes` (approximately), starting from `interior`, a point
 /// strictly inside all of them. None when no strictly feasible start exists or the
 /// iteration breaks down (an unbounded or degenerate region).
-pub fn largest_box(planes: &[HalfSpace], interior: &P3) -> Option<Box3> {
+pub(crate) fn largest_box(planes: &[HalfSpace], interior: &P3) -> Option<Box3> {
     // Solved with `interior` at the origin: far from the world's origin the slacks would
     // be small differences of large offsets, and Newton's method would crawl.
     let c = interior.coords;
@@ -82,7 +82,11 @@ const ROUNDS: usize = 40;
 /// `interior`), adding the half-spaces the working set's box still violates until it
 /// violates none. The walls are implied by the planes, so the box found is optimal for
 /// all of them; each round costs one pass over the planes, not a Newton step per plane.
-pub fn largest_box_within(planes: &[HalfSpace], interior: &P3, bounds: &Box3) -> Option<Box3> {
+pub(crate) fn largest_box_within(
+    planes: &[HalfSpace],
+    interior: &P3,
+    bounds: &Box3,
+) -> Option<Box3> {
     if planes.len() <= DIRECT {
         return largest_box(planes, interior);
     }

@@ -2,11 +2,11 @@
 //! lacking one, convex meshes by optimisation, other closed meshes by growing, groups from
 //! their parts, instances through their transform.
 
-pub mod convex;
-pub mod grow;
-pub mod halfspace;
-pub mod place;
-pub mod solid;
+pub(crate) mod convex;
+pub(crate) mod grow;
+pub(crate) mod halfspace;
+pub(crate) mod place;
+pub(crate) mod solid;
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -24,7 +24,7 @@ use self::solid::Triangles;
 /// Prototypes shared by instances are prepared once and stay shared.
 ///
 /// The faces of each mesh go to `done` as its INBOX is found.
-pub fn compute_inboxes(root: &mut Object, done: Count) {
+pub(crate) fn compute_inboxes(root: &mut Object, done: Count) {
     fill(root, &mut HashMap::new(), done);
 }
 
@@ -78,7 +78,7 @@ fn largest(boxes: impl Iterator<Item = Box3>) -> Option<Box3> {
 }
 
 /// The INBOX of one mesh: None unless it is a closed solid with interior.
-pub fn mesh_inbox(mesh: &Mesh) -> Option<Box3> {
+pub(crate) fn mesh_inbox(mesh: &Mesh) -> Option<Box3> {
     if !mesh.closed || mesh.vertices.is_empty() {
         return None;
     }

@@ -17,7 +17,7 @@ const CHECK: f64 = 1e-9;
 
 /// An axis-aligned box inside the image of `b` under the affine transform `m` (None when
 /// `m` is singular or not affine, or the result fails its check).
-pub fn place_box(b: &Box3, m: &M4) -> Option<Box3> {
+pub(crate) fn place_box(b: &Box3, m: &M4) -> Option<Box3> {
     if !b.has_interior() || m[(3, 0)] != 0.0 || m[(3, 1)] != 0.0 || m[(3, 2)] != 0.0 {
         return None;
     }

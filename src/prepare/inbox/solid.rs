@@ -18,7 +18,7 @@ const BALANCED_ABOVE: usize = 64;
 /// A mesh's faces as triangles (a fan, or balanced for long faces), oriented so that the solid's inside is on their
 /// negative side (normal = (b − a) × (c − a) points out).
 #[derive(Debug, Clone)]
-pub struct Triangles {
+pub(crate) struct Triangles {
     /// The triangles.
     pub tris: Vec<[P3; 3]>,
     /// True when the mesh's faces were oriented inward (the triangles are flipped).
@@ -28,7 +28,7 @@ pub struct Triangles {
 impl Triangles {
     /// The triangles of every face, flipped when the mesh is oriented inward. None when
     /// the signed volume is zero (no interior).
-    pub fn of(mesh: &Mesh) -> Option<Triangles> {
+    pub(crate) fn of(mesh: &Mesh) -> Option<Triangles> {
         let mut tris = Vec::with_capacity(mesh.faces.len() * 2);
         for f in &mesh.faces {
             let v = &f.vertices;
@@ -60,7 +60,7 @@ impl Triangles {
     /// plane. Such a box lies in the kernel of the polyhedron, hence inside it. Per triangle
     /// only the corner farthest along its normal is tested (exact `orient3d`); on an axis
     /// where the normal's sign is within rounding of zero, both corners are.
-    pub fn box_in_kernel(&self, b: &Box3) -> bool {
+    pub(crate) fn box_in_kernel(&self, b: &Box3) -> bool {
         let inner = |t: &[P3; 3]| axis_plane_side(t, b).unwrap_or_else(|| box_behind(t, b));
         // A yes or no: the same answer on any number of threads.
         if self.tris.len() > PARALLEL_ABOVE {
@@ -71,7 +71,7 @@ impl Triangles {
     }
 
     /// One half-space per triangle (Newell normal of the triangle, offset through its vertices).
-    pub fn half_spaces(&self) -> Vec<HalfSpace> {
+    pub(crate) fn half_spaces(&self) -> Vec<HalfSpace> {
         self.tris
             .iter()
             .filter_map(|t| {
@@ -103,7 +103,7 @@ fn signed_volume(tris: &[[P3; 3]]) -> f64 {
 }
 
 /// The box scaled about its centre by `1 − eps` on every axis.
-pub fn shrink(b: &Box3, eps: f64) -> Box3 {
+pub(crate) fn shrink(b: &Box3, eps: f64) -> Box3 {
     let c = b.center();
     let mut out = *b;
     for i in 0..3 {

@@ -48,7 +48,9 @@ use rayon::prelude::*;
 
 use crate::count::Span;
 use crate::geom::{newell, orient3d, P3};
-use crate::scene::topology::{edge_topology, sort_edges, Topology};
+use crate::scene::topology::sort_edges;
+#[cfg(test)]
+use crate::scene::topology::{edge_topology, Topology};
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Face, Mesh, Solidity};
 
@@ -60,7 +62,7 @@ use super::{degenerate, examine_until, Surface, NO_GROUP};
 
 /// The caps of an open mesh that capping made a solid.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Caps {
+pub(crate) struct Caps {
     /// Number of holes (boundary loops), one cap each.
     pub loops: u32,
     /// The cap triangles, counter-clockwise seen from outside the capped solid.
@@ -77,6 +79,7 @@ enum Way {
     Ears,
 }
 
+#[cfg(test)]
 /// Caps the holes of `mesh` (which must be open and otherwise consistent:
 /// [`Topology::Open`]) and decides exactly whether the capped surface is a solid. Every hole
 /// is first fanned; holes whose fan crosses the mesh or another cap, or has a flat
@@ -84,7 +87,7 @@ enum Way {
 /// every triangle: cheap, and where capping fails it fails here), at most [`ATTEMPTS`]
 /// times; only caps that pass go on to the one test of the whole surface (every pair of the
 /// mesh's own triangles).
-pub fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
+pub(crate) fn cap_holes(mesh: &Mesh) -> Result<Caps, CapFailure> {
     capping(mesh, Span::NONE).map_err(|(why, _)| why)
 }
 
@@ -119,6 +122,7 @@ impl Failed {
 /// (so that [`super::pieces`] can still prove its pieces one by one).
 pub(crate) type Refused = (CapFailure, Option<Box<Failed>>);
 
+#[cfg(test)]
 /// [`cap_holes`], saying on failure which capped surface failed, filling `span` as it goes
 /// (each attempt less of it than the last: most meshes cap at the first).
 pub(crate) fn capping(mesh: &Mesh, span: Span) -> Result<Caps, Refused> {
@@ -274,7 +278,7 @@ fn whole(
 }
 
 /// How many capped surfaces [`cap_holes`] decides at most.
-pub const ATTEMPTS: usize = 3;
+pub(crate) const ATTEMPTS: usize = 3;
 
 /// Where each attempt's part of the capping's progress starts and ends (fractions: the
 /// holes' loops found first; a capping that succeeds tests the whole from its attempt's end
@@ -356,7 +360,7 @@ fn centroid<'a>(pts: impl ExactSizeIterator<Item = &'a P3>) -> P3 {
 /// on one) splits the walk into simple loops; in-degree equals out-degree at every vertex
 /// of a consistent surface's boundary, so every walk closes. Deterministic: loops start at
 /// their least edge in the faces' order.
-pub fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
+pub(crate) fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
     // Directed edges as packed integers, sorted: a reverse is found by binary search.
     let mut directed: Vec<u64> = faces
         .iter()

@@ -29,8 +29,8 @@ use num_traits::{Signed, Zero};
 
 use rayon::prelude::*;
 
-pub mod caps;
-pub mod pieces;
+pub(crate) mod caps;
+pub(crate) mod pieces;
 
 use pieces::Crossings;
 mod plates;
@@ -53,8 +53,9 @@ struct Tri {
     p: [P3; 3],
 }
 
+#[cfg(test)]
 /// Decides the solidity of one mesh (exact).
-pub fn solidity(mesh: &Mesh) -> Solidity {
+pub(crate) fn solidity(mesh: &Mesh) -> Solidity {
     examine(mesh).solidity
 }
 
@@ -151,11 +152,13 @@ pub(crate) struct Examined {
     pub(crate) surface: Option<Surface>,
 }
 
+#[cfg(test)]
 /// [`solidity`], saying which faces fail.
 pub(crate) fn examine(mesh: &Mesh) -> Examined {
     examine_where(mesh, |_| true)
 }
 
+#[cfg(test)]
 /// [`examine`], testing for crossings only the pairs of triangles where one's face passes
 /// `suspect` (the others known not to cross).
 pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -> Examined {
@@ -224,7 +227,7 @@ pub(crate) fn examine_until(
 ///
 /// Its faces go to `done` as the tests are done: a closed mesh's test is nearly all of the
 /// work; an open mesh's is only its edges matched (a tenth), and its capping the rest.
-pub fn decide(mesh: &mut Mesh, done: Count) {
+pub(crate) fn decide(mesh: &mut Mesh, done: Count) {
     let n = mesh.faces.len();
     let share = Share::new(done, n);
     let test = if mesh.closed { 0.97 } else { 0.1 };
@@ -271,7 +274,7 @@ pub fn decide(mesh: &mut Mesh, done: Count) {
 /// is decided once and stays shared.
 ///
 /// Each mesh decided goes to `done` with its faces, as its share of the count fills.
-pub fn mark_solids(root: &mut Object, done: Count) {
+pub(crate) fn mark_solids(root: &mut Object, done: Count) {
     let mut marked = HashMap::new();
     mark(root, &mut marked, done);
 }
@@ -704,7 +707,7 @@ fn in_cone(v: [f64; 2], a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
 /// Exact sign of the signed volume of closed triangles (+1 outward, -1 inward, 0 none): a
 /// floating-point sum with a proven error bound, and a big-integer sum where that bound
 /// does not decide.
-pub fn volume_sign<'a>(tris: impl Iterator<Item = &'a [P3; 3]> + Clone) -> i32 {
+pub(crate) fn volume_sign<'a>(tris: impl Iterator<Item = &'a [P3; 3]> + Clone) -> i32 {
     let Some(o) = tris.clone().next().map(|t| t[0]) else {
         return 0;
     };
@@ -772,7 +775,7 @@ fn exact_volume_sign<'a>(tris: impl Iterator<Item = &'a [P3; 3]> + Clone) -> i32
 }
 
 /// A finite nonzero f64 as m · 2^e with an odd integer m.
-pub fn decompose(x: f64) -> (i64, i32) {
+pub(crate) fn decompose(x: f64) -> (i64, i32) {
     let bits = x.to_bits();
     let sign = if bits >> 63 == 1 { -1 } else { 1 };
     let exp = ((bits >> 52) & 0x7ff) as i32;

@@ -17,7 +17,7 @@ use crate::geom::{Box3, P3};
 use crate::scene::Mesh;
 
 /// Most faces in a leaf of the top-down split.
-pub const LEAF_FACES: usize = 4;
+pub(crate) const LEAF_FACES: usize = 4;
 
 /// A node under construction.
 #[derive(Debug, Clone)]
@@ -244,7 +244,7 @@ impl Arena {
 }
 
 /// Candidate planes per axis of the area split, plus one.
-pub const AREA_BINS: usize = 16;
+pub(crate) const AREA_BINS: usize = 16;
 
 /// The traditional top-down split used below the leaf components.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

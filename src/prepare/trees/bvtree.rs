@@ -12,8 +12,8 @@ use crate::scene::Mesh;
 
 pub use super::binary::TopDown;
 use super::binary::{Arena, Build};
-pub use super::components::ComponentTree;
-pub use crate::scene::object_tree::{BuildTimes, HierarchyKind, ObjectTree, TreeNode, TreeShape};
+pub(crate) use super::components::ComponentTree;
+pub(crate) use crate::scene::object_tree::{BuildTimes, HierarchyKind, ObjectTree, TreeNode};
 
 impl ObjectTree {
     /// The tree of `kind` over the faces of `mesh`: below the leaf components of the

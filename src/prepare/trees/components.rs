@@ -12,7 +12,7 @@ use super::binary::area;
 use super::fcs::{cell_order, cluster, grades};
 use super::parts::face_parts;
 use super::widths::cell_widths;
-pub use crate::scene::object_tree::{Component, ComponentTree};
+pub(crate) use crate::scene::object_tree::{Component, ComponentTree};
 
 impl ComponentTree {
     /// C(T) of a mesh from its simplified models at the widths of its edge lengths.
@@ -109,9 +109,9 @@ impl ComponentTree {
 }
 
 /// Least faces of a component, absolute and as a share of the component it divides.
-pub const MIN_FACES: usize = 16;
+pub(crate) const MIN_FACES: usize = 16;
 /// Least share of the divided component's faces.
-pub const MIN_SHARE: f64 = 0.02;
+pub(crate) const MIN_SHARE: f64 = 0.02;
 
 /// The parts of a component with the small ones (under [`MIN_FACES`] faces or [`MIN_SHARE`]
 /// of the component) each given to the large part whose CBOX it grows least: a few faces

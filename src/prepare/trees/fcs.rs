@@ -16,7 +16,7 @@ use crate::scene::Mesh;
 
 /// The grade of every vertex, cos(θ/2) with θ the largest angle between two incident edges
 /// (1 for a vertex with fewer than two distinct incident edges).
-pub fn grades(mesh: &Mesh) -> Vec<f64> {
+pub(crate) fn grades(mesh: &Mesh) -> Vec<f64> {
     let mut nbrs: Vec<Vec<u32>> = vec![Vec::new(); mesh.vertices.len()];
     for f in &mesh.faces {
         let v = &f.vertices;
@@ -53,7 +53,7 @@ pub fn grades(mesh: &Mesh) -> Vec<f64> {
 }
 
 /// The vertex order of the floating cells: decreasing grade, then increasing index.
-pub fn cell_order(grades: &[f64]) -> Vec<u32> {
+pub(crate) fn cell_order(grades: &[f64]) -> Vec<u32> {
     let mut order: Vec<u32> = (0..grades.len() as u32).collect();
     order.sort_by(|&a, &b| {
         grades[b as usize]
@@ -65,7 +65,7 @@ pub fn cell_order(grades: &[f64]) -> Vec<u32> {
 
 /// FCS of the vertices with cells of diameter `width`, visiting centres in `order`: the
 /// representative (cluster centre) of every vertex.
-pub fn cluster(vertices: &[P3], order: &[u32], width: f64) -> Vec<u32> {
+pub(crate) fn cluster(vertices: &[P3], order: &[u32], width: f64) -> Vec<u32> {
     let n = vertices.len();
     let mut rep = vec![u32::MAX; n];
     if !(width > 0.0 && width.is_finite()) {
@@ -108,7 +108,7 @@ pub fn cluster(vertices: &[P3], order: &[u32], width: f64) -> Vec<u32> {
 
 /// What a face simplifies to: F_m(t), the element of the simplified model m it maps to.
 #[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Element {
+pub(crate) enum Element {
     /// A point (the face collapsed to one representative).
     Point(u32),
     /// An edge (two representatives, the lower first).
@@ -119,7 +119,7 @@ pub enum Element {
 
 /// F_m(t) for the face with vertices `face`: its representatives with repeats that follow
 /// each other around the ring removed; three or more left make a triangle.
-pub fn element(face: &[u32], rep: &[u32]) -> Element {
+pub(crate) fn element(face: &[u32], rep: &[u32]) -> Element {
     let mut ring: Vec<u32> = face.iter().map(|&v| rep[v as usize]).collect();
     ring.dedup();
     while ring.len() > 1 && ring.first() == ring.last() {
@@ -137,7 +137,7 @@ pub fn element(face: &[u32], rep: &[u32]) -> Element {
 
 /// The sides of a triangle element of the face `face`: consecutive distinct representatives
 /// around its ring, each pair with the lower first.
-pub fn sides(face: &[u32], rep: &[u32]) -> Vec<(u32, u32)> {
+pub(crate) fn sides(face: &[u32], rep: &[u32]) -> Vec<(u32, u32)> {
     let mut ring: Vec<u32> = face.iter().map(|&v| rep[v as usize]).collect();
     ring.dedup();
     while ring.len() > 1 && ring.first() == ring.last() {

@@ -10,12 +10,12 @@
 //! - [`components`]: the component tree C(T) (sections 3, 4.2).
 //! - [`binary`]: C(T) to a binary tree bottom-up, top-down below the leaf components (4.3).
 
-pub mod binary;
-pub mod bvtree;
-pub mod components;
-pub mod fcs;
-pub mod parts;
-pub mod widths;
+pub(crate) mod binary;
+pub(crate) mod bvtree;
+pub(crate) mod components;
+pub(crate) mod fcs;
+pub(crate) mod parts;
+pub(crate) mod widths;
 
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
@@ -29,18 +29,18 @@ use crate::prepare::inbox::grow::grown_inbox_in;
 use crate::prepare::inbox::solid::Triangles;
 
 /// Meshes with fewer faces keep the view's median split (a tree would cost more than it saves).
-pub const MIN_FACES: usize = 256;
+pub(crate) const MIN_FACES: usize = 256;
 /// Components with fewer faces than this (and than [`INBOX_SHARE`] of the mesh) get no INBOX.
-pub const INBOX_MIN_FACES: usize = 64;
+pub(crate) const INBOX_MIN_FACES: usize = 64;
 /// Least share of the mesh's faces for a component to get an INBOX.
-pub const INBOX_SHARE: f64 = 1.0 / 64.0;
+pub(crate) const INBOX_SHARE: f64 = 1.0 / 64.0;
 
 /// Attaches a tree of `kind` to every leaf mesh of at least [`MIN_FACES`] faces that has none
 /// (with `shared_only`, only to meshes of prototypes placed more than once); with `inboxes`,
 /// closed meshes' large components get inboxes too.
 ///
 /// The faces of each mesh go to `done` as its tree is built.
-pub fn attach_trees(
+pub(crate) fn attach_trees(
     root: &mut Object,
     kind: HierarchyKind,
     inboxes: bool,
@@ -174,7 +174,7 @@ impl Attach<'_> {
 
 /// An INBOX for every large component node below the root: a box grown inside the solid
 /// within the component's CBOX.
-pub fn component_inboxes(tree: &mut ObjectTree, mesh: &Mesh) {
+pub(crate) fn component_inboxes(tree: &mut ObjectTree, mesh: &Mesh) {
     let Some(tris) = Triangles::of(mesh) else {
         return;
     };
@@ -201,7 +201,7 @@ pub fn component_inboxes(tree: &mut ObjectTree, mesh: &Mesh) {
 
 /// The object tree of every leaf of `scene`, in [`crate::scene::Scene::leaves`] order (None
 /// for meshes without one).
-pub fn leaf_trees(scene: &crate::scene::Scene) -> Vec<Option<Arc<ObjectTree>>> {
+pub(crate) fn leaf_trees(scene: &crate::scene::Scene) -> Vec<Option<Arc<ObjectTree>>> {
     fn walk(o: &Object, out: &mut Vec<Option<Arc<ObjectTree>>>) {
         match &o.content {
             Content::Mesh(_) => out.push(o.tree.clone()),

@@ -74,7 +74,7 @@ fn elements(faces: &[u32], mesh: &Mesh, rep: &[u32]) -> Elements {
 }
 
 /// The part of every face in `faces` (parts numbered 0.. in order of their first face).
-pub fn face_parts(faces: &[u32], mesh: &Mesh, rep: &[u32]) -> Vec<u32> {
+pub(crate) fn face_parts(faces: &[u32], mesh: &Mesh, rep: &[u32]) -> Vec<u32> {
     let el = elements(faces, mesh, rep);
     let part = element_parts(&el);
     // Renumber by first appearance in face order.

@@ -15,22 +15,22 @@ use crate::geom::Box3;
 use crate::scene::Mesh;
 
 /// Most simplified models (the paper uses fewer than 4).
-pub const LEVELS: usize = 3;
+pub(crate) const LEVELS: usize = 3;
 /// A drastic change: this many times the next bin's count.
-pub const DROP: f64 = 4.0;
+pub(crate) const DROP: f64 = 4.0;
 /// Finest width kept, as a fraction of the diagonal.
-pub const FINEST: f64 = 1.0 / 32.0;
+pub(crate) const FINEST: f64 = 1.0 / 32.0;
 /// Coarsest width kept, as a fraction of the diagonal.
-pub const COARSEST: f64 = 1.0 / 3.0;
+pub(crate) const COARSEST: f64 = 1.0 / 3.0;
 /// Least ratio between two widths.
-pub const SPACING: f64 = 1.5;
+pub(crate) const SPACING: f64 = 1.5;
 /// Default widths, fractions of the diagonal, coarsest first.
-pub const DEFAULTS: [f64; LEVELS] = [1.0 / 4.0, 1.0 / 8.0, 1.0 / 16.0];
+pub(crate) const DEFAULTS: [f64; LEVELS] = [1.0 / 4.0, 1.0 / 8.0, 1.0 / 16.0];
 /// Histogram bins per octave.
 const BINS_PER_OCTAVE: f64 = 4.0;
 
 /// The cell widths of the simplified models, coarsest first (empty for a mesh without extent).
-pub fn cell_widths(mesh: &Mesh) -> Vec<f64> {
+pub(crate) fn cell_widths(mesh: &Mesh) -> Vec<f64> {
     let b = Box3::from_points(mesh.vertices.iter());
     let s = b.size();
     let diag = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
@@ -63,7 +63,7 @@ fn far(a: f64, b: f64) -> bool {
 }
 
 /// Lengths where the histogram of side lengths drops drastically (upper ends of such bins).
-pub fn drastic_lengths(mesh: &Mesh) -> Vec<f64> {
+pub(crate) fn drastic_lengths(mesh: &Mesh) -> Vec<f64> {
     let mut lengths = Vec::new();
     for f in &mesh.faces {
         let v = &f.vertices;

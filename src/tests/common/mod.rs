@@ -5,11 +5,12 @@ use std::sync::Arc;
 
 use crate::geom::poly2::{multipolygon_area, MultiPolygon};
 use crate::geom::{PolyMesh, M4, P3, V3};
+use crate::lines::{Drawing, LineOptions};
 use crate::scene::cleanup::{cleanup, Origin};
 use crate::scene::{Mesh, Object, Scene};
 use crate::view::{Camera, View};
 use crate::visibility::Visibility;
-use crate::{render, Drawing, LineOptions, Outputs, RenderOptions};
+use crate::{render, Outputs, RenderOptions};
 
 /// A cleaned mesh from points and faces.
 pub(crate) fn mesh(pts: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
