@@ -29,6 +29,7 @@ const RANKS: &[(&str, u32)] = &[
     ("check", 10),     // checking a render: the exact checker and golden comparison
     ("pipeline", 11),  // runs the stages after prepare as one call
     ("describe", 11),  // a prepared scene described (`kepler info`): reads every stage's facts
+    ("tests", 99),     // the unit tests gathered in src/tests: fixtures may reach any stage
     ("count", 0),      // units of work done, per chunk: all an algorithm is handed, never a bar
     ("progress", 1),   // stages and phases a watcher reads: entered by the stage entry points
 ];

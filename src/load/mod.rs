@@ -29,9 +29,9 @@ use crate::scene::{Object, Scene};
 /// appended to `warnings`. A scene with more faces than `opts.max_faces` once its instances
 /// are placed is an error, found from counts before anything is expanded.
 ///
-/// Where it is goes to `progress` (stage [`crate::stats::Stage::Load`]): a mesh file's bytes read
-/// and parsed and its faces cleaned up, each as a phase of its own ([`crate::stats::Phase::Read`],
-/// [`crate::stats::Phase::Parse`], [`crate::stats::Phase::Cleanup`]), for the scene file's meshes as for a
+/// Where it is goes to `progress` (stage `Load`): a mesh file's bytes read and parsed and its
+/// faces cleaned up, each as a phase of its own (`Read`, `Parse`, `Cleanup`,
+/// [`crate::stats::Phase`]), for the scene file's meshes as for a
 /// mesh file given alone. The scene is the same whatever watches it.
 pub fn load_scene(
     path: &Path,

@@ -35,8 +35,8 @@ pub struct PrepareOptions {
 /// leaf object gets no inboxes: an inbox prunes only other objects, so there is nothing for it
 /// to do ("model no more than a scene needs").
 ///
-/// Where it is goes to `progress` (stage [`crate::stats::Stage::Prepare`]): the phases
-/// [`crate::stats::Phase::Solidity`], [`crate::stats::Phase::Inboxes`] and [`crate::stats::Phase::Trees`], each
+/// Where it is goes to `progress` (stage `Prepare`): the phases `Solidity`, `Inboxes` and
+/// `Trees` ([`crate::stats::Phase`]), each
 /// counting the faces of the meshes it handles (a shared prototype's once). The prepared
 /// scene is the same whatever watches it.
 pub fn prepare(scene: &mut Scene, opts: &PrepareOptions, progress: &Progress) {

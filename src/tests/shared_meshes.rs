@@ -6,9 +6,9 @@ use std::collections::HashMap;
 use super::common::strokes::double_strokes;
 use super::common::{model, models};
 use crate::emit::lines::edges::{EdgeOptions, EdgeSet};
+use crate::emit::lines::LineOptions;
 use crate::geom::ring_check::multipolygon_defects;
 use crate::geom::V3;
-use crate::lines::LineOptions;
 use crate::{render, Camera, Outputs, RenderOptions};
 
 /// The shared meshes, by file name.

@@ -260,7 +260,7 @@ mod tests {
                 .unwrap();
                 let scene: &'static crate::Scene = Box::leak(Box::new(scene));
                 let opts = crate::RenderOptions {
-                    lines: crate::lines::LineOptions {
+                    lines: crate::emit::lines::LineOptions {
                         hidden: true,
                         ..Default::default()
                     },

@@ -3,9 +3,9 @@
 
 use std::sync::Arc;
 
+use crate::emit::lines::{Drawing, LineOptions};
 use crate::geom::poly2::{multipolygon_area, MultiPolygon};
 use crate::geom::{PolyMesh, M4, P3, V3};
-use crate::lines::{Drawing, LineOptions};
 use crate::scene::cleanup::{cleanup, Origin};
 use crate::scene::{Mesh, Object, Scene};
 use crate::view::{Camera, View};
