@@ -15,11 +15,11 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::boolean::{multipolygon_area, ring_area, union, xor_area, MultiPolygon};
 use super::coverage::Coverage;
 use super::rays::{self, Edge, Interval};
 use super::suite::ms_since;
 use super::zbuffer::{self, IdBuffer};
+use kepler_hsr::check::{multipolygon_area, ring_area, union, xor_area, MultiPolygon};
 use kepler_hsr::lines::EdgeOptions;
 use kepler_hsr::{
     render, Camera, FaceId, LodOptions, Outputs, RenderOptions, Scene, View, Visibility,

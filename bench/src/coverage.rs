@@ -24,7 +24,7 @@ impl Coverage {
     /// The covered area of every pixel under the rings (pixel units; outer rings
     /// counter-clockwise, holes clockwise, as in kepler's multipolygons).
     pub fn of<'a>(rings: impl IntoIterator<Item = &'a [[f64; 2]]> + Clone) -> Coverage {
-        let b = crate::rect::Rect::of_points(rings.clone().into_iter().flatten());
+        let b = kepler_hsr::plot::Rect::of_points(rings.clone().into_iter().flatten());
         if b.is_empty() {
             return Coverage {
                 i0: 0,
@@ -191,7 +191,7 @@ mod tests {
         // A needle crossing many rows and columns: per-cell areas sum to the shoelace area.
         let t = [[0.1, 0.2], [7.9, 5.3], [7.3, 5.9]];
         let c = Coverage::of([&t[..]]);
-        let area = crate::boolean::ring_area(&t);
+        let area = kepler_hsr::check::ring_area(&t);
         assert!((total(&c) - area).abs() < 1e-12 * area.max(1.0));
         assert!(c.area.iter().all(|&a| (-1e-12..=1.0 + 1e-12).contains(&a)));
     }

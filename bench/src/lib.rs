@@ -3,13 +3,11 @@
 //! written as CSV and SVG charts, with a table on standard output.
 
 pub mod accuracy;
-pub mod boolean;
 pub mod chart;
 pub mod coverage;
 pub mod generate;
 pub mod hostile;
 pub mod rays;
-pub mod rect;
 pub mod report;
 pub mod suite;
 pub mod town;

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use kepler_hsr::{Camera, FaceId, View, P3};
 
 use super::zbuffer::{plane, scene_rect};
-use crate::rect::Rect;
+use kepler_hsr::plot::Rect;
 
 /// A part [t0, t1] of a segment, by parameter (0 at its start, 1 at its end).
 pub type Interval = [f64; 2];

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 use kepler_hsr::View;
 
-use crate::rect::Rect;
+use kepler_hsr::plot::Rect;
 
 /// Label of a pixel no face covers.
 pub const NONE: u32 = u32::MAX;
@@ -235,7 +235,10 @@ pub fn visible_areas(view: &View, size: u32) -> (Vec<f64>, IdBuffer) {
 pub fn scene_rect(view: &View) -> Rect {
     view.screen_polygons()
         .flat_map(|(_, corners, _)| corners)
-        .fold(Rect::EMPTY, |acc, p| acc.with([p[0], p[1]]))
+        .fold(Rect::EMPTY, |mut acc, p| {
+            acc.add([p[0], p[1]]);
+            acc
+        })
 }
 
 #[cfg(test)]

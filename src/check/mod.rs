@@ -1,5 +1,6 @@
-//! Checking a render: against the independent exact answer ([`exact`]), and against a golden
-//! `kepler-visible/1` set ([`VisibleSet`], [`compare`]).
+//! Checking a render: against the independent exact answer ([`exact`]), against a golden
+//! `kepler-visible/1` set ([`VisibleSet`], [`compare`]), and the areas such checks measure
+//! (the one boolean adapter: [`xor_area`], [`union`] on a fixed grid; [`multipolygon_area`]).
 //!
 //! ```
 //! use kepler_hsr::check::{compare, VisibleSet};
@@ -15,5 +16,7 @@ mod compare;
 mod visible_set;
 
 pub use crate::exact::{check as exact, ExactReport, FaceCheck};
+pub use crate::geom::boolean::{union, xor_area};
+pub use crate::geom::poly2::{multipolygon_area, ring_area, MultiPolygon, Polygon, Pt2, Ring};
 pub use compare::{compare, Change, ChangeKind, Comparison};
 pub use visible_set::{SetFace, VisibleSet};

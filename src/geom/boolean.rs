@@ -56,7 +56,7 @@ pub(crate) fn subtract(subject: &[Pt2], rect: &Rect, clips: &[Ring]) -> MultiPol
 
 /// The union of rings of equal orientation (NonZero fill), on the grid of `rect`, which must
 /// hold them all.
-pub(crate) fn union<'a>(rings: impl IntoIterator<Item = &'a Ring>, rect: &Rect) -> MultiPolygon {
+pub fn union<'a>(rings: impl IntoIterator<Item = &'a Ring>, rect: &Rect) -> MultiPolygon {
     let Some(mut ov) = overlay(rect, 64) else {
         return Vec::new();
     };
@@ -75,7 +75,7 @@ pub(crate) fn union_area(parts: &[&MultiPolygon]) -> f64 {
 
 /// Area of the symmetric difference of two multipolygons (even-odd rings), on one grid over
 /// both: 0 exactly when they cover the same region, to the grid's precision.
-pub(crate) fn xor_area(a: &MultiPolygon, b: &MultiPolygon) -> f64 {
+pub fn xor_area(a: &MultiPolygon, b: &MultiPolygon) -> f64 {
     let rect = Rect::of_points(a.iter().chain(b.iter()).flatten().flatten());
     let Some(mut ov) = overlay(&rect, 64) else {
         return 0.0;

@@ -4,16 +4,16 @@
 use super::predicates::winding;
 
 /// A point of the screen plane.
-pub(crate) type Pt2 = [f64; 2];
+pub type Pt2 = [f64; 2];
 /// A closed ring (the last point is not repeated).
-pub(crate) type Ring = Vec<Pt2>;
+pub type Ring = Vec<Pt2>;
 /// A polygon: outer ring (counter-clockwise) first, then holes (clockwise).
-pub(crate) type Polygon = Vec<Ring>;
+pub type Polygon = Vec<Ring>;
 /// A set of disjoint polygons.
-pub(crate) type MultiPolygon = Vec<Polygon>;
+pub type MultiPolygon = Vec<Polygon>;
 
 /// Signed area of a ring (shoelace; positive for counter-clockwise).
-pub(crate) fn ring_area(r: &[Pt2]) -> f64 {
+pub fn ring_area(r: &[Pt2]) -> f64 {
     let n = r.len();
     if n < 3 {
         return 0.0;
@@ -45,7 +45,7 @@ pub(crate) fn polygon_area(p: &Polygon) -> f64 {
 }
 
 /// Total area of a multipolygon.
-pub(crate) fn multipolygon_area(m: &MultiPolygon) -> f64 {
+pub fn multipolygon_area(m: &MultiPolygon) -> f64 {
     m.iter().map(polygon_area).sum()
 }
 
