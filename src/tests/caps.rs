@@ -37,11 +37,7 @@ fn open_box(h: f64) -> Mesh {
 
 fn prepared(s: &Scene) -> Scene {
     let mut p = s.clone();
-    crate::prepare::prepare(
-        &mut p,
-        &crate::PrepareOptions::default(),
-        &crate::Progress::default(),
-    );
+    super::common::prepare(&mut p);
     p
 }
 

@@ -11,11 +11,7 @@ use crate::{render, FaceId, RenderOptions};
 
 /// Renders as a user would (prepared: culling where proven safe) and checks every face.
 fn prepared_check(mut scene: Scene, cam: Camera, faces: Option<&[FaceId]>) -> ExactReport {
-    crate::prepare(
-        &mut scene,
-        &crate::PrepareOptions::default(),
-        &crate::Progress::default(),
-    );
+    super::common::prepare(&mut scene);
     let r = render(
         &scene,
         &cam,
@@ -51,11 +47,7 @@ fn unit_cube_from_a_corner() {
 
 /// A prepared scene whose first leaf is forced to count as a solid: the old cull rule.
 fn force_cull(mut scene: Scene) -> Scene {
-    crate::prepare(
-        &mut scene,
-        &crate::PrepareOptions::default(),
-        &crate::Progress::default(),
-    );
+    super::common::prepare(&mut scene);
     if let crate::scene::Content::Subobjects(subs) = &mut scene.root.content {
         if let crate::scene::Content::Mesh(m) = &mut subs[0].content {
             m.solidity = Some(Solidity::Solid);
@@ -304,11 +296,7 @@ fn only_proven_pieces_cull() {
     let bad = joined(&fold_mesh(), &solid(&mut rng, 0, true));
     let s = scene(vec![("parts", joined(&good, &bad))]);
     let mut prepared = s.clone();
-    crate::prepare(
-        &mut prepared,
-        &crate::PrepareOptions::default(),
-        &crate::Progress::default(),
-    );
+    super::common::prepare(&mut prepared);
     let m = prepared.leaves()[0].mesh;
     assert!(
         matches!(m.solidity, Some(Solidity::SelfIntersecting(_))),
@@ -363,18 +351,8 @@ fn ogre_proven_pieces_match_the_exact_answer() {
     let Some(path) = model("ogre.obj") else {
         return;
     };
-    let mut s = crate::load_scene(
-        &path,
-        &crate::LoadOptions::default(),
-        &mut Vec::new(),
-        &crate::Progress::default(),
-    )
-    .unwrap();
-    crate::prepare(
-        &mut s,
-        &crate::PrepareOptions::default(),
-        &crate::Progress::default(),
-    );
+    let mut s = super::common::load(&path);
+    super::common::prepare(&mut s);
     let d = V3::new(-1., -2., -3.);
     let m = s.leaves()[0].mesh;
     let p = m.proven.as_ref().expect("ogre's pieces are proven");
@@ -416,13 +394,7 @@ fn ogre_proven_pieces_match_the_exact_answer() {
 #[test]
 fn cow_matches_the_exact_answer() {
     let Some(path) = model("cow.obj") else { return };
-    let s = crate::load_scene(
-        &path,
-        &crate::LoadOptions::default(),
-        &mut Vec::new(),
-        &crate::Progress::default(),
-    )
-    .unwrap();
+    let s = super::common::load(&path);
     assert_eq!(solidity_of(&s), Solidity::SelfIntersecting(81));
     let mut faces: Vec<FaceId> = [5380, 5381, 5382, 5446, 5465, 5472, 5473, 5474]
         .into_iter()

@@ -19,25 +19,11 @@ fn corners(f: &FlatMesh) -> Vec<Vec<[f64; 3]>> {
 }
 
 fn round_trip(scene_path: &Path, tmp: &Path) {
-    let scene = crate::load::load_scene(
-        scene_path,
-        &crate::LoadOptions::default(),
-        &mut Vec::new(),
-        &crate::Progress::default(),
-    )
-    .unwrap();
+    let scene = super::common::load(scene_path);
     let first = flatten(&scene);
     let obj1 = tmp.join("first.obj");
     std::fs::write(&obj1, first.to_obj()).unwrap();
-    let second = flatten(
-        &crate::load::load_scene(
-            &obj1,
-            &crate::LoadOptions::default(),
-            &mut Vec::new(),
-            &crate::Progress::default(),
-        )
-        .unwrap(),
-    );
+    let second = flatten(&super::common::load(&obj1));
     assert_eq!(
         corners(&first),
         corners(&second),
@@ -59,15 +45,7 @@ fn round_trip(scene_path: &Path, tmp: &Path) {
     );
     let obj2 = tmp.join("second.obj");
     std::fs::write(&obj2, second.to_obj()).unwrap();
-    let third = flatten(
-        &crate::load::load_scene(
-            &obj2,
-            &crate::LoadOptions::default(),
-            &mut Vec::new(),
-            &crate::Progress::default(),
-        )
-        .unwrap(),
-    );
+    let third = flatten(&super::common::load(&obj2));
     assert_eq!(
         second.to_obj(),
         third.to_obj(),

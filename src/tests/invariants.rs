@@ -183,11 +183,7 @@ fn random_closed_solids() {
     for _ in 0..3 {
         let mut s = random_solids(&mut rng, 14);
         // Prepared: each primitive is proven solid, so its back faces are culled.
-        crate::prepare::prepare(
-            &mut s,
-            &crate::PrepareOptions::default(),
-            &crate::Progress::default(),
-        );
+        super::common::prepare(&mut s);
         for (ci, cam) in cameras(&mut rng, P3::new(1.0, 1.0, 1.0))
             .into_iter()
             .enumerate()
@@ -264,13 +260,7 @@ fn shared_meshes_from_several_views() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let s = crate::load::load_scene(
-            &path,
-            &crate::LoadOptions::default(),
-            &mut Vec::new(),
-            &crate::Progress::default(),
-        )
-        .unwrap();
+        let s = super::common::load(&path);
         let b = s.cbox();
         let c = b.center();
         let r = (b.hi - b.lo).norm();

@@ -25,13 +25,7 @@ fn all_edges(hidden: bool) -> LineOptions {
 }
 
 fn load(path: &std::path::Path) -> Scene {
-    crate::load::load_scene(
-        path,
-        &crate::LoadOptions::default(),
-        &mut Vec::new(),
-        &crate::Progress::default(),
-    )
-    .unwrap()
+    super::common::load(path)
 }
 
 /// Icosphere: an icosahedron subdivided `n` times, pushed onto the unit sphere.
@@ -266,11 +260,7 @@ fn example_drawings_have_no_zero_length_strokes() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes");
     for name in ["assembly", "town", "polyhedra"] {
         let mut scene = load(&root.join(format!("{name}.kdl")));
-        crate::prepare(
-            &mut scene,
-            &crate::PrepareOptions::default(),
-            &crate::Progress::default(),
-        );
+        super::common::prepare(&mut scene);
         let camera = Camera::for_scene(&scene, &CameraRequest::default()).unwrap();
         let opts = RenderOptions {
             lines: LineOptions {

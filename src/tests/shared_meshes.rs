@@ -43,18 +43,8 @@ fn shared_meshes_emit_valid_rings_and_stroke_each_line_once() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let mut scene = crate::load_scene(
-            &path,
-            &crate::LoadOptions::default(),
-            &mut Vec::new(),
-            &crate::Progress::default(),
-        )
-        .unwrap();
-        crate::prepare(
-            &mut scene,
-            &crate::PrepareOptions::default(),
-            &crate::Progress::default(),
-        );
+        let mut scene = super::common::load(&path);
+        super::common::prepare(&mut scene);
         let cam = Camera::orthographic(V3::new(-1., -2., -3.), V3::y()).unwrap();
         let opts = RenderOptions {
             lines: LineOptions {
@@ -111,13 +101,7 @@ fn teapot_seams_merge_and_leave_only_real_borders() {
     let Some(path) = model("teapot.obj") else {
         return;
     };
-    let scene = crate::load_scene(
-        &path,
-        &crate::LoadOptions::default(),
-        &mut Vec::new(),
-        &crate::Progress::default(),
-    )
-    .unwrap();
+    let scene = super::common::load(&path);
     let mesh = scene.leaves()[0].mesh;
     let mut uses: HashMap<(u32, u32), usize> = HashMap::new();
     for f in &mesh.faces {

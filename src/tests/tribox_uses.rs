@@ -258,13 +258,7 @@ fn shared_meshes_tribox_between_hull_and_cbox() {
             eprintln!("skipping {name}: absent");
             continue;
         }
-        let scene: Scene = crate::load::load_scene(
-            &p,
-            &crate::LoadOptions::default(),
-            &mut Vec::new(),
-            &crate::Progress::default(),
-        )
-        .unwrap();
+        let scene: Scene = super::common::load(&p);
         let pts: Vec<P3> = scene
             .leaves()
             .iter()

@@ -12,6 +12,26 @@ use crate::view::{Camera, View};
 use crate::visibility::Visibility;
 use crate::{render, Outputs, RenderOptions};
 
+/// Loads a scene or mesh file with the default options, unwatched.
+pub(crate) fn load(path: &std::path::Path) -> Scene {
+    crate::load_scene(
+        path,
+        &crate::LoadOptions::default(),
+        &mut Vec::new(),
+        &crate::Progress::default(),
+    )
+    .unwrap()
+}
+
+/// Prepares `scene` with the default options, unwatched.
+pub(crate) fn prepare(scene: &mut Scene) {
+    crate::prepare(
+        scene,
+        &crate::PrepareOptions::default(),
+        &crate::Progress::default(),
+    );
+}
+
 /// A cleaned mesh from points and faces.
 pub(crate) fn mesh(pts: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
     let raw = PolyMesh::new(
