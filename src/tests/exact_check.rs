@@ -7,18 +7,12 @@ use crate::exact::{check, ExactReport};
 use crate::geom::{P3, V3};
 use crate::scene::{Scene, Solidity};
 use crate::view::Camera;
-use crate::{render, FaceId, RenderOptions};
+use crate::FaceId;
 
 /// Renders as a user would (prepared: culling where proven safe) and checks every face.
 fn prepared_check(mut scene: Scene, cam: Camera, faces: Option<&[FaceId]>) -> ExactReport {
     super::common::prepare(&mut scene);
-    let r = render(
-        &scene,
-        &cam,
-        &RenderOptions::default(),
-        &crate::Progress::default(),
-    )
-    .unwrap();
+    let r = super::common::render_plain(&scene, &cam);
     check(&scene, &cam, &r.visibility, faces)
 }
 
@@ -115,13 +109,7 @@ fn fold_and_inside_out_tetrahedron_match_the_exact_answer() {
         assert_agrees(what, &prepared_check(s.clone(), cam, None));
         // The old rule (culling it as a solid) gives a wrong answer, and the check sees it.
         let forced = force_cull(s.clone());
-        let r = render(
-            &forced,
-            &cam,
-            &RenderOptions::default(),
-            &crate::Progress::default(),
-        )
-        .unwrap();
+        let r = super::common::render_plain(&forced, &cam);
         assert!(
             !check(&forced, &cam, &r.visibility, None).agrees(),
             "{what}: culling must be wrong here"
@@ -314,13 +302,7 @@ fn only_proven_pieces_cull() {
         .enumerate()
     {
         let cam = Camera::orthographic(V3::new(dir[0], dir[1], dir[2]), V3::y()).unwrap();
-        let r = render(
-            &prepared,
-            &cam,
-            &RenderOptions::default(),
-            &crate::Progress::default(),
-        )
-        .unwrap();
+        let r = super::common::render_plain(&prepared, &cam);
         assert!(
             r.stats.counters.faces_culled > 0,
             "view {k}: the proper pieces cull"
@@ -333,13 +315,7 @@ fn only_proven_pieces_cull() {
     // From below the fold shows back faces nearest: culling the whole mesh is wrong.
     let cam = Camera::orthographic(V3::new(0., 0., 1.), V3::y()).unwrap();
     let forced = force_cull(s);
-    let r = render(
-        &forced,
-        &cam,
-        &RenderOptions::default(),
-        &crate::Progress::default(),
-    )
-    .unwrap();
+    let r = super::common::render_plain(&forced, &cam);
     assert!(!check(&forced, &cam, &r.visibility, None).agrees());
 }
 
@@ -372,13 +348,7 @@ fn ogre_proven_pieces_match_the_exact_answer() {
         .collect();
     faces.extend((0..m.faces.len() as u32).step_by(step).map(FaceId));
     let cam = Camera::orthographic(d, V3::y()).unwrap();
-    let r = render(
-        &s,
-        &cam,
-        &RenderOptions::default(),
-        &crate::Progress::default(),
-    )
-    .unwrap();
+    let r = super::common::render_plain(&s, &cam);
     assert!(
         r.stats.counters.faces_culled > 30_000,
         "{}",

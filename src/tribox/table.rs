@@ -4,8 +4,7 @@
 
 use std::time::{Duration, Instant};
 
-use crate::geom::{Box3, PolyMesh, M4};
-use crate::scene::cleanup::{cleanup, Origin};
+use crate::geom::{Box3, PolyMesh, M4, P3};
 use crate::scene::{Mesh, Object, Scene};
 
 use super::hierarchy::{Hierarchy, HierarchyOptions};
@@ -168,30 +167,28 @@ impl TableRow {
     pub fn objects(&self) -> Vec<Object> {
         self.substitutes
             .iter()
-            .filter_map(|(name, m)| clean(m).map(|m| Object::from_mesh(name.clone(), m)))
+            .filter_map(|(name, m)| {
+                let mesh = clean(m.vertices.clone(), m.faces.clone())?;
+                Some(Object::from_mesh(name.clone(), mesh))
+            })
             .collect()
     }
 }
 
 /// A leaf's mesh in world coordinates (None when nothing survives cleanup).
 fn world_mesh(mesh: &Mesh, xf: &M4) -> Option<Mesh> {
-    let raw = PolyMesh::new(
+    clean(
         mesh.vertices
             .iter()
             .map(|v| xf.transform_point(v))
             .collect(),
         mesh.faces.iter().map(|f| f.vertices.clone()).collect(),
-    );
-    clean(&raw)
+    )
 }
 
-/// A raw mesh cleaned up as a loader would (None when no face survives).
-fn clean(raw: &PolyMesh) -> Option<Mesh> {
-    let origin = Origin {
-        file: std::path::Path::new("tribox"),
-        face_pos: &[],
-    };
-    cleanup(raw, &origin, &mut Vec::new(), Default::default())
+/// Polygons cleaned up as a loader would (None when no face survives).
+fn clean(vertices: Vec<P3>, faces: Vec<Vec<u32>>) -> Option<Mesh> {
+    Mesh::from_polygons(vertices, faces, &mut Vec::new())
         .ok()
         .filter(|m| !m.faces.is_empty())
 }

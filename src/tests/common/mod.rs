@@ -23,6 +23,17 @@ pub(crate) fn load(path: &std::path::Path) -> Scene {
     .unwrap()
 }
 
+/// Renders `scene` from `camera` with the default options, unwatched.
+pub(crate) fn render_plain<'s>(scene: &'s Scene, camera: &Camera) -> crate::Rendered<'s> {
+    render(
+        scene,
+        camera,
+        &RenderOptions::default(),
+        &crate::Progress::default(),
+    )
+    .unwrap()
+}
+
 /// Prepares `scene` with the default options, unwatched.
 pub(crate) fn prepare(scene: &mut Scene) {
     crate::prepare(
