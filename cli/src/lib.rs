@@ -5,6 +5,7 @@ pub mod bar;
 mod camera_args;
 mod check;
 mod components;
+pub mod embed;
 mod flatten;
 mod hierarchy_arg;
 mod info;

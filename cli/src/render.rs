@@ -120,7 +120,7 @@ impl RenderArgs {
     }
 
     /// The render options the flags ask for.
-    fn options(&self) -> Result<RenderOptions> {
+    pub(crate) fn options(&self) -> Result<RenderOptions> {
         Ok(RenderOptions {
             lines: self.line_options()?,
             outputs: Outputs {
@@ -254,7 +254,7 @@ fn owned_parts(r: Rendered<'_>) -> impl Send + 'static {
 impl RenderArgs {
     /// The cameras to render (one, a views file's, or a turntable's) and, for a turntable,
     /// the one frame they share.
-    fn cameras(&self, scene: &Scene) -> Result<(Vec<Camera>, Option<Rect>)> {
+    pub(crate) fn cameras(&self, scene: &Scene) -> Result<(Vec<Camera>, Option<Rect>)> {
         if let Some(file) = &self.views {
             let c = &self.camera;
             if c.dir.is_some() || c.eye.is_some() || c.target.is_some() || c.up.is_some() || c.ortho
