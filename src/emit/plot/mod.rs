@@ -172,17 +172,7 @@ pub(crate) fn picture(
     let (kept, dup) = dedup(&segs, eps, lane.count());
     stats.duplicates = dup;
     // Every line drawn, to keep the joins' gap bridges off them.
-    let mut drawn = SegmentIndex::new(&segs, eps);
-    for (_, s) in &kept {
-        drawn.insert(*s);
-    }
-    let mut bridge = |p: Pt2, q: Pt2| {
-        let free = !drawn.overlaps(p, q);
-        if free {
-            drawn.insert([p, q]);
-        }
-        free
-    };
+    let mut bridges = Bridges::new(&segs, &kept, &owner, eps);
 
     // Per layer and pen: join, simplify, dash.
     let layer_of = |pen: Pen, leaf: u32| match opts.layers {
@@ -208,6 +198,7 @@ pub(crate) fn picture(
         let share = Share::new(lane.count(), lines.len());
         // The hidden pen's lines are joined twice, before and after dashing.
         let once = if pen == Pen::Hidden { 0.4 } else { 1.0 };
+        let mut bridge = |p, q| bridges.allow(p, q, false);
         let mut strokes = join(lines, opts.join_mm, &mut bridge, share.span(0.0, once));
         if opts.simplify_mm > 0.0 {
             strokes = strokes
@@ -217,10 +208,13 @@ pub(crate) fn picture(
         }
         if pen == Pen::Hidden {
             // Dashes of different lines that meet (where hidden lines join at a corner) are
-            // drawn as one stroke.
+            // drawn as one stroke, a gap shorter than the join tolerance bridged where it
+            // runs along hidden lines only (the off part of a dash pattern has no ink), as
+            // vpype's `linemerge` would join them.
             let [on, off] = opts.dash_mm;
             let dashed = strokes.iter().flat_map(|l| dashes(l, on, off)).collect();
             share.reach(0.5);
+            let mut bridge = |p, q| bridges.allow(p, q, true);
             strokes = join(dashed, opts.join_mm, &mut bridge, share.span(0.5, 1.0));
         }
         share.finish();
@@ -414,4 +408,45 @@ fn fills(
         .filter(|(_, rings)| !rings.is_empty())
         .map(|(grey, rings)| Fill { rings, grey })
         .collect()
+}
+
+/// Where a join may bridge a gap: never along a line already drawn, except that a gap
+/// between two hidden dashes may run along hidden lines (their dash pattern's off parts).
+struct Bridges {
+    /// Every segment drawn, and every bridge.
+    drawn: SegmentIndex,
+    /// Every segment drawn but the hidden pen's, and every bridge; `None` without hidden
+    /// lines.
+    solid: Option<SegmentIndex>,
+}
+
+impl Bridges {
+    fn new(segs: &[[Pt2; 2]], kept: &[(usize, [Pt2; 2])], owner: &[(Pen, u32)], eps: f64) -> Self {
+        let mut drawn = SegmentIndex::new(segs, eps);
+        let hidden = kept.iter().any(|&(src, _)| owner[src].0 == Pen::Hidden);
+        let mut solid = hidden.then(|| SegmentIndex::new(segs, eps));
+        for &(src, s) in kept {
+            drawn.insert(s);
+            if let (Some(solid), false) = (solid.as_mut(), owner[src].0 == Pen::Hidden) {
+                solid.insert(s);
+            }
+        }
+        Bridges { drawn, solid }
+    }
+
+    /// Whether the gap from `p` to `q` may be drawn (then it is, from now on); with
+    /// `along_hidden`, hidden lines do not stop it.
+    fn allow(&mut self, p: Pt2, q: Pt2, along_hidden: bool) -> bool {
+        let free = match (self.solid.as_mut(), along_hidden) {
+            (Some(solid), true) => !solid.overlaps(p, q),
+            _ => !self.drawn.overlaps(p, q),
+        };
+        if free {
+            self.drawn.insert([p, q]);
+            if let Some(solid) = self.solid.as_mut() {
+                solid.insert([p, q]);
+            }
+        }
+        free
+    }
 }
