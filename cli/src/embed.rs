@@ -81,6 +81,14 @@ pub fn render(loaded: &Loaded, flags: &[String], want: Want) -> Result<Made> {
     made(&loaded.scene, &camera, &opts)
 }
 
+/// Checks `flags` as `kepler render PATH FLAGS` would before loading anything.
+pub fn check_flags(path: &Path, flags: &[String], one_view: bool) -> Result<()> {
+    let (a, _) = parse(path, flags, None)?;
+    refuse_command_only(&a, one_view)?;
+    a.options()?;
+    a.camera.check()
+}
+
 /// How many views `--turntable N` or `--views FILE` in `flags` makes (1 without either).
 pub fn frame_count(loaded: &Loaded, flags: &[String]) -> Result<usize> {
     let a = parse_for(loaded, flags)?;

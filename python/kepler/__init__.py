@@ -9,6 +9,8 @@ command's bytes for the same options.
 """
 
 from ._kepler import KeplerError, __version__
+from ._compare import Comparison, FaceChange, compare
 from ._scene import Face, Render, Scene, load
 
-__all__ = ["Face", "KeplerError", "Render", "Scene", "load", "__version__"]
+__all__ = ["Comparison", "Face", "FaceChange", "KeplerError", "Render", "Scene", "compare",
+           "load", "__version__"]

@@ -36,6 +36,8 @@ def render_views(scene_path, cameras, out_dir, *, name="frame", outputs=("json",
     out_dir.mkdir(parents=True, exist_ok=True)
     base = {str(kind): str(out_dir / f"{name}.{kind}") for kind in outputs}
     jobs = _jobs(str(scene_path), cameras, options, max_faces, hierarchy)
+    for flags in jobs.per_view or [jobs.flags]:
+        _kepler.check_flags(jobs.scene_path, flags, jobs.per_view is not None)
     if client is None:
         return _run(jobs, base, range(jobs.count()))
     if shards is None:

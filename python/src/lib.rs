@@ -7,6 +7,7 @@
 use std::path::PathBuf;
 
 use kepler_cli::embed::{self, Loaded, Want};
+use kepler_hsr::check::{self, VisibleSet};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
@@ -118,6 +119,32 @@ fn frame_path(path: PathBuf, k: usize, total: usize) -> PathBuf {
     embed::frame_path(&path, k, total)
 }
 
+/// Checks render flags as the command would for the scene file `path`, before any loading.
+#[pyfunction]
+#[pyo3(signature = (path, flags, one_view=true))]
+fn check_flags(path: PathBuf, flags: Vec<String>, one_view: bool) -> PyResult<()> {
+    embed::check_flags(&path, &flags, one_view).map_err(raise)
+}
+
+/// Compares two `kepler-visible/1` sets (JSON text; the names are what errors cite) as
+/// `kepler diff` does, returning its `kepler-diff/1` report.
+#[pyfunction]
+fn diff(
+    py: Python<'_>,
+    golden: &str,
+    golden_name: PathBuf,
+    current: &str,
+    current_name: PathBuf,
+    tol: f64,
+) -> PyResult<String> {
+    let report = py.detach(|| -> Result<String, kepler_hsr::Error> {
+        let golden = VisibleSet::parse(golden, &golden_name)?;
+        let current = VisibleSet::parse(current, &current_name)?;
+        Ok(check::diff(&golden, &current, tol).to_json())
+    });
+    report.map_err(|e| KeplerError::new_err(e.to_string()))
+}
+
 /// Loads and prepares a scene file or mesh, as `kepler render` does.
 #[pyfunction]
 #[pyo3(signature = (path, max_faces=None, hierarchy=None))]
@@ -139,6 +166,8 @@ fn _kepler(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<NativeScene>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(frame_path, m)?)?;
+    m.add_function(wrap_pyfunction!(check_flags, m)?)?;
+    m.add_function(wrap_pyfunction!(diff, m)?)?;
     m.add("KeplerError", m.py().get_type::<KeplerError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
