@@ -1,7 +1,8 @@
 //! The picture's frame: which part of the screen plane a drawing shows, and how many pixels
 //! a screen unit is. SVG, PNG and the level-of-detail substitution all use this one mapping.
 
-use crate::geom::Rect;
+use crate::geom::{Rect, P3};
+use crate::scene::Scene;
 
 use super::camera::{Camera, Projection};
 
@@ -45,10 +46,43 @@ impl Frame {
         }
     }
 
+    /// The frame of a picture of `scene` whose drawing has screen bounds `b`: all of it when
+    /// the scene's CBOX lies wholly in front of a perspective camera's near plane (nothing was
+    /// clipped there, so the projection is bounded and the whole drawing fits the page),
+    /// else as [`Frame::of`] (a scene reaching behind the eye, a ground plane say, is framed
+    /// by the field of view).
+    pub(crate) fn of_scene(camera: &Camera, scene: &Scene, b: Rect) -> Frame {
+        if camera.projection == Projection::Perspective && !wholly_in_front(camera, scene) {
+            return Frame::of(camera, b);
+        }
+        Frame::of(
+            &Camera {
+                projection: Projection::Orthographic,
+                ..*camera
+            },
+            b,
+        )
+    }
+
     /// Pixels per screen unit of a picture `size` pixels along its longer side.
     pub(crate) fn pixels_per_unit(&self, size: u32) -> f64 {
         f64::from(size.max(1)) / self.rect.longer_side()
     }
+}
+
+/// True when every corner of `scene`'s CBOX is in front of `camera`'s near plane.
+fn wholly_in_front(camera: &Camera, scene: &Scene) -> bool {
+    let b = scene.cbox();
+    if b.lo.x > b.hi.x || b.lo.x.is_nan() {
+        return true;
+    }
+    (0..8).all(|k| {
+        camera.in_front(&P3::new(
+            if k & 1 == 0 { b.lo.x } else { b.hi.x },
+            if k & 2 == 0 { b.lo.y } else { b.hi.y },
+            if k & 4 == 0 { b.lo.z } else { b.hi.z },
+        ))
+    })
 }
 
 /// Drawing bounds limited, for a perspective camera, to its field of view: the projection
