@@ -28,7 +28,12 @@ impl Frame {
     /// camera, to its field of view, then given a 5% margin. An empty drawing gets the
     /// unit square.
     pub(crate) fn of(camera: &Camera, b: Rect) -> Frame {
-        let b = field_of_view(camera, b);
+        Frame::around(field_of_view(camera, b))
+    }
+
+    /// The frame of drawing bounds `b` as they are, given a 5% margin (the unit square when
+    /// empty).
+    fn around(b: Rect) -> Frame {
         if b.is_empty() {
             let unit_square = Rect::new(0.0, 0.0, 1.0, 1.0);
             return Frame {
@@ -55,13 +60,7 @@ impl Frame {
         if camera.projection == Projection::Perspective && !wholly_in_front(camera, scene) {
             return Frame::of(camera, b);
         }
-        Frame::of(
-            &Camera {
-                projection: Projection::Orthographic,
-                ..*camera
-            },
-            b,
-        )
+        Frame::around(b)
     }
 
     /// Pixels per screen unit of a picture `size` pixels along its longer side.
@@ -115,5 +114,22 @@ mod tests {
         assert_eq!(f.pixels_per_unit(1100), 100.0);
         let e = Frame::of(&cam, Rect::EMPTY);
         assert_eq!((e.rect, e.unit), (Rect::new(0., 0., 1., 1.), 1.0));
+    }
+
+    #[test]
+    fn a_perspective_scene_wholly_in_front_is_framed_whole() {
+        let scene = crate::scene::testing::unit_cube_scene();
+        let wide = Rect::new(-3., -1., 3., 1.);
+        let at = |eye: P3| {
+            let c = Camera::perspective(eye, P3::new(0.5, 0.5, 0.), V3::y(), 45.0, 1e-3).unwrap();
+            Frame::of_scene(&c, &scene, wide).content
+        };
+        // Outside the cube: the whole drawing, wider than the field of view.
+        assert_eq!(at(P3::new(0.5, 0.5, 1.2)), wide);
+        // Inside it (its CBOX reaches behind the eye): cut to the field of view.
+        assert_eq!(
+            at(P3::new(0.5, 0.5, 0.5)),
+            Rect::new(-MAX_ASPECT, -1., MAX_ASPECT, 1.)
+        );
     }
 }
