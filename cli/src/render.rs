@@ -385,7 +385,7 @@ impl RenderArgs {
 /// (None for a perspective one or an empty scene).
 fn sphere_frame(scene: &Scene, camera: &Camera) -> Option<Rect> {
     let b = scene.cbox();
-    if camera.projection != Projection::Orthographic || !(b.lo.x <= b.hi.x) {
+    if camera.projection != Projection::Orthographic || b.lo.x.is_nan() || b.lo.x > b.hi.x {
         return None;
     }
     let c = b.center();

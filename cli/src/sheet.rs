@@ -245,7 +245,7 @@ mod tests {
         let s = Sheet::new("3x2", Some(PageSize::A4.landscape()), 1024).unwrap();
         assert_eq!((s.cols, s.rows, s.cells()), (3, 2, 6));
         assert_eq!(s.cell_page().width, 99.0);
-        assert_eq!(s.origin(4), [99.0, 148.5]);
+        assert_eq!(s.origin(4), [99.0, 105.0]);
         assert!(s.check_views(6).is_ok());
         assert!(s
             .check_views(7)

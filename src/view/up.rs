@@ -70,7 +70,7 @@ pub(crate) fn auto_up(points: &[P3]) -> AutoUp {
         let (a, b) = ((k + 1) % 3, (k + 2) % 3);
         let flat = |p: &P3| -> Pt2 { [p[a], p[b]] };
         let shadow = hull_area(points.iter().map(flat).collect());
-        if !(shadow > 0.0) {
+        if shadow.is_nan() || shadow <= 0.0 {
             continue;
         }
         let depth = SLAB * ext[k];
