@@ -82,8 +82,9 @@ pub(crate) struct RenderArgs {
     #[arg(long, value_name = "I/K", conflicts_with = "sheet")]
     pub(crate) shard: Option<String>,
     /// Lay the views of --turntable or --views on one page, COLS across and ROWS down, in
-    /// reading order, each cell framed alike (a turntable's shared frame; orthographic views
-    /// the sphere round the scene's CBOX, so all at one scale) inside its own --margin: one
+    /// reading order, each cell framed alike (a turntable's shared frame; a views file's
+    /// orthographic views one frame size round the projected CBOX, so all at one scale)
+    /// inside its own --margin: one
     /// SVG and one PNG (the page, or without --page square cells whose sheet is --size
     /// pixels along its longer side); the JSON stays one numbered file per view.
     #[arg(long, value_name = "COLSxROWS")]
@@ -340,18 +341,15 @@ impl RenderArgs {
     }
 
     /// The cameras to render (one, a views file's, or a turntable's) and the frame of each:
-    /// a turntable's views share one; on a sheet, orthographic views of a views file are
-    /// framed by the sphere round the scene's CBOX (one scale for all).
+    /// a turntable's views share one; on a sheet, orthographic views of a views file share
+    /// one frame size round their projected CBOX (one scale for all).
     fn cameras(&self, scene: &Scene, sheet: bool) -> Result<(Vec<Camera>, Vec<Option<Rect>>)> {
         let (cams, frame) = self.cameras_and_frame(scene)?;
-        let frames = cams
-            .iter()
-            .map(|c| match frame {
-                Some(f) => Some(f),
-                None if sheet && self.views.is_some() => sphere_frame(scene, c),
-                None => None,
-            })
-            .collect();
+        let frames = match frame {
+            Some(f) => vec![Some(f); cams.len()],
+            None if sheet && self.views.is_some() => common_frames(scene, &cams),
+            None => vec![None; cams.len()],
+        };
         Ok((cams, frames))
     }
 
@@ -381,17 +379,43 @@ impl RenderArgs {
     }
 }
 
-/// The screen square holding the sphere round `scene`'s CBOX, for an orthographic camera
-/// (None for a perspective one or an empty scene).
-fn sphere_frame(scene: &Scene, camera: &Camera) -> Option<Rect> {
+/// One frame size for the orthographic views of a sheet: each view's frame is centred on its
+/// projected CBOX and as wide and as high as the widest and highest of them, so that every
+/// cell shows the scene at one scale. Perspective views (and an empty scene) get None: they fit
+/// their own drawing.
+fn common_frames(scene: &Scene, cams: &[Camera]) -> Vec<Option<Rect>> {
     let b = scene.cbox();
-    if camera.projection != Projection::Orthographic || b.lo.x.is_nan() || b.lo.x > b.hi.x {
-        return None;
-    }
-    let c = b.center();
-    let r = 0.5 * (b.hi - b.lo).norm();
-    let s = camera.project(&c);
-    (r.is_finite() && r > 0.0).then(|| Rect::new(s[0] - r, s[1] - r, s[0] + r, s[1] + r))
+    let boxes: Vec<Option<Rect>> = cams
+        .iter()
+        .map(|c| {
+            if c.projection != Projection::Orthographic || b.lo.x.is_nan() || b.lo.x > b.hi.x {
+                return None;
+            }
+            let mut r = Rect::EMPTY;
+            for k in 0..8 {
+                let p = kepler_hsr::P3::new(
+                    if k & 1 == 0 { b.lo.x } else { b.hi.x },
+                    if k & 2 == 0 { b.lo.y } else { b.hi.y },
+                    if k & 4 == 0 { b.lo.z } else { b.hi.z },
+                );
+                let q = c.project(&p);
+                r.add([q[0], q[1]]);
+            }
+            Some(r)
+        })
+        .collect();
+    let (w, h) = boxes.iter().flatten().fold((0.0f64, 0.0f64), |(w, h), r| {
+        (w.max(r.width()), h.max(r.height()))
+    });
+    boxes
+        .into_iter()
+        .map(|r| {
+            let r = r?;
+            let (cx, cy) = (0.5 * (r.xmin + r.xmax), 0.5 * (r.ymin + r.ymax));
+            (w > 0.0 && h > 0.0)
+                .then(|| Rect::new(cx - 0.5 * w, cy - 0.5 * h, cx + 0.5 * w, cy + 0.5 * h))
+        })
+        .collect()
 }
 
 /// `--stats`: stage times, pruning counters and what the plot did.
