@@ -367,15 +367,22 @@ fn a_sheet_lays_out_views_in_cells() {
     assert!(text.matches("<g transform").count() >= 4);
     // Every line lies inside its own cell's margin box, and every cell has lines.
     let (cw, ch) = (297.0 / 2.0, 210.0 / 2.0);
-    let mut per_cell = BTreeMap::new();
+    let mut per_cell: BTreeMap<(i32, i32), (f64, f64)> = BTreeMap::new();
     for p in svg_points(&text) {
         let (c, r) = ((p[0] / cw).floor(), (p[1] / ch).floor());
         let (x, y) = (p[0] - c * cw, p[1] - r * ch);
         assert!(x >= 10.0 - 1e-9 && x <= cw - 10.0 + 1e-9, "{p:?}");
         assert!(y >= 10.0 - 1e-9 && y <= ch - 10.0 + 1e-9, "{p:?}");
-        *per_cell.entry((r as i32, c as i32)).or_insert(0) += 1;
+        let e = per_cell
+            .entry((r as i32, c as i32))
+            .or_insert((f64::MAX, f64::MIN));
+        *e = (e.0.min(x), e.1.max(x));
     }
     assert_eq!(per_cell.len(), 4, "{per_cell:?}");
+    // One scale: the front (cell 1) and the top (cell 3) both show the box's 3 along X.
+    let width = |k: (i32, i32)| per_cell[&k].1 - per_cell[&k].0;
+    assert!(width((0, 0)) > 20.0);
+    assert!((width((0, 0)) - width((1, 0))).abs() < 1e-6, "{per_cell:?}");
     // No numbered pictures, numbered JSON per view; the PNG is the page at 50 dpi.
     assert!(!d.join("s-001.svg").exists() && d.join("s-004.json").exists());
     let img = image::open(&png).unwrap();
