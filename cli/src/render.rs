@@ -84,9 +84,9 @@ pub(crate) struct RenderArgs {
     /// Lay the views of --turntable or --views on one page, COLS across and ROWS down, in
     /// reading order, each cell framed alike (a turntable's shared frame; a views file's
     /// orthographic views one frame size round the projected CBOX, so all at one scale)
-    /// inside its own --margin: one
-    /// SVG and one PNG (the page, or without --page square cells whose sheet is --size
-    /// pixels along its longer side); the JSON stays one numbered file per view.
+    /// inside its own --margin: one SVG and one PNG (the page, or without --page square
+    /// cells whose sheet is --size pixels along its longer side); the JSON stays one
+    /// numbered file per view.
     #[arg(long, value_name = "COLSxROWS")]
     pub(crate) sheet: Option<String>,
     /// Print the time of each stage and the pruning counters.
