@@ -8,6 +8,7 @@ use crate::emit::write::json::{json_string, num};
 use crate::geom::Box3;
 use crate::prepare::{HierarchyKind, ObjectTree};
 use crate::scene::{Content, Mesh, Object, Scene, Solidity};
+use crate::view::up::axis_name;
 
 impl Scene {
     /// The object tree as indented text, one block per object (`kepler info`). Prepare the
@@ -15,13 +16,68 @@ impl Scene {
     pub fn describe(&self) -> String {
         let mut out = Vec::new();
         print_tree(&mut out, &self.root, "scene", 0);
+        out.push(self.up_line());
         out.join("\n")
     }
 
-    /// The object tree as one JSON object (`kepler info --json`).
+    /// The object tree as one JSON object (`kepler info --json`), the root object with an
+    /// `"up"` member: the up a render without camera flags uses.
     pub fn describe_json(&self) -> String {
-        object_json(&self.root, "scene")
+        let mut root = object_json(&self.root, "scene");
+        root.pop();
+        root.push_str(&format!(",\"up\":{}}}", self.up_json()));
+        root
     }
+
+    /// The up a render without camera flags uses, and why, for people.
+    fn up_line(&self) -> String {
+        if let Some(up) = self.camera_up() {
+            return format!("up: {} (the scene camera's)", axis_name(&up));
+        }
+        let v = self.auto_up_verdict();
+        if !v.based {
+            return format!(
+                "up: {} (auto: no base fills a quarter of the shadow along any axis; the default)",
+                axis_name(&v.up)
+            );
+        }
+        format!(
+            "up: {} (auto: it stands on a base filling {:.0}% of its shadow along that axis)",
+            axis_name(&v.up),
+            100.0 * fill_of(&v.fill, &v.up)
+        )
+    }
+
+    /// [`Scene::up_line`] as JSON: `{"axis": "+Z", "vector": [0,0,1], "from": "auto" or
+    /// "camera", "fill": {"+X": .., "-X": .., ...}}` (fill for auto only).
+    fn up_json(&self) -> String {
+        let (up, from, fill) = match self.camera_up() {
+            Some(up) => (up, "camera", String::new()),
+            None => {
+                let v = self.auto_up_verdict();
+                let names = ["+X", "-X", "+Y", "-Y", "+Z", "-Z"];
+                let parts: Vec<String> = names
+                    .iter()
+                    .zip(v.fill)
+                    .map(|(n, f)| format!("\"{n}\":{}", num(f)))
+                    .collect();
+                (v.up, "auto", format!(",\"fill\":{{{}}}", parts.join(",")))
+            }
+        };
+        format!(
+            "{{\"axis\":{},\"vector\":[{},{},{}],\"from\":\"{from}\"{fill}}}",
+            json_string(&axis_name(&up)),
+            num(up.x),
+            num(up.y),
+            num(up.z)
+        )
+    }
+}
+
+/// The fill of the base under `up` (an axis direction), from the six fills of the auto rule.
+fn fill_of(fill: &[f64; 6], up: &crate::geom::V3) -> f64 {
+    let k = (0..3).find(|&k| up[k] != 0.0).unwrap_or(1);
+    fill[2 * k + usize::from(up[k] < 0.0)]
 }
 
 fn kind(o: &Object) -> String {

@@ -93,7 +93,7 @@ pub fn check_flags(path: &Path, flags: &[String], one_view: bool) -> Result<()> 
 pub fn frame_count(loaded: &Loaded, flags: &[String]) -> Result<usize> {
     let a = parse_for(loaded, flags)?;
     refuse_command_only(&a, false)?;
-    Ok(a.cameras(&loaded.scene)?.0.len())
+    Ok(a.cameras(&loaded.scene, false)?.0.len())
 }
 
 /// Renders the views numbered `frames` (0-based) of those `--turntable N` or `--views FILE`
@@ -107,12 +107,14 @@ pub fn render_frames(
     let a = parse_for(loaded, flags)?;
     refuse_command_only(&a, false)?;
     let mut opts = options(&a, want)?;
-    let (cameras, frame) = a.cameras(&loaded.scene)?;
-    opts.outputs.picture.frame = frame;
+    let (cameras, framed) = a.cameras(&loaded.scene, false)?;
     frames
         .iter()
         .map(|&k| match cameras.get(k) {
-            Some(camera) => made(&loaded.scene, camera, &opts),
+            Some(camera) => {
+                opts.outputs.picture.frame = framed[k];
+                made(&loaded.scene, camera, &opts)
+            }
             None => bail!("view {} of {}: no such view", k + 1, cameras.len()),
         })
         .collect()
@@ -191,6 +193,8 @@ fn refuse_command_only(a: &RenderArgs, one_view: bool) -> Result<()> {
         (one_view && a.views.is_some(), "views"),
         (one_view && a.turntable.is_some(), "turntable"),
         (a.stats, "stats"),
+        (a.shard.is_some(), "shard"),
+        (a.sheet.is_some(), "sheet"),
     ] {
         if given {
             bail!("`{name}` is a flag of the command only: ask the result for its outputs");

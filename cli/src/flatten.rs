@@ -14,7 +14,12 @@ pub(crate) struct FlattenArgs {
     /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
     pub(crate) scene: PathBuf,
     /// Output OBJ file.
-    #[arg(short = 'o', long = "output", value_name = "F.obj")]
+    #[arg(
+        short = 'o',
+        long = "output",
+        visible_alias = "out",
+        value_name = "F.obj"
+    )]
     pub(crate) output: PathBuf,
     /// Do not print warnings.
     #[arg(long, short)]

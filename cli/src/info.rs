@@ -1,6 +1,7 @@
 //! `kepler info`: the object tree with face/vertex counts, CBOX, every object's INBOX
 //! (computed here even where a render would skip it, or a reason why there is none), and
-//! whether each mesh is a proven solid whose back faces are culled, or why not.
+//! whether each mesh is a proven solid whose back faces are culled, or why not; and the up
+//! axis a render without camera flags uses (the scene camera's, or `--up auto`'s choice).
 
 use std::path::PathBuf;
 use std::process::ExitCode;

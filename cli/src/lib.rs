@@ -14,6 +14,8 @@ mod output;
 mod plot_args;
 mod query;
 mod render;
+mod sheet;
+pub mod suggest;
 mod tribox;
 mod views;
 

@@ -2,11 +2,9 @@
 
 use std::process::ExitCode;
 
-use clap::Parser;
-
 fn main() -> ExitCode {
     kepler_cli::memory::map_big_blocks();
-    let cli = kepler_cli::Cli::parse();
+    let cli = kepler_cli::suggest::parse();
     match kepler_cli::run(cli) {
         Ok(code) => code,
         Err(e) => {

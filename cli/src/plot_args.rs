@@ -9,7 +9,8 @@ use super::camera_args::parse_vec3;
 /// How the drawing goes onto paper.
 #[derive(Args, Debug, Clone)]
 pub(crate) struct PlotArgs {
-    /// Page size: a4, a3, letter or WIDTHxHEIGHTmm (e.g. 200x150mm). The drawing is fitted
+    /// Page size: a3, a4, a5, a6, letter (portrait; --landscape turns it) or WIDTHxHEIGHTmm
+    /// (e.g. 200x150mm). The drawing is fitted
     /// inside the margin and centred; without a page, the page is the drawing's own shape,
     /// --size CSS pixels (1/96 in) along its longer side.
     #[arg(long, value_name = "PAGE")]

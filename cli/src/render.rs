@@ -11,13 +11,13 @@ use kepler_hsr::lines::{EdgeOptions, EdgeSet, LineOptions};
 use kepler_hsr::plot::Rect;
 use kepler_hsr::stats::Stage;
 use kepler_hsr::{
-    render, render_to, Camera, Outputs, Progress, RenderOptions, Rendered, Scene, V3,
+    render, render_to, Camera, Outputs, Progress, Projection, RenderOptions, Rendered, Scene,
 };
 
 use super::bar::follow;
-use super::camera_args::parse_vec3;
 use super::output::Staged;
 use super::plot_args::PlotArgs;
+use super::sheet::Sheet;
 use super::views::{numbered, read_views};
 use super::{print_warnings, write, CameraArgs};
 
@@ -45,6 +45,7 @@ pub(crate) struct RenderArgs {
           value_parser = clap::value_parser!(u32).range(1..=32768))]
     pub(crate) size: u32,
     /// Which edges to draw: feature (silhouettes, borders, creases, intersections) or all.
+    /// Given, the JSON carries the lines too. [default: feature]
     #[arg(long, value_enum, value_name = "SET")]
     pub(crate) edges: Option<EdgesArg>,
     /// Crease threshold: dihedral angle in degrees above which an edge is a crease.
@@ -69,11 +70,25 @@ pub(crate) struct RenderArgs {
     /// outputs (F.svg becomes F-001.svg, ...), preparing the scene once.
     #[arg(long, value_name = "FILE", conflicts_with = "turntable")]
     pub(crate) views: Option<PathBuf>,
-    /// Render N views a full turn about the vertical axis (--up, default +Y) through the
-    /// scene's centre, from the camera the other flags ask for, into numbered outputs, all
-    /// framed alike.
+    /// Render N views a full turn about the vertical axis (the up in force: --up, the scene
+    /// camera's, or auto) through the scene's centre, from the camera the other flags ask
+    /// for, into numbered outputs, all framed alike.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=10000))]
     pub(crate) turntable: Option<u32>,
+    /// Render only shard I of K of --turntable or --views (I from 1 to K): the views I,
+    /// I+K, I+2K, ... (strided, so that every shard gets views from all round the scene and
+    /// the shards take about as long), under the same numbered names as the whole run; the
+    /// K shards together write exactly the whole run's files.
+    #[arg(long, value_name = "I/K", conflicts_with = "sheet")]
+    pub(crate) shard: Option<String>,
+    /// Lay the views of --turntable or --views on one page, COLS across and ROWS down, in
+    /// reading order, each cell framed alike (a turntable's shared frame; a views file's
+    /// orthographic views one frame size round the projected CBOX, so all at one scale)
+    /// inside its own --margin: one SVG and one PNG (the page, or without --page square
+    /// cells whose sheet is --size pixels along its longer side); the JSON stays one
+    /// numbered file per view.
+    #[arg(long, value_name = "COLSxROWS")]
+    pub(crate) sheet: Option<String>,
     /// Print the time of each stage and the pruning counters.
     #[arg(long)]
     pub(crate) stats: bool,
@@ -145,6 +160,8 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     }
     let opts = a.options()?;
     a.camera.check()?;
+    let shard = a.shard()?;
+    let sheet = a.sheet(&opts)?;
     let start = Instant::now();
     // The bar follows loading and preparing too: a big scene shows a sign of life from the
     // start. Load warnings wait until the bar is gone.
@@ -165,11 +182,30 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     if !a.quiet {
         print_warnings(&warnings);
     }
-    let (cameras, frame) = a.cameras(&scene)?;
+    let (cameras, frames) = a.cameras(&scene, sheet.is_some())?;
     let many = a.views.is_some() || a.turntable.is_some();
+    if let Some(sh) = &sheet {
+        sh.check_views(cameras.len())?;
+    }
+    if let Some((i, of)) = shard {
+        if i > cameras.len() && !a.quiet {
+            eprintln!(
+                "shard {i}/{of} of {} views: nothing to render",
+                cameras.len()
+            );
+        }
+    }
+    let (mut svg_cells, mut png_cells) = (Vec::new(), Vec::new());
     for (k, camera) in cameras.iter().enumerate() {
+        if shard.is_some_and(|(i, of)| k % of != i - 1) {
+            continue;
+        }
         let mut opts = opts.clone();
-        opts.outputs.picture.frame = frame;
+        opts.outputs.picture.frame = frames[k];
+        if let Some(sh) = &sheet {
+            opts.outputs.picture.page = Some(sh.cell_page());
+            opts.outputs.picture.size = sh.cell_size(a.size);
+        }
         let progress = Progress::new();
         let name = |path: &PathBuf| match many {
             true => numbered(path, k + 1, cameras.len()),
@@ -196,12 +232,17 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         if let Some(f) = json {
             f.commit()?;
         }
-        for (path, bytes) in [
-            (&a.svg, r.svg.as_ref().map(String::as_bytes)),
-            (&a.png, r.png.as_deref()),
-        ] {
-            if let (Some(path), Some(bytes)) = (path, bytes) {
-                write(&name(path), bytes)?;
+        if sheet.is_some() {
+            svg_cells.extend(r.svg.clone());
+            png_cells.extend(r.png.clone());
+        } else {
+            for (path, bytes) in [
+                (&a.svg, r.svg.as_ref().map(String::as_bytes)),
+                (&a.png, r.png.as_deref()),
+            ] {
+                if let (Some(path), Some(bytes)) = (path, bytes) {
+                    write(&name(path), bytes)?;
+                }
             }
         }
         let written = t.elapsed();
@@ -219,6 +260,15 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         drop_aside(owned_parts(r));
     }
     drop_aside(scene);
+    if let Some(sh) = &sheet {
+        if let Some(p) = &a.svg {
+            write(p, sh.svg(&svg_cells))?;
+        }
+        if let Some(p) = &a.png {
+            let pic = &opts.outputs.picture;
+            write(p, sh.png(&png_cells, pic.dpi, a.size, pic.background)?)?;
+        }
+    }
     Ok(ExitCode::SUCCESS)
 }
 
@@ -252,13 +302,65 @@ fn owned_parts(r: Rendered<'_>) -> impl Send + 'static {
 }
 
 impl RenderArgs {
-    /// The cameras to render (one, a views file's, or a turntable's) and, for a turntable,
-    /// the one frame they share.
-    pub(crate) fn cameras(&self, scene: &Scene) -> Result<(Vec<Camera>, Option<Rect>)> {
+    /// `--shard I/K`, checked: (I, K) with 1 <= I <= K.
+    fn shard(&self) -> Result<Option<(usize, usize)>> {
+        let Some(spec) = &self.shard else {
+            return Ok(None);
+        };
+        if self.views.is_none() && self.turntable.is_none() {
+            bail!("--shard {spec} splits the views of --turntable N or --views FILE: give one");
+        }
+        let bad = || anyhow::anyhow!("--shard {spec}: expected I/K with 1 <= I <= K, e.g. 2/3");
+        let (i, k) = spec.split_once('/').ok_or_else(bad)?;
+        let (i, k): (usize, usize) = (
+            i.trim().parse().map_err(|_| bad())?,
+            k.trim().parse().map_err(|_| bad())?,
+        );
+        if !(1 <= i && i <= k) {
+            return Err(bad());
+        }
+        Ok(Some((i, k)))
+    }
+
+    /// `--sheet COLSxROWS`, checked, on the page the flags ask for.
+    fn sheet(&self, opts: &RenderOptions) -> Result<Option<Sheet>> {
+        let Some(spec) = &self.sheet else {
+            return Ok(None);
+        };
+        if self.views.is_none() && self.turntable.is_none() {
+            bail!("--sheet {spec} lays out the views of --turntable N or --views FILE: give one");
+        }
+        if self.svg.is_none() && self.png.is_none() {
+            bail!("--sheet {spec} makes a picture: give --svg F or --png F");
+        }
+        Ok(Some(Sheet::new(
+            spec,
+            opts.outputs.picture.page,
+            self.size,
+        )?))
+    }
+
+    /// The cameras to render (one, a views file's, or a turntable's) and the frame of each:
+    /// a turntable's views share one; on a sheet, orthographic views of a views file share
+    /// one frame size round their projected CBOX (one scale for all).
+    pub(crate) fn cameras(
+        &self,
+        scene: &Scene,
+        sheet: bool,
+    ) -> Result<(Vec<Camera>, Vec<Option<Rect>>)> {
+        let (cams, frame) = self.cameras_and_frame(scene)?;
+        let frames = match frame {
+            Some(f) => vec![Some(f); cams.len()],
+            None if sheet && self.views.is_some() => common_frames(scene, &cams),
+            None => vec![None; cams.len()],
+        };
+        Ok((cams, frames))
+    }
+
+    /// The cameras to render and, for a turntable, the one frame they share.
+    fn cameras_and_frame(&self, scene: &Scene) -> Result<(Vec<Camera>, Option<Rect>)> {
         if let Some(file) = &self.views {
-            let c = &self.camera;
-            if c.dir.is_some() || c.eye.is_some() || c.target.is_some() || c.up.is_some() || c.ortho
-            {
+            if self.camera.any() || self.camera.fov.is_some() {
                 bail!("--views gives every view its camera: leave out the camera flags");
             }
             let cams = read_views(file)?
@@ -275,13 +377,49 @@ impl RenderArgs {
         let Some(n) = self.turntable else {
             return Ok((vec![base], None));
         };
-        let up = match &self.camera.up {
-            Some(s) => parse_vec3(s, "up")?,
-            None => scene.camera_up().unwrap_or_else(V3::y),
-        };
+        let up = self.camera.axis(scene)?;
         let cams = base.turntable(scene, up, n as usize)?;
         Ok((cams, base.turntable_frame(scene, up)))
     }
+}
+
+/// One frame size for the orthographic views of a sheet: each view's frame is centred on its
+/// projected CBOX and as wide and as high as the widest and highest of them, so that every
+/// cell shows the scene at one scale. Perspective views (and an empty scene) get None: they fit
+/// their own drawing.
+fn common_frames(scene: &Scene, cams: &[Camera]) -> Vec<Option<Rect>> {
+    let b = scene.cbox();
+    let boxes: Vec<Option<Rect>> = cams
+        .iter()
+        .map(|c| {
+            if c.projection != Projection::Orthographic || b.lo.x.is_nan() || b.lo.x > b.hi.x {
+                return None;
+            }
+            let mut r = Rect::EMPTY;
+            for k in 0..8 {
+                let p = kepler_hsr::P3::new(
+                    if k & 1 == 0 { b.lo.x } else { b.hi.x },
+                    if k & 2 == 0 { b.lo.y } else { b.hi.y },
+                    if k & 4 == 0 { b.lo.z } else { b.hi.z },
+                );
+                let q = c.project(&p);
+                r.add([q[0], q[1]]);
+            }
+            Some(r)
+        })
+        .collect();
+    let (w, h) = boxes.iter().flatten().fold((0.0f64, 0.0f64), |(w, h), r| {
+        (w.max(r.width()), h.max(r.height()))
+    });
+    boxes
+        .into_iter()
+        .map(|r| {
+            let r = r?;
+            let (cx, cy) = (0.5 * (r.xmin + r.xmax), 0.5 * (r.ymin + r.ymax));
+            (w > 0.0 && h > 0.0)
+                .then(|| Rect::new(cx - 0.5 * w, cy - 0.5 * h, cx + 0.5 * w, cy + 0.5 * h))
+        })
+        .collect()
 }
 
 /// `--stats`: stage times, pruning counters and what the plot did.

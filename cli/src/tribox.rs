@@ -74,7 +74,7 @@ pub(crate) struct TriboxArgs {
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub(crate) levels: u32,
     /// Write the substitute of each level here, as NAME-L<k>.obj and NAME-L<k>.svg.
-    #[arg(short, long, value_name = "DIR")]
+    #[arg(short, long, visible_alias = "output", value_name = "DIR")]
     pub(crate) out: Option<PathBuf>,
     /// Simplification tolerance of each tribox, as a fraction of the object's CBOX diagonal.
     #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]

@@ -23,8 +23,23 @@ pub struct CameraRequest {
     /// Orthographic along `target - eye` instead of perspective: with `eye`, or alone for
     /// the scene's perspective camera.
     pub ortho: bool,
-    /// Up vector (default +Y).
+    /// Up vector (default +Y with `dir` or `eye`, the scene camera's own up, or, for a scene
+    /// without a camera, [`Scene::auto_up`]).
     pub up: Option<V3>,
+}
+
+impl CameraRequest {
+    /// The up in force for this request on `scene`: `up` when given, +Y with a `dir` or an
+    /// `eye`, else the scene camera's up, else the scene's [`Scene::auto_up`].
+    pub fn up_in_force(&self, scene: &Scene) -> V3 {
+        if let Some(up) = self.up {
+            return up;
+        }
+        if self.dir.is_some() || self.eye.is_some() {
+            return V3::y();
+        }
+        scene.camera_up().unwrap_or_else(|| scene.auto_up())
+    }
 }
 
 /// Kind of projection.
@@ -223,10 +238,10 @@ impl Camera {
             None if req.fov_deg.is_some() => usage(
                 "a field of view needs a perspective camera: the scene has none (give an eye point)",
             ),
-            None => match req.up {
-                None => Ok(Camera::three_quarter()),
-                Some(up) => Camera::orthographic(THREE_QUARTER, up),
-            },
+            None => {
+                let up = req.up.unwrap_or_else(|| scene.auto_up());
+                Camera::three_quarter_about(up)
+            }
             Some(CameraSpec::Orthographic { dir, up: own }) => {
                 if req.fov_deg.is_some() {
                     return usage("a field of view needs a perspective camera: the scene's camera is orthographic");
@@ -259,6 +274,44 @@ impl Camera {
     /// A pleasant three-quarter orthographic view (from the right, above and in front; +Y up).
     pub fn three_quarter() -> Camera {
         Camera::orthographic(THREE_QUARTER, V3::y()).expect("fixed frame is valid")
+    }
+
+    /// The three-quarter view turned so that `up` is up: its direction carried by the least
+    /// rotation taking +Y to `up` (for +Y, exactly [`Camera::three_quarter`]; for +Z, seen
+    /// from the right, in front (−Y) and above).
+    pub fn three_quarter_about(up: V3) -> Result<Camera> {
+        Camera::orthographic(super::up::from_y(up)(THREE_QUARTER), up)
+    }
+
+    /// A named orthographic view relative to `up`: `front` (looking along −Z when +Y is up),
+    /// `back`, `left` (from −X), `right` (from +X), `top` (from above, the front at the
+    /// bottom of the picture), `bottom` (from below, the front at the top), `iso` (along
+    /// −1,−1,−1: from the right, in front and above). Each is carried, with its screen up, by
+    /// the least rotation taking +Y to `up`.
+    pub fn named_view(name: &str, up: V3) -> Result<Camera> {
+        let y = V3::y();
+        let (dir, screen_up) = match name {
+            "front" => (V3::new(0., 0., -1.), y),
+            "back" => (V3::new(0., 0., 1.), y),
+            "left" => (V3::new(1., 0., 0.), y),
+            "right" => (V3::new(-1., 0., 0.), y),
+            "top" => (V3::new(0., -1., 0.), V3::new(0., 0., -1.)),
+            "bottom" => (V3::new(0., 1., 0.), V3::new(0., 0., 1.)),
+            "iso" => (V3::new(-1., -1., -1.), y),
+            _ => {
+                return Err(Error::Usage(format!(
+                    "view {name}: expected front, back, left, right, top, bottom or iso"
+                )))
+            }
+        };
+        if up.try_normalize(0.0).is_none() {
+            return Err(Error::Usage(format!(
+                "up vector {:?} has no length",
+                up.as_slice()
+            )));
+        }
+        let r = super::up::from_y(up);
+        Camera::orthographic(r(dir), r(screen_up))
     }
 
     /// Homogeneous image (x', y', z', w') of a world point.

@@ -8,6 +8,7 @@
 //! - [`tree`]: the object tree in screen space, with bounds for VISFAC2's pruning.
 //! - [`frame`]: the part of the screen plane a picture shows.
 //! - [`mod@turntable`]: cameras carried round the scene, and one frame for all of them.
+//! - [`up`]: the up axis of a scene without a camera (`--up auto`).
 
 pub(crate) mod backfaces;
 pub(crate) mod camera;
@@ -20,6 +21,7 @@ pub(crate) mod ring_index;
 pub(crate) mod screen;
 pub(crate) mod tree;
 pub(crate) mod turntable;
+pub(crate) mod up;
 
 pub(crate) use camera::{Camera, Projection};
 pub(crate) use cull::Cull;

@@ -110,7 +110,7 @@ pub(crate) fn picture(
                     .flat_map(|(_, f)| f.visible.iter().flatten().flatten());
                 b = b.union(&Rect::of_points(faces));
             }
-            Frame::of(&view.camera, b)
+            Frame::of_scene(&view.camera, scene, b)
         }
     };
     let layout = Layout::new(&frame, opts.page, opts.margin_mm, opts.size)?;

@@ -1,4 +1,4 @@
-//! Physical pages: named paper sizes (A4, A3, letter, W×H mm), margins, and the one mapping
+//! Physical pages: named paper sizes (A3 to A6, letter, W×H mm), margins, and the one mapping
 //! of a framed screen rectangle onto a page in millimetres, fitted and centred.
 //!
 //! Page coordinates are millimetres from the page's top-left corner, y growing down (SVG's
@@ -35,25 +35,37 @@ impl PageSize {
         width: 297.0,
         height: 420.0,
     };
+    /// ISO A5, portrait.
+    pub const A5: PageSize = PageSize {
+        width: 148.0,
+        height: 210.0,
+    };
+    /// ISO A6, portrait.
+    pub const A6: PageSize = PageSize {
+        width: 105.0,
+        height: 148.0,
+    };
     /// US letter (8.5 × 11 in), portrait.
     pub const LETTER: PageSize = PageSize {
         width: 215.9,
         height: 279.4,
     };
 
-    /// A page from `--page`: `a4`, `a3`, `letter` (any case) or `WxHmm` (`W` and `H`
+    /// A page from `--page`: `a3`, `a4`, `a5`, `a6`, `letter` (any case) or `WxHmm` (`W` and `H`
     /// positive millimetres, the `mm` optional).
     pub fn parse(s: &str) -> Result<PageSize> {
         let t = s.trim().to_ascii_lowercase();
         match t.as_str() {
             "a4" => return Ok(PageSize::A4),
             "a3" => return Ok(PageSize::A3),
+            "a5" => return Ok(PageSize::A5),
+            "a6" => return Ok(PageSize::A6),
             "letter" => return Ok(PageSize::LETTER),
             _ => {}
         }
         let bad = || {
             Error::Usage(format!(
-                "--page {s}: expected a4, a3, letter or WIDTHxHEIGHTmm (e.g. 200x150mm)"
+                "--page {s}: expected a3, a4, a5, a6, letter or WIDTHxHEIGHTmm (e.g. 200x150mm)"
             ))
         };
         let dims = t.strip_suffix("mm").unwrap_or(&t);
@@ -228,6 +240,9 @@ mod tests {
         assert_eq!((p.width, p.height), (200.0, 150.0));
         assert_eq!(PageSize::parse("90X60").unwrap().height, 60.0);
         assert_eq!(PageSize::A4.landscape().width, 297.0);
+        assert_eq!(PageSize::parse("a5").unwrap(), PageSize::A5);
+        assert_eq!(PageSize::parse(" A6 ").unwrap().height, 148.0);
+        assert_eq!(PageSize::A6.landscape().width, 148.0);
         for bad in ["a5x", "0x10mm", "10x-1", "nanxnan", "x", "b4"] {
             assert!(PageSize::parse(bad).is_err(), "{bad}");
         }
