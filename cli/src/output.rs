@@ -6,7 +6,8 @@
 //!   output that is an input (symlinks and `..` resolved, hard links by inode), and proves
 //!   each output's directory writable by creating and removing a temporary there.
 //! - Each output is written to a temporary beside it (same directory, so the same file
-//!   system), created exclusively (`create_new`: a file or symlink planted at its name is
+//!   system), made when its first bytes are (an abort before that leaves nothing), created
+//!   exclusively (`create_new`: a file or symlink planted at its name is
 //!   never written through; another name is tried), and closed when written.
 //! - Only when every output of the run is written does [`OutputFiles::commit`] put them in place,
 //!   each by a rename, each with the mode of the file it replaces.
@@ -70,23 +71,33 @@ impl OutputFiles {
         Ok(outs)
     }
 
-    /// Opens output `path` (its temporary beside it), naming it in the error.
+    /// Output `path`: a device is opened now; a file's temporary beside it is created when
+    /// the first bytes are written (a render that dies before its output is made, even by an
+    /// abort no handler sees, leaves no empty temporary).
     pub(crate) fn create(&mut self, path: &Path) -> Result<Staged> {
+        let mut f = Staged {
+            path: path.to_path_buf(),
+            tmp: None,
+            file: None,
+            pending: None,
+        };
         if is_device(path) {
             let file = OpenOptions::new()
                 .write(true)
                 .open(path)
-                .map_err(|e| anyhow!("{}: {e}", path.display()))?;
-            return Ok(Staged::new(path, None, file));
+                .map_err(|e| f.named(e))?;
+            f.file = Some(BufWriter::with_capacity(1 << 16, file));
+        } else {
+            f.pending = Some(self.pending.clone());
         }
-        let (tmp, file) = temporary_beside(path)?;
-        lock(&self.pending).push(tmp.clone());
-        Ok(Staged::new(path, Some(tmp), file))
+        Ok(f)
     }
 
     /// Closes a written output; it is put in place by [`OutputFiles::commit`].
     pub(crate) fn finish(&mut self, mut f: Staged) -> Result<()> {
-        f.file.flush().map_err(|e| f.named(e))?;
+        let flushed = f.opened().and_then(|w| w.flush());
+        flushed.map_err(|e| f.named(e))?;
+        f.file = None;
         if let Some(tmp) = f.tmp.take() {
             self.done.push((tmp, f.path.clone()));
         }
@@ -153,18 +164,26 @@ fn watch_signals(pending: &Pending) -> Option<signal_hook::iterator::Handle> {
 /// An output file being written (to its temporary, or directly to a device).
 pub(crate) struct Staged {
     path: PathBuf,
-    /// The temporary file, until finished (None for a device).
+    /// The temporary file, once created and until finished (None for a device).
     tmp: Option<PathBuf>,
-    file: BufWriter<File>,
+    file: Option<BufWriter<File>>,
+    /// The transaction's pending temporaries, where this one's is listed (None for a device).
+    pending: Option<Pending>,
 }
 
 impl Staged {
-    fn new(path: &Path, tmp: Option<PathBuf>, file: File) -> Staged {
-        Staged {
-            path: path.to_path_buf(),
-            tmp,
-            file: BufWriter::with_capacity(1 << 16, file),
+    /// The file, its temporary created (and listed as pending) on first use.
+    fn opened(&mut self) -> std::io::Result<&mut BufWriter<File>> {
+        if self.file.is_none() {
+            let (tmp, file) =
+                temporary_beside(&self.path).map_err(|e| std::io::Error::other(e.to_string()))?;
+            if let Some(p) = &self.pending {
+                lock(p).push(tmp.clone());
+            }
+            self.tmp = Some(tmp);
+            self.file = Some(BufWriter::with_capacity(1 << 16, file));
         }
+        Ok(self.file.as_mut().expect("opened above"))
     }
 
     /// `e` as an error of this output, named by its path.
@@ -175,11 +194,14 @@ impl Staged {
 
 impl Write for Staged {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.file.write(buf)
+        self.opened()?.write(buf)
     }
 
     fn flush(&mut self) -> std::io::Result<()> {
-        self.file.flush()
+        match &mut self.file {
+            Some(f) => f.flush(),
+            None => Ok(()),
+        }
     }
 }
 
@@ -208,9 +230,12 @@ fn temporary_beside(path: &Path) -> Result<(PathBuf, File)> {
     bail!("{}: no free temporary name beside it", path.display())
 }
 
+/// A path's real path and, where it exists, its (device, inode).
+type Identity = (PathBuf, Option<(u64, u64)>);
+
 /// What a path is, for comparing: its real path (symlinks and `..` resolved; for a file not
 /// there yet, its directory's real path and its name) and, where it exists, its inode.
-fn identity(path: &Path) -> (PathBuf, Option<(u64, u64)>) {
+fn identity(path: &Path) -> Identity {
     let inode = std::fs::metadata(path).ok().map(|m| (m.dev(), m.ino()));
     let real = std::fs::canonicalize(path).unwrap_or_else(|_| {
         let dir = match path.parent() {
@@ -225,11 +250,9 @@ fn identity(path: &Path) -> (PathBuf, Option<(u64, u64)>) {
 
 /// Refuses two outputs on one path and an output that is an input (devices may repeat).
 fn check_paths(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
-    let same = |a: &(PathBuf, Option<(u64, u64)>), b: &(PathBuf, Option<(u64, u64)>)| {
-        a.0 == b.0 || (a.1.is_some() && a.1 == b.1)
-    };
+    let same = |a: &Identity, b: &Identity| a.0 == b.0 || (a.1.is_some() && a.1 == b.1);
     let ins: Vec<_> = inputs.iter().map(|p| (p, identity(p))).collect();
-    let mut seen: Vec<(&Path, (PathBuf, Option<(u64, u64)>))> = Vec::new();
+    let mut seen: Vec<(&Path, Identity)> = Vec::new();
     for &out in outputs {
         if is_device(out) {
             continue;

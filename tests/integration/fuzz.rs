@@ -319,13 +319,13 @@ fn flags(case: u64) -> (CameraRequest, kepler_hsr::plot::PictureOptions) {
         dash_mm: [n(), n()],
         ..Default::default()
     };
-    if case % 3 == 0 {
+    if case.is_multiple_of(3) {
         pic.hatch = Some(kepler_hsr::plot::HatchOptions {
             spacing_mm: n(),
             ..Default::default()
         });
     }
-    if case % 5 == 0 {
+    if case.is_multiple_of(5) {
         pic.page = Some(kepler_hsr::plot::PageSize {
             width: n() * 1e5,
             height: n() * 1e5,
