@@ -29,7 +29,12 @@ use anyhow::{anyhow, bail, Result};
 
 /// Writes `bytes` to `path`, naming it in the error, as a transaction of one file.
 pub(crate) fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
-    let mut outs = OutputFiles::new(&[], &[path])?;
+    write_from(&[], path, bytes)
+}
+
+/// [`write`], refusing a `path` that is one of `inputs`.
+pub(crate) fn write_from(inputs: &[&Path], path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
+    let mut outs = OutputFiles::new(inputs, &[path])?;
     let mut f = outs.create(path)?;
     f.write_all(bytes.as_ref()).map_err(|e| f.named(e))?;
     outs.finish(f)?;

@@ -808,6 +808,14 @@ fn two_outputs_on_one_path_or_on_an_input_are_refused_before_the_render() {
             5.0,
         );
     }
+    // flatten's output too.
+    timed_in(
+        &d,
+        &["flatten", "s.kdl", "-o", "sub/../s.kdl"],
+        1,
+        &["this output is the input s.kdl"],
+        5.0,
+    );
     assert_eq!(std::fs::read(&scene).unwrap(), before);
     // An output that cannot be written is found before the scene is even loaded (this
     // scene would fail to load).
@@ -860,9 +868,9 @@ fn outputs_are_replaced_together_keeping_their_mode() {
 #[test]
 fn a_terminated_render_leaves_no_temporary() {
     // A face slow enough to be killed while its JSON is being written (seconds in a debug
-    // build): a star of 40,000 corners.
+    // build): a star of 16,000 corners (its JSON is written before its slow SVG lines).
     let d = temp_dir("signal");
-    let n = 40_000;
+    let n = 16_000;
     let verts: Vec<[f64; 2]> = (0..n)
         .map(|i| {
             let a = std::f64::consts::TAU * i as f64 / n as f64;
