@@ -18,7 +18,7 @@ pub mod suggest;
 mod tribox;
 mod views;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Result;
@@ -38,6 +38,10 @@ pub struct Cli {
     /// before anything is expanded). The default fits a render in 24 GiB of memory.
     #[arg(long, global = true, value_name = "N", default_value_t = LoadOptions::DEFAULT_MAX_FACES)]
     max_faces: usize,
+    /// Refuse includes and mesh files of a scene file whose real path (symlinks and `..`
+    /// resolved) is not under DIR.
+    #[arg(long, global = true, value_name = "DIR")]
+    include_root: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -60,6 +64,7 @@ enum Command {
 pub fn run(cli: Cli) -> Result<ExitCode> {
     let opts = LoadOptions {
         max_faces: cli.max_faces,
+        include_root: cli.include_root,
     };
     match cli.command {
         Command::Render(a) => render::run(a, &opts),
