@@ -5,6 +5,7 @@ pub mod bar;
 mod camera_args;
 mod check;
 mod components;
+mod diff;
 mod flatten;
 mod hierarchy_arg;
 mod info;
@@ -56,6 +57,8 @@ enum Command {
     Info(info::InfoArgs),
     /// Re-render and compare the visible-polygon set with a golden file (exit 1 on changes).
     Check(check::CheckArgs),
+    /// Compare two kepler-visible/1 files face by face (exit 0 same, 1 changed, 2 usage).
+    Diff(diff::DiffArgs),
     /// Hierarchical tribox substitutes at each level (OBJ, SVG) and the paper's Table 1.
     Tribox(tribox::TriboxArgs),
 }
@@ -72,6 +75,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Flatten(a) => flatten::run(a, &opts),
         Command::Info(a) => info::run(a, &opts),
         Command::Check(a) => check::run(a, &opts),
+        Command::Diff(a) => diff::run(a),
         Command::Tribox(a) => tribox::run(a, &opts),
     }
 }
