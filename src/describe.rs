@@ -4,9 +4,12 @@
 
 use std::sync::Arc;
 
+use rayon::prelude::*;
+
 use crate::emit::write::json::{json_string, num};
 use crate::geom::Box3;
 use crate::prepare::{HierarchyKind, ObjectTree};
+use crate::scene::names::printable;
 use crate::scene::{Content, Mesh, Object, Scene, Solidity};
 use crate::view::up::axis_name;
 
@@ -87,9 +90,9 @@ fn kind(o: &Object) -> String {
         Content::Instance(i) => format!(
             "instance of {}",
             if i.prototype.name.is_empty() {
-                "?"
+                "?".into()
             } else {
-                &i.prototype.name
+                printable(&i.prototype.name)
             }
         ),
     }
@@ -176,7 +179,8 @@ fn no_inbox_reason(o: &Object) -> String {
 fn print_tree(out: &mut Vec<String>, o: &Object, name: &str, depth: usize) {
     let indent = "  ".repeat(depth);
     out.push(format!(
-        "{indent}{name} ({}): {} faces, {} vertices, {}",
+        "{indent}{} ({}): {} faces, {} vertices, {}",
+        printable(name),
         kind(o),
         o.face_count(),
         o.vertex_count(),
@@ -208,10 +212,23 @@ fn print_tree(out: &mut Vec<String>, o: &Object, name: &str, depth: usize) {
     if let Content::Mesh(m) = &o.content {
         print_hierarchy(out, o, m, &indent);
     }
-    for s in o.subobjects() {
-        print_tree(out, s, &s.name, depth + 1);
-    }
+    // Subtrees described side by side (a mesh's object tree is built here when it has none:
+    // the cost of `info`), put together in order.
+    let parts: Vec<Vec<String>> = o
+        .subobjects()
+        .par_iter()
+        .with_min_len(PARALLEL_CHUNK)
+        .map(|s| {
+            let mut part = Vec::new();
+            print_tree(&mut part, s, &s.name, depth + 1);
+            part
+        })
+        .collect();
+    out.extend(parts.into_iter().flatten());
 }
+
+/// Subobjects described per task, at least (describing one takes microseconds).
+const PARALLEL_CHUNK: usize = 64;
 
 /// Most component lines printed per mesh.
 const MAX_COMPONENT_LINES: usize = 40;
@@ -314,7 +331,8 @@ fn box_json(b: &Box3) -> String {
 fn object_json(o: &Object, name: &str) -> String {
     let subs: Vec<String> = o
         .subobjects()
-        .iter()
+        .par_iter()
+        .with_min_len(PARALLEL_CHUNK)
         .map(|s| object_json(s, &s.name))
         .collect();
     let inbox = match &o.inbox {

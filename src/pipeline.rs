@@ -237,7 +237,8 @@ fn render_json_to<'s>(
         View::from_cull(&scene, *camera, &cull, progress)
     });
     drop(cull);
-    crate::view::finite::check_screen(&view.screen, &view.camera)?;
+    crate::view::finite::check_screen(&view.screen, &view.camera)
+        .map_err(|e| crate::view::finite::placed(e, &scene, &view.camera))?;
     let pass = PassOptions {
         use_inbox: !opts.no_inbox,
     };

@@ -7,21 +7,25 @@
 //! then the three-quarter view); a golden made with other camera flags differs everywhere, and
 //! a note says so when the matrices differ. Each face's change is the area of the symmetric
 //! difference of the two visible regions (i_overlay Xor on a fixed i64 grid), relative to the
-//! larger of the face's projected area, its two visible areas and 1e-12 of the scene's visible
-//! area. A face present on one side only is always a change.
+//! larger of the face's projected area, its two visible areas and 1e-12 of the larger set's
+//! visible area; one rule for faces that change, appear or vanish (`kepler_hsr::check::compare`).
+//! The report and the exit statuses are `kepler diff`'s (`--report json`; 0 same, 1 changed,
+//! 2 usage or unreadable input).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{anyhow, Result};
 use clap::Args;
-use kepler_hsr::check::{compare, ChangeKind, VisibleSet};
+use kepler_hsr::check::{compare, VisibleSet};
 use kepler_hsr::{render, Camera, FaceId, Outputs, RenderOptions, Scene, View, Visibility};
 
+use super::diff::{check_tol, exit_2_on_error, print_report, Report, EXIT_STATUS};
 use super::{load, out, write, CameraArgs};
 
 /// Arguments of `kepler check`.
 #[derive(Args, Debug)]
+#[command(after_help = EXIT_STATUS)]
 pub(crate) struct CheckArgs {
     /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
     pub(crate) scene: PathBuf,
@@ -31,7 +35,9 @@ pub(crate) struct CheckArgs {
     /// Check every face against the independent exact answer (slow: small scenes).
     #[arg(long)]
     pub(crate) exact: bool,
-    /// Largest allowed change of a face's visible region, relative to its area.
+    /// Largest allowed change of a face's visible region: the area of the symmetric
+    /// difference relative to the face's projected area (or larger visible area). The same
+    /// for changed, newly visible and no longer visible faces.
     #[arg(
         long,
         value_name = "T",
@@ -42,6 +48,10 @@ pub(crate) struct CheckArgs {
     /// Write the golden from this render instead of comparing.
     #[arg(long)]
     pub(crate) update: bool,
+    /// How to print the comparison: lines of text, or kepler-diff/1 JSON on standard output
+    /// (then the exact checker's lines go to standard error).
+    #[arg(long, value_name = "FORMAT", default_value = "text")]
+    pub(crate) report: Report,
     #[command(flatten)]
     pub(crate) camera: CameraArgs,
     /// Do not print warnings.
@@ -49,11 +59,14 @@ pub(crate) struct CheckArgs {
     pub(crate) quiet: bool,
 }
 
-/// Runs `kepler check`.
+/// Runs `kepler check`: errors are reported here and exit 2.
 pub(crate) fn run(a: CheckArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
-    if !(a.tol >= 0.0 && a.tol.is_finite()) {
-        anyhow::bail!("--tol {}: expected a finite number >= 0", a.tol);
-    }
+    Ok(exit_2_on_error(check(a, opts)))
+}
+
+/// Renders and compares; the exit status.
+fn check(a: CheckArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
+    check_tol(a.tol)?;
     let scene = load(&a.scene, a.quiet, opts)?;
     let camera = a.camera.camera(&scene)?;
     let opts = RenderOptions {
@@ -66,7 +79,8 @@ pub(crate) fn run(a: CheckArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCo
     let r = render(&scene, &camera, &opts, &kepler_hsr::Progress::default())?;
     let mut failed = false;
     if a.exact {
-        failed |= !exact(&scene, &camera, &r.visibility, &r.view);
+        let say = if a.report == Report::Json { err } else { out };
+        failed |= !exact(&scene, &camera, &r.visibility, &r.view, say);
     }
     let Some(golden_path) = &a.golden else {
         return Ok(if failed {
@@ -82,42 +96,24 @@ pub(crate) fn run(a: CheckArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCo
         out(&format!("wrote {}", golden_path.display()));
         return Ok(ExitCode::SUCCESS);
     }
-    let text = std::fs::read_to_string(golden_path)
-        .map_err(|e| anyhow!("{}: {e}", golden_path.display()))?;
-    let golden = VisibleSet::parse(&text, golden_path)?;
+    let golden = VisibleSet::read(golden_path)?;
     let current =
         VisibleSet::parse(&json, "render".as_ref()).map_err(|e| anyhow!("internal JSON: {e}"))?;
     let report = compare(&golden, &current, a.tol, |id| {
         vis.face(FaceId(id as u32)).projected_area
     });
-    if report.camera_differs {
-        out("note: the camera differs from the golden's");
-    }
-    for c in &report.changes {
-        out(&match c.kind {
-            ChangeKind::Changed => format!(
-                "face {} ({}): changed by {:.3e} of its area",
-                c.id, c.object, c.relative
-            ),
-            ChangeKind::Removed => format!("face {} ({}): no longer visible", c.id, c.object),
-            ChangeKind::Added => format!("face {} ({}): newly visible", c.id, c.object),
-        });
-    }
-    let changed = report.changes.len();
-    if changed > 0 {
-        out(&format!("{changed} faces changed"));
-        Ok(ExitCode::from(1))
-    } else if failed {
-        Ok(ExitCode::from(1))
-    } else {
-        out("ok");
-        Ok(ExitCode::SUCCESS)
-    }
+    let code = print_report(&report, a.report);
+    Ok(if failed { ExitCode::from(1) } else { code })
+}
+
+/// Prints to standard error.
+fn err(text: &str) {
+    eprintln!("{text}");
 }
 
 /// The render against the exact answer: prints each disagreeing face and a summary; true
 /// when everything agrees.
-fn exact(scene: &Scene, camera: &Camera, vis: &Visibility, view: &View) -> bool {
+fn exact(scene: &Scene, camera: &Camera, vis: &Visibility, view: &View, out: fn(&str)) -> bool {
     let rep = kepler_hsr::check::exact(scene, camera, vis, None);
     for f in rep.disagreements() {
         let object = view.object_path(f.face);

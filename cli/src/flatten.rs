@@ -6,7 +6,8 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::Args;
 
-use super::{load_only, write};
+use super::load_only;
+use super::output::write_from;
 
 /// Arguments of `kepler flatten`.
 #[derive(Args, Debug)]
@@ -28,8 +29,10 @@ pub(crate) struct FlattenArgs {
 
 /// Runs `kepler flatten`.
 pub(crate) fn run(a: FlattenArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
+    // The output is checked first: an output that is the input is refused before the load.
+    super::output::OutputFiles::new(&[&a.scene], &[&a.output])?;
     let scene = load_only(&a.scene, a.quiet, opts)?;
     let flat = scene.flatten();
-    write(&a.output, flat.to_obj())?;
+    write_from(&[&a.scene], &a.output, flat.to_obj())?;
     Ok(ExitCode::SUCCESS)
 }

@@ -5,6 +5,7 @@ pub mod bar;
 mod camera_args;
 mod check;
 mod components;
+mod diff;
 pub mod embed;
 mod flatten;
 mod hierarchy_arg;
@@ -19,7 +20,7 @@ pub mod suggest;
 mod tribox;
 mod views;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Result;
@@ -39,6 +40,10 @@ pub struct Cli {
     /// before anything is expanded). The default fits a render in 24 GiB of memory.
     #[arg(long, global = true, value_name = "N", default_value_t = LoadOptions::DEFAULT_MAX_FACES)]
     max_faces: usize,
+    /// Refuse includes and mesh files of a scene file whose real path (symlinks and `..`
+    /// resolved) is not under DIR.
+    #[arg(long, global = true, value_name = "DIR")]
+    include_root: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -53,6 +58,8 @@ enum Command {
     Info(info::InfoArgs),
     /// Re-render and compare the visible-polygon set with a golden file (exit 1 on changes).
     Check(check::CheckArgs),
+    /// Compare two kepler-visible/1 files face by face (exit 0 same, 1 changed, 2 usage).
+    Diff(diff::DiffArgs),
     /// Hierarchical tribox substitutes at each level (OBJ, SVG) and the paper's Table 1.
     Tribox(tribox::TriboxArgs),
 }
@@ -61,6 +68,7 @@ enum Command {
 pub fn run(cli: Cli) -> Result<ExitCode> {
     let opts = LoadOptions {
         max_faces: cli.max_faces,
+        include_root: cli.include_root,
     };
     match cli.command {
         Command::Render(a) => render::run(a, &opts),
@@ -68,6 +76,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Flatten(a) => flatten::run(a, &opts),
         Command::Info(a) => info::run(a, &opts),
         Command::Check(a) => check::run(a, &opts),
+        Command::Diff(a) => diff::run(a),
         Command::Tribox(a) => tribox::run(a, &opts),
     }
 }

@@ -1,6 +1,7 @@
 //! `kepler render`: the exact visible region of every face, written as JSON (and pictures).
 
 use std::borrow::Cow;
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -15,11 +16,11 @@ use kepler_hsr::{
 };
 
 use super::bar::follow;
-use super::output::Staged;
+use super::output::OutputFiles;
 use super::plot_args::PlotArgs;
 use super::sheet::Sheet;
 use super::views::{numbered, read_views};
-use super::{print_warnings, write, CameraArgs};
+use super::{print_warnings, CameraArgs};
 
 /// A render that has taken this long shows a progress bar (on a terminal).
 const PROGRESS_AFTER: Duration = Duration::from_millis(500);
@@ -162,6 +163,15 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     a.camera.check()?;
     let shard = a.shard()?;
     let sheet = a.sheet(&opts)?;
+    // Every output path is checked (distinct, not an input, writable) before the work.
+    let wanted: Vec<&std::path::Path> = [&a.json, &a.svg, &a.png]
+        .into_iter()
+        .flatten()
+        .map(PathBuf::as_path)
+        .collect();
+    let mut inputs = vec![a.scene.as_path()];
+    inputs.extend(a.views.as_deref());
+    let mut outs = OutputFiles::new(&inputs, &wanted)?;
     let start = Instant::now();
     // The bar follows loading and preparing too: a big scene shows a sign of life from the
     // start. Load warnings wait until the bar is gone.
@@ -212,11 +222,7 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
             false => path.clone(),
         };
         // The JSON goes to its file as it is made (a big scene's is never held whole).
-        let mut json = a
-            .json
-            .as_ref()
-            .map(|p| Staged::create(&name(p)))
-            .transpose()?;
+        let mut json = a.json.as_ref().map(|p| outs.create(&name(p))).transpose()?;
         let r = follow(&progress, start, PROGRESS_AFTER, || match json.as_mut() {
             Some(f) => render_to(&scene, camera, &opts, f, &progress),
             None => render(&scene, camera, &opts, &progress),
@@ -230,7 +236,7 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         }
         let t = Instant::now();
         if let Some(f) = json {
-            f.commit()?;
+            outs.finish(f)?;
         }
         if sheet.is_some() {
             svg_cells.extend(r.svg.clone());
@@ -241,7 +247,9 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
                 (&a.png, r.png.as_deref()),
             ] {
                 if let (Some(path), Some(bytes)) = (path, bytes) {
-                    write(&name(path), bytes)?;
+                    let mut f = outs.create(&name(path))?;
+                    f.write_all(bytes).map_err(|e| f.named(e))?;
+                    outs.finish(f)?;
                 }
             }
         }
@@ -261,14 +269,30 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     }
     drop_aside(scene);
     if let Some(sh) = &sheet {
-        if let Some(p) = &a.svg {
-            write(p, sh.svg(&svg_cells))?;
-        }
-        if let Some(p) = &a.png {
-            let pic = &opts.outputs.picture;
-            write(p, sh.png(&png_cells, pic.dpi, a.size, pic.background)?)?;
+        let pic = &opts.outputs.picture;
+        for (path, bytes) in [
+            (
+                &a.svg,
+                a.svg.as_ref().map(|_| sh.svg(&svg_cells).into_bytes()),
+            ),
+            (
+                &a.png,
+                match &a.png {
+                    Some(_) => Some(sh.png(&png_cells, pic.dpi, a.size, pic.background)?),
+                    None => None,
+                },
+            ),
+        ] {
+            if let (Some(path), Some(bytes)) = (path, bytes) {
+                let mut f = outs.create(path)?;
+                f.write_all(&bytes).map_err(|e| f.named(e))?;
+                outs.finish(f)?;
+            }
         }
     }
+    // All outputs of the run (every view's, the sheet's) are put in place together, once
+    // all are written.
+    outs.commit()?;
     Ok(ExitCode::SUCCESS)
 }
 

@@ -26,8 +26,37 @@ struct ViewLine {
 /// The views of a views file, in order: blank lines and `#` comments are skipped; an error
 /// names the file and line.
 pub(crate) fn read_views(path: &Path) -> Result<Vec<CameraArgs>> {
-    let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: {e}", path.display()))?;
+    let text = read_bounded(path)?;
     parse_views(&text, path)
+}
+
+/// The most views a views file may hold: as many as `--turntable` renders.
+pub(crate) const MAX_VIEWS: usize = 10_000;
+
+/// The largest views file read: 4 MiB, 400 bytes for each of [`MAX_VIEWS`] lines.
+const MAX_VIEWS_BYTES: u64 = 4 << 20;
+
+/// The text of a views file: a regular file (not `/dev/zero`, a pipe or a directory) of at most
+/// [`MAX_VIEWS_BYTES`], read no further than that.
+fn read_bounded(path: &Path) -> Result<String> {
+    use std::io::Read;
+    let fail = |e: &dyn std::fmt::Display| anyhow!("{}: {e}", path.display());
+    let meta = std::fs::metadata(path).map_err(|e| fail(&e))?;
+    if !meta.is_file() {
+        return Err(fail(&"a views file must be a regular file"));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .map_err(|e| fail(&e))?
+        .take(MAX_VIEWS_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| fail(&e))?;
+    if bytes.len() as u64 > MAX_VIEWS_BYTES {
+        return Err(fail(&format!(
+            "more than {MAX_VIEWS_BYTES} bytes: not a views file"
+        )));
+    }
+    String::from_utf8(bytes).map_err(|_| fail(&"not UTF-8 text: not a views file"))
 }
 
 fn parse_views(text: &str, path: &Path) -> Result<Vec<CameraArgs>> {
@@ -36,6 +65,21 @@ fn parse_views(text: &str, path: &Path) -> Result<Vec<CameraArgs>> {
         let line = line.split('#').next().unwrap_or("").trim();
         if line.is_empty() {
             continue;
+        }
+        if !line.starts_with("--") {
+            // Not quoted: a file that is not a views file may hold anything, a secret too.
+            return Err(anyhow!(
+                "{}:{}: not a line of camera flags (a view is written --dir X,Y,Z or --eye ...)",
+                path.display(),
+                i + 1
+            ));
+        }
+        if out.len() == MAX_VIEWS {
+            return Err(anyhow!(
+                "{}:{}: more than {MAX_VIEWS} views (the most a run renders, as with --turntable)",
+                path.display(),
+                i + 1
+            ));
         }
         let v = ViewLine::try_parse_from(line.split_whitespace()).map_err(|e| {
             let msg = e.to_string();
@@ -92,6 +136,27 @@ mod tests {
             .to_string();
         assert!(e.starts_with("v.txt:2:"), "{e}");
         assert!(parse_views("# nothing\n", p).is_err());
+    }
+
+    #[test]
+    fn views_files_are_bounded_and_never_quoted() {
+        let p = Path::new("v.txt");
+        let e = parse_views("--dir 1,0,0\nroot:x:0:0:secret\n", p)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("v.txt:2: not a line of camera flags"), "{e}");
+        assert!(!e.contains("secret"), "{e}");
+        let many = "--dir 1,0,0\n".repeat(MAX_VIEWS + 1);
+        let e = parse_views(&many, p).unwrap_err().to_string();
+        assert!(e.starts_with("v.txt:10001: more than 10000 views"), "{e}");
+        assert_eq!(parse_views(&many[12..], p).unwrap().len(), MAX_VIEWS);
+        if Path::new("/dev/zero").exists() {
+            let e = read_bounded(Path::new("/dev/zero"))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("must be a regular file"), "{e}");
+        }
+        assert!(read_bounded(Path::new(".")).is_err());
     }
 
     #[test]

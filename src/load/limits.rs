@@ -11,16 +11,20 @@ use crate::scene::{Content, Object};
 pub(crate) const DEFAULT_MAX_FACES: usize = 12_000_000;
 
 /// What a load accepts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct LoadOptions {
     /// The most faces the scene may have once its instances are expanded.
     pub max_faces: usize,
+    /// The directory every file a scene file refers to (includes, meshes) must lie under,
+    /// symlinks and `..` resolved (`--include-root`); `None` allows any path.
+    pub include_root: Option<std::path::PathBuf>,
 }
 
 impl Default for LoadOptions {
     fn default() -> Self {
         LoadOptions {
             max_faces: DEFAULT_MAX_FACES,
+            include_root: None,
         }
     }
 }
@@ -136,7 +140,10 @@ mod tests {
              > p37 (824633720832) > p36 (412316860416) > ... > p1 (12) > p0 (6)), more than the \
              limit of 12000000 (--max-faces)"
         );
-        let small = LoadOptions { max_faces: 1 << 50 };
+        let small = LoadOptions {
+            max_faces: 1 << 50,
+            ..LoadOptions::default()
+        };
         assert!(small.check(&top, "x", &at).is_ok());
     }
 }

@@ -85,8 +85,13 @@ pub(crate) fn load_mesh(
         return Err(Error::invalid(at.clone(), e.to_string()));
     }
     format_of(path)?;
-    progress.enter_phase(Stage::Load, Phase::Read, super::read::file_len(path, at)?);
-    let bytes = super::read::read_file(path, at, progress.count())?;
+    const MAX: u64 = super::read::MAX_MESH_BYTES;
+    progress.enter_phase(
+        Stage::Load,
+        Phase::Read,
+        super::read::file_len(path, at, MAX)?,
+    );
+    let bytes = super::read::read_file(path, at, MAX, progress.count())?;
     parse_mesh(path, &bytes, progress)
 }
 

@@ -2,6 +2,7 @@
 
 mod args;
 mod camera_node;
+mod confine;
 mod geometry;
 mod kdl;
 pub(crate) mod limits;

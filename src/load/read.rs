@@ -1,5 +1,9 @@
 //! Reading input files: regular files only (a directory or a device such as `/dev/zero` is
-//! an error, not a hang), errors reported where the file was asked for.
+//! an error, not a hang), of bounded size, errors reported where the file was asked for.
+//!
+//! Nothing is reserved from the size the file system reports (a sparse 64 GB file reports
+//! 64 GB): the buffer grows with the bytes actually read, and a file over its kind's limit is
+//! refused before a byte is read, and again if it grows past the limit while being read.
 
 use std::io::Read;
 use std::path::Path;
@@ -10,13 +14,30 @@ use crate::error::{Error, Location, Result};
 /// Bytes read between two adds to the progress.
 const READ_CHUNK: u64 = 1 << 22;
 
-/// The bytes of the regular file at `path`, counted in `done` as they are read (once per
-/// chunk). `at` is the node that asked for it (an include or `mesh` node), where a missing
-/// or unreadable file is reported; else the file itself.
-pub(crate) fn read_file(path: &Path, at: Option<&Location>, done: Count) -> Result<Vec<u8>> {
+/// The largest scene file (and included file) read: 64 MiB of KDL text, far beyond any
+/// scene written by hand or by a tool (the 10,000-object town is 1.3 MB).
+pub(crate) const MAX_SCENE_BYTES: u64 = 64 << 20;
+
+/// The largest mesh file read: 4 GiB, more than an ASCII STL (the most verbose format, about
+/// 250 bytes a triangle) of the default face limit, 12 million faces, needs.
+pub(crate) const MAX_MESH_BYTES: u64 = 4 << 30;
+
+/// The most bytes reserved before they are read (the buffer then grows as bytes arrive).
+const FIRST_RESERVE: u64 = 1 << 24;
+
+/// The bytes of the regular file at `path`, of at most `limit` bytes, counted in `done` as
+/// they are read (once per chunk). `at` is the node that asked for it (an include or `mesh`
+/// node), where a missing, unreadable or too large file is reported; else the file itself.
+pub(crate) fn read_file(
+    path: &Path,
+    at: Option<&Location>,
+    limit: u64,
+    done: Count,
+) -> Result<Vec<u8>> {
     let len = check_regular(path, at)?;
+    check_size(path, at, len, limit)?;
     let file = std::fs::File::open(path).map_err(|e| failure(path, at, e))?;
-    let mut bytes = Vec::with_capacity(len as usize);
+    let mut bytes = Vec::with_capacity(len.min(FIRST_RESERVE) as usize);
     // In chunks until the end, wherever that is (the file may have changed size).
     loop {
         let n = (&file)
@@ -26,13 +47,33 @@ pub(crate) fn read_file(path: &Path, at: Option<&Location>, done: Count) -> Resu
         if n == 0 {
             return Ok(bytes);
         }
+        check_size(path, at, bytes.len() as u64, limit)?;
         done.add(n);
     }
 }
 
-/// The size in bytes of the regular file at `path` (errors as [`read_file`]'s).
-pub(crate) fn file_len(path: &Path, at: Option<&Location>) -> Result<usize> {
-    check_regular(path, at).map(|len| len as usize)
+/// The size in bytes of the regular file at `path`, at most `limit` (errors as
+/// [`read_file`]'s).
+pub(crate) fn file_len(path: &Path, at: Option<&Location>, limit: u64) -> Result<usize> {
+    let len = check_regular(path, at)?;
+    check_size(path, at, len, limit)?;
+    Ok(len as usize)
+}
+
+/// The error for a file of `len` bytes, over `limit`.
+fn check_size(path: &Path, at: Option<&Location>, len: u64, limit: u64) -> Result<()> {
+    if len <= limit {
+        return Ok(());
+    }
+    let loc = at.cloned().unwrap_or_else(|| Location::file(path));
+    let what = format!(
+        "cannot read {}: it is {len} bytes, more than the limit of {limit} for this kind of file",
+        path.display()
+    );
+    Err(Error::Io(
+        loc,
+        std::io::Error::new(std::io::ErrorKind::InvalidData, what),
+    ))
 }
 
 /// The error for a file that cannot be read.
@@ -80,12 +121,12 @@ mod tests {
     #[test]
     fn directories_and_devices_are_refused_at_the_asking_node() {
         let at = Location::line(Path::new("s.kdl"), 3, 5);
-        let e = read_file(Path::new("."), Some(&at), Count::NONE)
+        let e = read_file(Path::new("."), Some(&at), MAX_SCENE_BYTES, Count::NONE)
             .unwrap_err()
             .to_string();
         assert_eq!(e, "s.kdl:3:5: cannot read .: it is a directory, not a file");
         if Path::new("/dev/zero").exists() {
-            let e = read_file(Path::new("/dev/zero"), None, Count::NONE)
+            let e = read_file(Path::new("/dev/zero"), None, MAX_SCENE_BYTES, Count::NONE)
                 .unwrap_err()
                 .to_string();
             assert!(
@@ -93,9 +134,14 @@ mod tests {
                 "{e}"
             );
         }
-        let e = read_file(Path::new("/no/such.kdl"), None, Count::NONE)
-            .unwrap_err()
-            .to_string();
+        let e = read_file(
+            Path::new("/no/such.kdl"),
+            None,
+            MAX_SCENE_BYTES,
+            Count::NONE,
+        )
+        .unwrap_err()
+        .to_string();
         assert!(
             e.starts_with("/no/such.kdl: cannot read /no/such.kdl: "),
             "{e}"
@@ -106,14 +152,40 @@ mod tests {
     fn a_read_counts_its_bytes() {
         let path = Path::new("scenes/town.kdl");
         let p = AtomicUsize::new(0);
-        let bytes = read_file(path, None, Count::to(&p)).unwrap();
+        let bytes = read_file(path, None, MAX_SCENE_BYTES, Count::to(&p)).unwrap();
         assert_eq!(bytes, std::fs::read(path).unwrap());
         assert_eq!(p.load(Ordering::Relaxed), bytes.len());
-        assert_eq!(file_len(path, None).unwrap(), bytes.len());
-        let e = read_file(Path::new("."), None, Count::to(&p)).unwrap_err();
+        assert_eq!(file_len(path, None, MAX_SCENE_BYTES).unwrap(), bytes.len());
+        let e = read_file(Path::new("."), None, MAX_SCENE_BYTES, Count::to(&p)).unwrap_err();
         assert!(
             e.to_string().ends_with("it is a directory, not a file"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_sparse_file_over_the_limit_is_refused_before_reading() {
+        let d = std::env::temp_dir().join(format!("kepler-read-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        let f = d.join("sparse.obj");
+        // A hole of 64 GB: no disk used, and nothing may be reserved from its size.
+        std::fs::File::create(&f)
+            .unwrap()
+            .set_len(64 << 30)
+            .unwrap();
+        let e = read_file(&f, None, MAX_MESH_BYTES, Count::NONE)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("it is 68719476736 bytes, more than the limit of 4294967296"),
+            "{e}"
+        );
+        let e = file_len(&f, None, MAX_MESH_BYTES).unwrap_err().to_string();
+        assert!(e.contains("more than the limit"), "{e}");
+        // Just over a small limit: refused; at it: read.
+        std::fs::write(&f, "v 0 0 0\n").unwrap();
+        assert!(read_file(&f, None, 7, Count::NONE).is_err());
+        assert_eq!(read_file(&f, None, 8, Count::NONE).unwrap().len(), 8);
+        let _ = std::fs::remove_dir_all(&d);
     }
 }

@@ -11,6 +11,7 @@ use std::sync::Arc;
 
 use super::args::{quoted_list, Node};
 use super::camera_node::parse_camera;
+use super::confine;
 use super::geometry::{self, is_geometry, GeomCtx, MeshCache};
 use super::limits::LoadOptions;
 use super::source::Source;
@@ -37,10 +38,15 @@ pub(crate) fn load_scene_file(
 ) -> Result<Scene> {
     progress.enter(Stage::Load, 0);
     let mut loader = Loader {
-        opts: *opts,
+        opts: opts.clone(),
         warnings,
         progress,
-        meshes: MeshCache::default(),
+        meshes: MeshCache::confined(
+            opts.include_root
+                .as_deref()
+                .map(confine::canonical_root)
+                .transpose()?,
+        ),
         prototypes: HashMap::new(),
         defining: Vec::new(),
         stack: Vec::new(),
@@ -58,6 +64,7 @@ pub(crate) fn load_scene_file(
     let objects = placed.into_iter().map(|p| p.object).collect();
     Ok(Scene {
         root: Object::group("", objects),
+        camera_at: loader.camera.as_ref().map(|c| c.1.clone()),
         camera: loader.camera.map(|c| c.0),
         source: path.to_path_buf(),
     })
@@ -130,6 +137,9 @@ impl Loader<'_> {
         }
         if self.loaded.contains(&canonical) {
             return Ok(Vec::new());
+        }
+        if let Some(at) = at {
+            confine::check_under(self.meshes.root.as_deref(), path, &canonical, at)?;
         }
         let src = Source::read(path, at)?;
         let doc = src.parse()?;
@@ -228,6 +238,16 @@ impl Loader<'_> {
         let rel = n.one_string("string (the path of a scene file)")?;
         let path = n.src.path.parent().unwrap_or(Path::new("")).join(rel);
         let at = n.loc();
+        if self.stack.len() > confine::MAX_INCLUDE_DEPTH {
+            return Err(Error::invalid(
+                at,
+                format!(
+                    "includes nested more than {} deep",
+                    confine::MAX_INCLUDE_DEPTH
+                ),
+            ));
+        }
+        confine::check_scene_name(&path, &at)?;
         if let Some(open) = self.stack.last_mut() {
             open.include_at = Some(at.clone());
         }
@@ -497,13 +517,27 @@ fn prototype_definitions(nodes: &[Node]) -> HashMap<String, Location> {
 fn top_level_error(n: &Node, name: &str) -> Error {
     let hint = if is_geometry(name) || is_transform(name) || name == "inbox" || name == "face" {
         format!("`{name}` belongs inside an `object` or `prototype` block")
-    } else {
+    } else if is_word(name) {
         format!(
             "unknown node `{name}`: expected {}",
             quoted_list(&TOP_NODES)
         )
+    } else {
+        // Not quoted: a file that is not a scene may start with anything, a secret too.
+        format!(
+            "this is not a scene node: expected {}",
+            quoted_list(&TOP_NODES)
+        )
     };
     n.parse_err(hint)
+}
+
+/// True for a short name of lowercase letters, digits, `-` and `_`: a mistyped node, quoted.
+fn is_word(name: &str) -> bool {
+    name.len() <= 24
+        && name
+            .bytes()
+            .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'-' || b == b'_')
 }
 
 /// Sorts an object's block by role, checking what may appear once.

@@ -37,7 +37,12 @@ impl Source {
     /// Text that is not UTF-8 is a parse error at the first bad byte; so is a NUL byte
     /// (UTF-16 text without a byte-order mark is valid UTF-8 full of them), whichever is first.
     pub(super) fn read(path: &Path, at: Option<&Location>) -> Result<Self> {
-        let bytes = super::read::read_file(path, at, crate::count::Count::NONE)?;
+        let bytes = super::read::read_file(
+            path,
+            at,
+            super::read::MAX_SCENE_BYTES,
+            crate::count::Count::NONE,
+        )?;
         let nul = bytes.iter().position(|&b| b == 0);
         let valid = std::str::from_utf8(&bytes).err().map(|e| e.valid_up_to());
         let (offset, why) = match (nul, valid) {

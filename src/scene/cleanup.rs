@@ -198,6 +198,15 @@ fn dedup_cyclic(mut idx: Vec<u32>) -> Vec<u32> {
     idx
 }
 
+/// The first vertex of `idx` (in corner order) that appears again later.
+fn repeated(idx: &[u32]) -> u32 {
+    let mut seen = std::collections::HashSet::with_capacity(idx.len());
+    idx.iter()
+        .copied()
+        .find(|&k| !seen.insert(k))
+        .unwrap_or(idx[0])
+}
+
 /// Faces per chunk of [`cleanup`].
 const CLEANED_CHUNK: usize = 4096;
 
@@ -219,6 +228,23 @@ fn clean_face(
             message: format!("face has {} distinct vertices; dropped", distinct.len()),
         });
         return;
+    }
+    if distinct.len() < idx.len() {
+        // Not silent (issue 32): peers (assimp's validation) warn of a polygon that visits a
+        // vertex twice; it is kept as written, as the region it winds round.
+        let twice = repeated(&idx);
+        let p = verts[twice as usize];
+        warnings.push(Warning {
+            location: loc(),
+            message: format!(
+                "face passes through the vertex at ({}, {}, {}) more than once ({} corners, {} distinct); kept as written",
+                p.x,
+                p.y,
+                p.z,
+                idx.len(),
+                distinct.len()
+            ),
+        });
     }
     let pts: Vec<P3> = idx.iter().map(|&k| verts[k as usize]).collect();
     let shape = FaceShape::of(&pts);
@@ -381,6 +407,42 @@ mod tests {
         used.sort();
         used.dedup();
         assert_eq!(used, vec![0, 1, 2, 3]);
+    }
+
+    #[test]
+    fn a_face_through_one_vertex_twice_is_kept_with_a_warning() {
+        let tri = |faces: Vec<Vec<u32>>| {
+            PolyMesh::new(
+                vec![
+                    P3::new(0., 0., 0.),
+                    P3::new(1., 0., 0.),
+                    P3::new(0., 1., 0.),
+                ],
+                faces,
+            )
+        };
+        // `f 1 2 1 2 3` and a face winding twice round the triangle.
+        for f in [vec![0, 1, 0, 1, 2], vec![0, 1, 2, 0, 1, 2]] {
+            let mut w = Vec::new();
+            let n = f.len();
+            let m = cleanup(&tri(vec![f]), &origin(), &mut w, crate::count::Count::NONE).unwrap();
+            assert_eq!(m.faces[0].vertices.len(), n);
+            assert_eq!(w.len(), 1, "{w:?}");
+            assert_eq!(
+                w[0].message,
+                format!("face passes through the vertex at (0, 0, 0) more than once ({n} corners, 3 distinct); kept as written")
+            );
+        }
+        // A plain triangle: no warning.
+        let mut w = Vec::new();
+        cleanup(
+            &tri(vec![vec![0, 1, 2]]),
+            &origin(),
+            &mut w,
+            crate::count::Count::NONE,
+        )
+        .unwrap();
+        assert!(w.is_empty(), "{w:?}");
     }
 
     #[test]

@@ -71,7 +71,9 @@ impl FlatMesh {
             let _ = writeln!(s, "v {} {} {}", num(v.x), num(v.y), num(v.z));
         }
         for (path, range) in &self.groups {
-            let _ = writeln!(s, "o {}", if path.is_empty() { "scene" } else { path });
+            // A name with a newline would start lines of its own: written escaped.
+            let name = if path.is_empty() { "scene" } else { path };
+            let _ = writeln!(s, "o {}", super::names::printable(name));
             for f in &self.faces[range.clone()] {
                 s.push('f');
                 for k in f {

@@ -4,6 +4,7 @@ pub(crate) mod cleanup;
 pub(crate) mod contain;
 pub(crate) mod face_id;
 pub(crate) mod flatten;
+pub(crate) mod names;
 pub(crate) mod object;
 pub(crate) mod object_tree;
 pub(crate) mod proof;
@@ -54,6 +55,8 @@ pub struct Scene {
     pub root: Object,
     /// The scene file's camera block, if any.
     pub(crate) camera: Option<CameraSpec>,
+    /// Where the scene file's camera block is (for messages about it).
+    pub(crate) camera_at: Option<crate::error::Location>,
     /// The file the scene came from.
     pub source: PathBuf,
 }
@@ -99,6 +102,7 @@ impl Scene {
         Scene {
             root,
             camera: None,
+            camera_at: None,
             source,
         }
     }
@@ -143,6 +147,7 @@ impl Scene {
         Scene {
             root,
             camera: self.camera.clone(),
+            camera_at: self.camera_at.clone(),
             source: self.source.clone(),
         }
     }

@@ -11,6 +11,7 @@ mod exact_check;
 mod flatten;
 mod inbox;
 mod invariants;
+mod json_dust;
 mod lines;
 mod load_mesh_files;
 mod long_faces;

@@ -1,7 +1,8 @@
 //! Cameras: the 4x4 matrix M taking world points to the paper's standard view (viewer at z = +inf).
 
 use crate::error::{Error, Result};
-use crate::geom::{M4, P3, V3};
+use crate::geom::{M4, MAX_COORD, P3, V3};
+use crate::scene::flatten::num;
 use crate::scene::{CameraSpec, Scene};
 
 pub(crate) use crate::scene::DEFAULT_FOV_DEG;
@@ -188,6 +189,11 @@ impl Camera {
     /// Nothing asked for is ignored: a request that cannot apply is an error.
     pub fn for_scene(scene: &Scene, req: &CameraRequest) -> Result<Camera> {
         let usage = |m: &str| Err(Error::Usage(m.into()));
+        for (what, p) in [("eye", &req.eye), ("target", &req.target)] {
+            if let Some(p) = p {
+                check_point(what, p)?;
+            }
+        }
         if let Some(fov) = req.fov_deg {
             if !(fov > 0.0 && fov < 180.0) {
                 return Err(Error::Usage(format!(
@@ -343,6 +349,22 @@ impl Camera {
     }
 }
 
+/// An error unless every coordinate of the camera's `what` point (eye or target) is finite and
+/// within [`MAX_COORD`], the limit scene coordinates have: beyond it, distances and the near
+/// plane overflow (an eye at 1e160 made a near plane of infinity).
+fn check_point(what: &str, p: &P3) -> Result<()> {
+    match p.iter().find(|c| !(c.is_finite() && c.abs() <= MAX_COORD)) {
+        None => Ok(()),
+        Some(c) => Err(Error::Usage(format!(
+            "camera {what} {},{},{}: coordinate {} is beyond {MAX_COORD:e}, the limit scene coordinates have",
+            num(p.x),
+            num(p.y),
+            num(p.z),
+            num(*c)
+        ))),
+    }
+}
+
 /// The direction of the three-quarter view.
 const THREE_QUARTER: V3 = V3::new(-0.55, -0.5, -0.75);
 
@@ -451,6 +473,32 @@ mod tests {
         assert!(
             Camera::perspective(P3::origin(), P3::new(0., 0., -1.), V3::y(), 1e-320, 0.1).is_err()
         );
+    }
+
+    #[test]
+    fn eyes_and_targets_beyond_scene_coordinates_are_refused() {
+        let scene = crate::scene::testing::unit_cube_scene();
+        let ask = |eye: [f64; 3], target: Option<[f64; 3]>| {
+            let req = CameraRequest {
+                eye: Some(P3::from(eye)),
+                target: target.map(P3::from),
+                ..Default::default()
+            };
+            Camera::for_scene(&scene, &req)
+        };
+        let e = ask([1e160, 0., 0.], None).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "camera eye 1e160,0,0: coordinate 1e160 is beyond 1e12, the limit scene coordinates have"
+        );
+        let e = ask([5., 5., 5.], Some([1e308, 0., 0.]))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("camera target "), "{e}");
+        assert!(ask([f64::NAN, 0., 0.], None).is_err());
+        // At the limit: a camera with a finite near plane.
+        let c = ask([1e12, 0., 0.], None).unwrap();
+        assert!(c.near.is_finite() && c.near > 0.0);
     }
 
     #[test]

@@ -2,7 +2,8 @@
 //! the exact stages compute in (a field of view of 1e-150 degrees magnifies the scene 1e152
 //! times, and areas then overflow) is an error, not a picture of NaNs.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Location, Result};
+use crate::scene::{CameraSpec, Scene};
 
 use super::camera::{Camera, Projection};
 use super::screen::ScreenFaces;
@@ -49,6 +50,24 @@ pub(crate) fn check_screen(screen: &ScreenFaces, camera: &Camera) -> Result<()> 
     Err(Error::Usage(format!(
         "{camera} magnifies the scene to screen coordinates of {size}, beyond the {SCREEN_LIMIT:e} kepler computes with: the field of view is too narrow for the scene"
     )))
+}
+
+/// `e` (a refused view) placed where its camera came from: the scene file's camera block when
+/// the view's eye is that camera's (its field of view may come from a flag), else the scene
+/// file itself.
+pub(crate) fn placed(e: Error, scene: &Scene, camera: &Camera) -> Error {
+    let Error::Usage(msg) = e else {
+        return e;
+    };
+    let own_eye = match &scene.camera {
+        Some(CameraSpec::Perspective { eye, .. }) => Some(*eye),
+        _ => None,
+    };
+    let (loc, whose) = match (&scene.camera_at, own_eye) {
+        (Some(at), Some(eye)) if camera.eye == Some(eye) => (at.clone(), " (the scene's camera)"),
+        _ => (Location::file(&scene.source), ""),
+    };
+    Error::invalid(loc, format!("{msg}{whose}"))
 }
 
 #[cfg(test)]

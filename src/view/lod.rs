@@ -101,6 +101,7 @@ pub(crate) fn substitute(scene: &Scene, camera: &Camera, opts: &LodOptions) -> (
     let mut out = Scene {
         root,
         camera: scene.camera.clone(),
+        camera_at: scene.camera_at.clone(),
         source: scene.source.clone(),
     };
     out.root.cbox = scene.root.cbox.union(&out.root.cbox);

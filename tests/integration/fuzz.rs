@@ -67,6 +67,21 @@ const TOKENS: &[&[u8]] = &[
     b"fov 1e-300",
     b"scale 0 1 1",
     b"matrix",
+    // PLY and STL seeds reach their readers' corners too (issue 32).
+    b"format binary_little_endian 1.0\n",
+    b"format binary_big_endian 1.0\n",
+    b"element face 4294967295\n",
+    b"property list uint uint vertex_indices\n",
+    b"property double x\n",
+    b"comment ",
+    b"outer loop\n",
+    b"endloop\n",
+    b"endfacet\n",
+    b"\xff\xff\xff\x7f",
+    b"o \x1b[2J\n",
+    b"f 1 2 1 2 3\n",
+    b"f 1 2 3 1 2 3 1 2 3\n",
+    b"include \"/dev/zero.kdl\"\n",
 ];
 
 /// The directory of bad fixtures.
@@ -141,7 +156,10 @@ enum Outcome {
 /// Loads, prepares and renders the file at `path`: how far it got, or the first broken
 /// promise.
 fn check(path: &Path) -> Result<Outcome, String> {
-    let opts = LoadOptions { max_faces: 200_000 };
+    let opts = LoadOptions {
+        max_faces: 200_000,
+        ..LoadOptions::default()
+    };
     let run = || -> Result<Outcome, String> {
         let mut warnings = Vec::new();
         let mut scene =
@@ -259,6 +277,123 @@ fn mutated_fixtures_never_panic_and_errors_name_the_file() {
 fn fuzz_for_a_minute() {
     let [refused, loaded, rendered] = fuzz(budget(60));
     println!("mutants: {refused} refused, {loaded} loaded only, {rendered} rendered");
+}
+
+/// Numbers a flag is given in the flag fuzz: the degenerate, the huge, the tiny.
+const NUMBERS: &[f64] = &[
+    0.0,
+    -0.0,
+    1.0,
+    -1.0,
+    0.5,
+    1e-6,
+    1e-300,
+    5e-324,
+    1e12,
+    1.5e12,
+    1e160,
+    1e308,
+    -1e308,
+    f64::INFINITY,
+    f64::NAN,
+];
+
+/// A camera request and picture options from case number `case`: every camera flag and the
+/// plotter flags whose numbers size loops (dash, hatch spacing, page), from [`NUMBERS`].
+fn flags(case: u64) -> (CameraRequest, kepler_hsr::plot::PictureOptions) {
+    let mut rng = Rng::new(case.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
+    let mut n = || NUMBERS[rng.below(NUMBERS.len())];
+    let v3 = |n: &mut dyn FnMut() -> f64| kepler_hsr::V3::new(n(), n(), n());
+    let mut req = CameraRequest::default();
+    match case % 4 {
+        0 => req.dir = Some(v3(&mut n)),
+        1 => {
+            req.eye = Some(v3(&mut n).into());
+            req.target = Some(v3(&mut n).into());
+            req.fov_deg = Some(n() * 90.0);
+        }
+        2 => req.up = Some(v3(&mut n)),
+        _ => req.fov_deg = Some(n()),
+    }
+    let mut pic = kepler_hsr::plot::PictureOptions {
+        dash_mm: [n(), n()],
+        ..Default::default()
+    };
+    if case.is_multiple_of(3) {
+        pic.hatch = Some(kepler_hsr::plot::HatchOptions {
+            spacing_mm: n(),
+            ..Default::default()
+        });
+    }
+    if case.is_multiple_of(5) {
+        pic.page = Some(kepler_hsr::plot::PageSize {
+            width: n() * 1e5,
+            height: n() * 1e5,
+        });
+    }
+    (req, pic)
+}
+
+/// The flag fuzz: a small scene rendered with random camera and plotter flags never panics,
+/// and every render that succeeds writes finite JSON and an SVG with no NaN or infinity.
+#[test]
+fn random_flags_are_applied_or_refused_never_a_panic_or_nan() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/meshes/cube_groups.obj");
+    let mut warnings = Vec::new();
+    let scene = load_scene(
+        &path,
+        &LoadOptions::default(),
+        &mut warnings,
+        &kepler_hsr::Progress::default(),
+    )
+    .unwrap();
+    let (mut ok, mut refused) = (0, 0);
+    let start = Instant::now();
+    for case in 0..400u64 {
+        if start.elapsed() > budget(3) && ok > 0 && refused > 0 {
+            break;
+        }
+        let (req, picture) = flags(case);
+        let run = || {
+            let camera = Camera::for_scene(&scene, &req).ok()?;
+            let opts = RenderOptions {
+                lines: LineOptions {
+                    hidden: true,
+                    ..Default::default()
+                },
+                outputs: Outputs {
+                    json: true,
+                    svg: true,
+                    picture,
+                    ..Default::default()
+                },
+                ..Default::default()
+            };
+            render(&scene, &camera, &opts, &kepler_hsr::Progress::default()).ok()
+        };
+        match catch_unwind(AssertUnwindSafe(run)) {
+            Err(_) => panic!("flag case {case} panicked: {req:?} {picture:?}"),
+            Ok(None) => refused += 1,
+            Ok(Some(r)) => {
+                let json = r.json.clone().unwrap_or_default();
+                assert!(
+                    serde_json::from_str::<serde_json::Value>(&json).is_ok(),
+                    "flag case {case}: JSON does not parse: {req:?}"
+                );
+                let svg = r.svg.clone().unwrap_or_default();
+                let bad = svg
+                    .split(|c: char| !(c.is_ascii_alphanumeric() || c == '-'))
+                    .any(|w| matches!(w, "NaN" | "inf" | "-inf"));
+                assert!(
+                    !bad,
+                    "flag case {case}: SVG with NaN or inf: {req:?} {picture:?}"
+                );
+                ok += 1;
+            }
+        }
+    }
+    println!("flag cases: {ok} rendered, {refused} refused");
+    assert!(ok > 0 && refused > 0, "{ok} {refused}");
 }
 
 #[test]

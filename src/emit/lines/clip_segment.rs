@@ -49,7 +49,9 @@ pub(crate) fn intervals_in_region(a: Pt2, b: Pt2, region: &Region) -> Vec<Interv
     let mut out: Vec<Interval> = Vec::new();
     for w in ts.windows(2) {
         let mid = at(a, b, 0.5 * (w[0] + w[1]));
-        if region.locate(mid) != Side::Outside || region.near_boundary(mid, eps) {
+        // The local test first: a piece along the boundary (every edge of the face itself)
+        // needs no ray, whose cost grows with the boundary it crosses (a 100k-point star).
+        if region.near_boundary(mid, eps) || region.locate(mid) != Side::Outside {
             push_merged(&mut out, [w[0], w[1]]);
         }
     }

@@ -185,7 +185,7 @@ pub(crate) fn mesh_edges(
                     } else {
                         [pts[j], pts[i]]
                     },
-                    faces: adj.iter().map(|h| FaceId(h.face)).collect(),
+                    faces: faces_beside(adj),
                     kind,
                 }
             })
@@ -247,6 +247,16 @@ fn half_edges(world: &WorldFaces, start: usize, end: usize, base: usize) -> Vec<
     // seq is unique and counts up: the order is the same however the sort runs.
     sort_by_pair(&mut half, |h| (h.a, h.b), |h| (h.a, h.b, h.seq));
     half
+}
+
+/// The faces beside an edge, each once, in face order: a face that runs along one edge many
+/// times (`f 1 2 3 1 2 3 ...`, winding round a triangle) is clipped against once, not once
+/// per traversal (which made the lines stage quadratic in the face's corners).
+fn faces_beside(adj: &[HalfEdge]) -> Vec<FaceId> {
+    let mut faces: Vec<FaceId> = adj.iter().map(|h| FaceId(h.face)).collect();
+    // A group is in (face, corner) order: one face's traversals are neighbours.
+    faces.dedup();
+    faces
 }
 
 /// The index ranges of the edges in grouped half-edges, in order of first appearance.

@@ -69,7 +69,8 @@ pub(crate) fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2
             [xmax(s) + 2.0 * tol, yhi(s) + 3.0 * tol, 0.0],
         ]
     };
-    let boxes: Vec<Bounds3> = all.iter().map(|(s, _)| reach(s)).collect();
+    let mut boxes: Vec<Bounds3> = all.iter().map(|(s, _)| reach(s)).collect();
+    add_directions(&mut boxes, &all);
     let pair = |i: u32, j: u32| {
         let (i, j) = (i as usize, j as usize);
         // Of two segments of one rank, the one of lesser least x (ties: the earlier) wins.
@@ -96,6 +97,52 @@ pub(crate) fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2
         cuts[lo].push(iv);
     }
     remaining(&all[keep.len()..], &mut cuts[keep.len()..], tol)
+}
+
+/// Angle (radians) that one grid cell spans in the direction coordinate of [`add_directions`].
+const ANGLE_CELL: f64 = 1e-2;
+
+/// Gives every box a third coordinate, its segment's direction (an angle mod π, scaled so that
+/// [`ANGLE_CELL`] is about a grid cell), widened past what [`along`] accepts as parallel: the
+/// grid then pairs only segments of nearly one direction. Without it, segments whose boxes
+/// overlap but which run in many directions (the spikes of a 100k-corner star) made the pairs
+/// quadratic. Directions wrap at an angle of 1 radian (mod π), which few drawings use much: a
+/// segment within the margin of it spans every direction, so no parallel pair is lost.
+///
+/// Each axis is scaled by its boxes' mean extent first (a positive scale per axis keeps every
+/// overlap): the grid's cells are cubes, and boxes all tall and thin (the teeth of a 100k-corner
+/// comb) otherwise shared a few cells, every pair a candidate.
+fn add_directions(boxes: &mut [Bounds3], all: &[RankedSeg]) {
+    use std::f64::consts::PI;
+    let n = boxes.len().max(1) as f64;
+    for k in 0..2 {
+        let mean = boxes.iter().map(|b| b[1][k] - b[0][k]).sum::<f64>() / n;
+        if mean.is_finite() && mean > 0.0 {
+            for b in boxes.iter_mut() {
+                b[0][k] /= mean;
+                b[1][k] /= mean;
+            }
+        }
+    }
+    // Every axis' mean extent is now 1: an angle of ANGLE_CELL spans about as much.
+    let scale = 1.0 / ANGLE_CELL;
+    // asin(PARALLEL_SIN) with a wide margin for the rounding of atan2.
+    let margin = 4.0 * PARALLEL_SIN;
+    for (b, (s, _)) in boxes.iter_mut().zip(all) {
+        let (dx, dy) = (s[1][0] - s[0][0], s[1][1] - s[0][1]);
+        let (lo, hi) = if dx == 0.0 && dy == 0.0 {
+            (0.0, PI)
+        } else {
+            let a = (dy.atan2(dx) - 1.0).rem_euclid(PI);
+            if a < margin || a > PI - margin {
+                (0.0, PI)
+            } else {
+                (a - margin, a + margin)
+            }
+        };
+        b[0][2] = lo * scale;
+        b[1][2] = hi * scale;
+    }
 }
 
 /// A segment and its rank: (0, 0, 0) for a kept one, else (1, kind, edge); lower wins.

@@ -13,6 +13,7 @@
 use rayon::prelude::*;
 
 use crate::count::Count;
+use crate::error::{Error, Result};
 use crate::geom::boolean;
 use crate::geom::poly2::{MultiPolygon, Pt2, Ring};
 use crate::geom::{Rect, V3};
@@ -91,7 +92,7 @@ pub(crate) fn hatch(
     opts: &HatchOptions,
     light: Option<V3>,
     done: Count,
-) -> Hatching {
+) -> Result<Hatching> {
     let light = light_direction(&view.camera, light);
     let angle = opts.angle_deg.unwrap_or_else(|| {
         light_on_screen(&view.camera, &light).map_or(45.0, |[x, y]| y.atan2(x).to_degrees() + 90.0)
@@ -111,6 +112,7 @@ pub(crate) fn hatch(
         .map(|&(f, leaf)| (f, leaf, tone(face_shade(view, f, &light))))
         .collect();
     let spacing = opts.spacing_mm.max(1e-6);
+    check_line_count(&tones, vis, layout, angle, spacing)?;
     let segments = tones
         .par_iter()
         .enumerate()
@@ -130,7 +132,42 @@ pub(crate) fn hatch(
         .flatten()
         .collect();
     done.tick_rest(tones.len());
-    Hatching { segments, tones }
+    Ok(Hatching { segments, tones })
+}
+
+/// The most hatch lines (one line of one family across one face) a picture may have: each
+/// is cut against its face exactly and may become several strokes, so this bounds the time
+/// and memory of hatching (10 million lines: about a GB of strokes) before any is made.
+pub(crate) const MAX_HATCH_LINES: u64 = 10_000_000;
+
+/// An error when hatching the faces of `tones` at `spacing` mm would draw more than
+/// [`MAX_HATCH_LINES`] lines (counted exactly, in integers, whatever the thread count).
+fn check_line_count(
+    tones: &[(FaceId, u32, u8)],
+    vis: &Visibility,
+    layout: &Layout,
+    angle: f64,
+    spacing: f64,
+) -> Result<()> {
+    let lines: u64 = tones
+        .par_iter()
+        .map(|&(f, _, t)| {
+            families(t)
+                .iter()
+                .map(|&(mult, offset)| {
+                    Family::new(layout, angle + offset, spacing * mult).count(&vis.face(f).visible)
+                })
+                .fold(0u64, u64::saturating_add)
+        })
+        .reduce(|| 0, u64::saturating_add);
+    if lines <= MAX_HATCH_LINES {
+        return Ok(());
+    }
+    let page = layout.page;
+    Err(Error::Usage(format!(
+        "--hatch-spacing {spacing}: hatching this {:.0}x{:.0} mm picture would draw {lines} lines, more than {MAX_HATCH_LINES}: give a wider spacing (or a smaller page)",
+        page.width, page.height
+    )))
 }
 
 /// One family of parallel lines, fixed on the page: screen lines m·p = (k·S − K) / s.
@@ -188,8 +225,9 @@ impl Family {
         ]
     }
 
-    /// The pieces of this family's lines inside the closed region.
-    fn clip(&self, region: &MultiPolygon) -> Vec<[Pt2; 2]> {
+    /// The numbers k0..=k1 of this family's lines that cross the region's extent (None when
+    /// it has none).
+    fn range(&self, region: &MultiPolygon) -> Option<(i64, i64)> {
         let pts = region.iter().flatten().flatten();
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for p in pts {
@@ -198,10 +236,25 @@ impl Family {
             hi = hi.max(o);
         }
         if lo > hi || lo.is_nan() || hi.is_nan() {
-            return Vec::new();
+            return None;
         }
         let k0 = ((lo - self.base) / self.step).ceil() as i64;
         let k1 = ((hi - self.base) / self.step).floor() as i64;
+        Some((k0, k1))
+    }
+
+    /// How many of this family's lines cross the region's extent.
+    fn count(&self, region: &MultiPolygon) -> u64 {
+        self.range(region).map_or(0, |(k0, k1)| {
+            k1.saturating_sub(k0).saturating_add(1).max(0) as u64
+        })
+    }
+
+    /// The pieces of this family's lines inside the closed region.
+    fn clip(&self, region: &MultiPolygon) -> Vec<[Pt2; 2]> {
+        let Some((k0, k1)) = self.range(region) else {
+            return Vec::new();
+        };
         let mut out = Vec::new();
         for k in k0..=k1 {
             let [a, b] = self.line(k);

@@ -118,7 +118,7 @@ pub(crate) fn picture(
     if let Some(h) = &opts.hatch {
         let faces = vis.iter().filter(|(_, fv)| !fv.visible.is_empty()).count();
         lane.enter_phase(Stage::Emit, Phase::Hatch, faces);
-        let hatching = hatch(scene, view, vis, &layout, h, opts.light, lane.count());
+        let hatching = hatch(scene, view, vis, &layout, h, opts.light, lane.count())?;
         for &(leaf, s) in &hatching.segments {
             items.push(Item {
                 pen: Pen::Hatch,
@@ -212,6 +212,7 @@ pub(crate) fn picture(
             // runs along hidden lines only (the off part of a dash pattern has no ink), as
             // vpype's `linemerge` would join them.
             let [on, off] = opts.dash_mm;
+            check_dash_count(&strokes, on, off, &layout)?;
             let dashed = strokes.iter().flat_map(|l| dashes(l, on, off)).collect();
             share.reach(0.5);
             let mut bridge = |p, q| bridges.allow(p, q, true);
@@ -262,6 +263,26 @@ pub(crate) fn picture(
         mode: opts.layers,
         stats,
     })
+}
+
+/// The most dashes the hidden lines of a picture may be cut into (each its own stroke, then
+/// joined and ordered): bounds the dash loop's time and memory before it runs.
+pub(crate) const MAX_DASHES: f64 = 2_000_000.0;
+
+/// An error when dashing `strokes` (mm on the page) with `on`, `off` would make more than
+/// [`MAX_DASHES`] dashes.
+fn check_dash_count(strokes: &[Vec<Pt2>], on: f64, off: f64, layout: &Layout) -> Result<()> {
+    let total: f64 = strokes.iter().map(|l| length(l)).sum();
+    let dashes = (total / (on + off)).ceil() + strokes.len() as f64;
+    if dashes <= MAX_DASHES {
+        return Ok(());
+    }
+    Err(Error::Usage(format!(
+        "--dash {on},{off}: the hidden lines of this {:.0}x{:.0} mm picture ({total:.0} mm) would make {dashes:.0} dashes, more than {MAX_DASHES}: give a dash and gap of at least {:.3} mm together",
+        layout.page.width,
+        layout.page.height,
+        total / MAX_DASHES
+    )))
 }
 
 /// Rejects settings no picture can be made with.

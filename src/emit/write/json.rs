@@ -2,13 +2,18 @@
 //!
 //! Faces by id, one per line; rings start at their least point (x, then y); numbers in the
 //! shortest form that reads back to the same f64, with -0 written as 0. A perspective camera
-//! also carries `near` (the near plane, the least w' kept by clipping) and `eye`.
+//! also carries `near` (the near plane, the least w' kept by clipping) and `eye`. Rounding
+//! dust is left out by the rule of [`super::dust`] (ring points a few ulps apart merged,
+//! regions of area within the rounding of zero dropped); each face's `area` is that of the
+//! rings written.
 
+use std::borrow::Cow;
 use std::fmt::Write as _;
 use std::io;
 
+use super::dust::{clean, dust_delta, extent};
 use crate::count::Count;
-use crate::geom::poly2::Pt2;
+use crate::geom::poly2::{multipolygon_area, Pt2};
 use crate::scene::flatten::write_num;
 use crate::view::{Projection, View};
 use crate::visibility::Visibility;
@@ -57,8 +62,8 @@ fn list<T>(s: &mut String, items: &[T], mut each: impl FnMut(&mut String, &T)) {
     s.push(']');
 }
 
-/// The JSON document for a view's visible-polygon set (faces with nothing visible left out),
-/// with `lines` when given.
+/// The JSON document for a view's visible-polygon set (faces with nothing visible, or only
+/// rounding dust, left out), with `lines` when given.
 ///
 /// The solved faces written go to `done`, once per chunk of faces.
 pub(crate) fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>, done: Count) -> String {
@@ -150,12 +155,18 @@ fn json_into(
         .iter()
         .map(|l| json_string(&l.path))
         .collect();
+    let delta = dust_delta(extent(vis.iter().map(|(_, f)| &f.visible)));
     let mut first = true;
     for (k, (id, f)) in vis.iter().enumerate() {
         done.tick(k);
-        if f.visible.is_empty() {
+        let visible = clean(&f.visible, delta);
+        if visible.is_empty() {
             continue;
         }
+        let area = match &visible {
+            Cow::Borrowed(_) => f.area,
+            Cow::Owned(m) => multipolygon_area(m),
+        };
         let s = &mut out.s;
         s.push_str(if first { "\n" } else { ",\n" });
         first = false;
@@ -165,9 +176,9 @@ fn json_into(
             "{{\"id\":{id},\"object\":{},\"area\":",
             paths[leaf as usize]
         );
-        write_num(s, f.area);
+        write_num(s, area);
         s.push_str(",\"visible\":");
-        list(s, &f.visible, |s, poly| list(s, poly, |s, r| ring(s, r)));
+        list(s, &visible, |s, poly| list(s, poly, |s, r| ring(s, r)));
         s.push('}');
         out.spill()?;
     }

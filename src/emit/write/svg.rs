@@ -96,7 +96,10 @@ fn layer(number: u32, name: &str) -> Group {
     Group::new()
         .set("id", format!("layer{number}"))
         .set("inkscape:groupmode", "layer")
-        .set("inkscape:label", format!("{number} {name}"))
+        .set(
+            "inkscape:label",
+            format!("{number} {}", crate::scene::names::printable(name)),
+        )
 }
 
 /// Sets a pen's stroke colour and width (mm) on an element.
