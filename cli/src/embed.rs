@@ -52,13 +52,18 @@ pub struct Made {
     pub warnings: Vec<String>,
 }
 
-/// Loads `path` and prepares it as `kepler render --max-faces N --hierarchy H` would.
-pub fn load(path: &Path, max_faces: Option<usize>, hierarchy: Option<&str>) -> Result<Loaded> {
-    let mut flags = Vec::new();
-    if let Some(h) = hierarchy {
-        flags.push(format!("--hierarchy={h}"));
+/// Loads `path` and prepares it as `kepler render PATH FLAGS` would, for the flags that
+/// bear on loading and preparing (`--max-faces`, `--include-root`, `--hierarchy`, each
+/// written `--name=value`).
+pub fn load(path: &Path, flags: &[String]) -> Result<Loaded> {
+    if let Some(f) = flags.iter().find(|f| !is_load_flag(f)) {
+        bail!("`{f}` is not an option of loading: give it to render()");
     }
-    let (a, load_opts) = parse(path, &flags, max_faces)?;
+    let hierarchy = flags
+        .iter()
+        .find_map(|f| f.strip_prefix("--hierarchy="))
+        .map(str::to_owned);
+    let (a, load_opts) = parse(path, flags)?;
     let progress = Progress::default();
     let mut warnings = Vec::new();
     let mut scene = kepler_hsr::load_scene(path, &load_opts, &mut warnings, &progress)?;
@@ -66,9 +71,16 @@ pub fn load(path: &Path, max_faces: Option<usize>, hierarchy: Option<&str>) -> R
     Ok(Loaded {
         scene,
         path: path.to_path_buf(),
-        hierarchy: hierarchy.map(str::to_owned),
+        hierarchy,
         warnings,
     })
+}
+
+/// Whether `flag` (as `--name=value`) bears on loading or preparing.
+fn is_load_flag(flag: &str) -> bool {
+    ["--max-faces=", "--include-root=", "--hierarchy="]
+        .iter()
+        .any(|p| flag.starts_with(p))
 }
 
 /// Renders `loaded` for the render flags `flags`, making the outputs `want` asks for.
@@ -83,7 +95,7 @@ pub fn render(loaded: &Loaded, flags: &[String], want: Want) -> Result<Made> {
 
 /// Checks `flags` as `kepler render PATH FLAGS` would before loading anything.
 pub fn check_flags(path: &Path, flags: &[String], one_view: bool) -> Result<()> {
-    let (a, _) = parse(path, flags, None)?;
+    let (a, _) = parse(path, flags)?;
     refuse_command_only(&a, one_view)?;
     a.options()?;
     a.camera.check()
@@ -132,7 +144,7 @@ fn parse_for(loaded: &Loaded, flags: &[String]) -> Result<RenderArgs> {
     }
     let mut flags = flags.to_vec();
     flags.extend(loaded.hierarchy.iter().map(|h| format!("--hierarchy={h}")));
-    Ok(parse(&loaded.path, &flags, None)?.0)
+    Ok(parse(&loaded.path, &flags)?.0)
 }
 
 /// The render options of `a`, making the outputs `want` asks for.
@@ -156,27 +168,18 @@ fn made(scene: &Scene, camera: &Camera, opts: &RenderOptions) -> Result<Made> {
 }
 
 /// `kepler render PATH FLAGS...` parsed by the command's own definitions.
-fn parse(
-    path: &Path,
-    flags: &[String],
-    max_faces: Option<usize>,
-) -> Result<(RenderArgs, LoadOptions)> {
+fn parse(path: &Path, flags: &[String]) -> Result<(RenderArgs, LoadOptions)> {
     let mut argv = vec![
         "kepler".into(),
         "render".into(),
         path.as_os_str().to_owned(),
     ];
-    if let Some(n) = max_faces {
-        argv.push(format!("--max-faces={n}").into());
-    }
     argv.extend(flags.iter().map(Into::into));
     let cli = match Cli::try_parse_from(argv) {
         Ok(cli) => cli,
         Err(e) => bail!("{}", first_line(&e.render().to_string())),
     };
-    let load = LoadOptions {
-        max_faces: cli.max_faces,
-    };
+    let load = cli.load_options();
     match cli.command {
         Command::Render(a) => Ok((a, load)),
         _ => unreachable!("the argv names the render command"),

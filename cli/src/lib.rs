@@ -66,10 +66,7 @@ enum Command {
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<ExitCode> {
-    let opts = LoadOptions {
-        max_faces: cli.max_faces,
-        include_root: cli.include_root,
-    };
+    let opts = cli.load_options();
     match cli.command {
         Command::Render(a) => render::run(a, &opts),
         Command::Query(a) => query::run(a, &opts),
@@ -78,6 +75,16 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Check(a) => check::run(a, &opts),
         Command::Diff(a) => diff::run(a),
         Command::Tribox(a) => tribox::run(a, &opts),
+    }
+}
+
+impl Cli {
+    /// The load options the global flags ask for.
+    fn load_options(&self) -> LoadOptions {
+        LoadOptions {
+            max_faces: self.max_faces,
+            include_root: self.include_root.clone(),
+        }
     }
 }
 

@@ -6,14 +6,21 @@ from . import _kepler
 from ._options import to_flags
 
 
-def load(path, *, max_faces=None, hierarchy=None):
+def load(path, *, max_faces=None, hierarchy=None, include_root=None):
     """Loads and prepares a scene file or mesh, as ``kepler render`` does.
 
     ``max_faces`` is the command's ``--max-faces`` (default: what fits a render in 24 GiB);
     ``hierarchy`` its ``--hierarchy`` (``"simplify"`` or ``"median"``; answers are the same
-    either way). Raises :class:`KeplerError` naming the file and line of bad input.
+    either way); ``include_root`` its ``--include-root`` (includes and meshes must lie under
+    it). Raises :class:`KeplerError` naming the file and line of bad input.
     """
-    return Scene(_kepler.load(str(path), max_faces, hierarchy))
+    return Scene(_kepler.load(str(path), load_flags(max_faces, hierarchy, include_root)))
+
+
+def load_flags(max_faces=None, hierarchy=None, include_root=None):
+    """The command's flags of loading, for :func:`load`'s arguments."""
+    root = None if include_root is None else str(include_root)
+    return to_flags({"max_faces": max_faces, "hierarchy": hierarchy, "include_root": root})
 
 
 class Scene:

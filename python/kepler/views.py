@@ -11,6 +11,7 @@ from pathlib import Path
 
 from . import _kepler
 from ._options import to_flags
+from ._scene import load_flags
 
 OUTPUTS = ("json", "svg", "png")
 
@@ -66,7 +67,7 @@ class _Jobs:
         return self._count
 
     def load(self):
-        return _kepler.load(self.scene_path, self.max_faces, self.hierarchy)
+        return _kepler.load(self.scene_path, load_flags(self.max_faces, self.hierarchy))
 
 
 def _jobs(scene_path, cameras, options, max_faces, hierarchy):

@@ -145,18 +145,12 @@ fn diff(
     report.map_err(|e| KeplerError::new_err(e.to_string()))
 }
 
-/// Loads and prepares a scene file or mesh, as `kepler render` does.
+/// Loads and prepares a scene file or mesh, as `kepler render PATH FLAGS` does (the flags
+/// of loading: `--max-faces`, `--include-root`, `--hierarchy`).
 #[pyfunction]
-#[pyo3(signature = (path, max_faces=None, hierarchy=None))]
-fn load(
-    py: Python<'_>,
-    path: PathBuf,
-    max_faces: Option<usize>,
-    hierarchy: Option<String>,
-) -> PyResult<NativeScene> {
-    let loaded = py
-        .detach(|| embed::load(&path, max_faces, hierarchy.as_deref()))
-        .map_err(raise)?;
+#[pyo3(signature = (path, flags=Vec::new()))]
+fn load(py: Python<'_>, path: PathBuf, flags: Vec<String>) -> PyResult<NativeScene> {
+    let loaded = py.detach(|| embed::load(&path, &flags)).map_err(raise)?;
     Ok(NativeScene { loaded })
 }
 
