@@ -68,8 +68,11 @@ fn render(dir: &Path, name: &str, points: &[[f64; 3]], tris: &[[u32; 3]], view: 
     json
 }
 
-/// A set's faces by id: (area, visible region as JSON), and its camera matrix.
-fn faces(json: &Path) -> (BTreeMap<u64, (f64, Value)>, Vec<Vec<f64>>) {
+/// Faces by id: (area, visible region as JSON).
+type Faces = BTreeMap<u64, (f64, Value)>;
+
+/// A set's faces, and its camera matrix.
+fn faces(json: &Path) -> (Faces, Vec<Vec<f64>>) {
     let v: Value = serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
     let faces = v["faces"]
         .as_array()

@@ -433,14 +433,14 @@ mod tests {
         let delta = 0.25;
         // The bottom edge's dip, and a second polygon touching y = 0 from below at (2, 0)...
         let r = vec![[0.0, 0.0], [0.125, 0.0625], [4.0, 0.0], [4.0, 4.0]];
-        let below = vec![[1.0, -1.0], [3.0, -1.0], [2.0, 0.0]];
+        let below = vec![[1.0, -10.0], [3.0, -10.0], [2.0, 0.0]];
         let m = vec![vec![r.clone()], vec![below.clone()]];
         assert!(ring_defect(&r, true).is_none() && ring_defect(&below, true).is_none());
         // ...so the merged edge (0,0)-(4,0) would touch it: the run goes into its last point.
         let last = vec![[0.125, 0.0625], [4.0, 0.0], [4.0, 4.0]];
         assert_eq!(*clean(&m, delta), vec![vec![last], vec![below.clone()]]);
         // A third polygon on that edge's replacement, (4,4)-(0.125,0.0625): kept as it was.
-        let third = vec![[2.0625, 2.03125], [3.0, 5.0], [1.0, 5.0]];
+        let third = vec![[1.0, 9.0], [2.0625, 2.03125], [3.0, 9.0]];
         let m = vec![vec![r.clone()], vec![below], vec![third]];
         assert_eq!(*clean(&m, delta), m);
         // Alone, the run goes into its first point.
