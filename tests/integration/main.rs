@@ -3,3 +3,4 @@
 //! unit tests inside the crate (src/tests/).
 
 mod fuzz;
+mod progress;

@@ -213,8 +213,9 @@ pub(crate) fn picture(
             // vpype's `linemerge` would join them.
             let [on, off] = opts.dash_mm;
             check_dash_count(&strokes, on, off, &layout)?;
-            let dashed = strokes.iter().flat_map(|l| dashes(l, on, off)).collect();
+            let dashed: Vec<Vec<Pt2>> = strokes.iter().flat_map(|l| dashes(l, on, off)).collect();
             share.reach(0.5);
+            bridges.ink(&dashed);
             let mut bridge = |p, q| bridges.allow(p, q, true);
             strokes = join(dashed, opts.join_mm, &mut bridge, share.span(0.5, 1.0));
         }
@@ -432,12 +433,13 @@ fn fills(
 }
 
 /// Where a join may bridge a gap: never along a line already drawn, except that a gap
-/// between two hidden dashes may run along hidden lines (their dash pattern's off parts).
+/// between two hidden dashes may run along hidden lines where they have no ink (their dash
+/// pattern's off parts).
 struct Bridges {
     /// Every segment drawn, and every bridge.
     drawn: SegmentIndex,
-    /// Every segment drawn but the hidden pen's, and every bridge; `None` without hidden
-    /// lines.
+    /// Every segment drawn but the hidden pen's, every bridge, and every hidden dash (the
+    /// hidden pen's ink); `None` without hidden lines.
     solid: Option<SegmentIndex>,
 }
 
@@ -453,6 +455,15 @@ impl Bridges {
             }
         }
         Bridges { drawn, solid }
+    }
+
+    /// Adds hidden dashes to the ink a bridge along hidden lines must keep off.
+    fn ink(&mut self, dashes: &[Vec<Pt2>]) {
+        if let Some(solid) = self.solid.as_mut() {
+            for d in dashes {
+                d.windows(2).for_each(|w| solid.insert([w[0], w[1]]));
+            }
+        }
     }
 
     /// Whether the gap from `p` to `q` may be drawn (then it is, from now on); with

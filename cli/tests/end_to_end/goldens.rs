@@ -13,7 +13,7 @@
 //! every expected file and review the diff:
 //!
 //! ```text
-//! KEPLER_UPDATE_GOLDENS=1 KEPLER_MODELS=/path/to/models cargo test -p kepler-hsr-cli --test goldens
+//! KEPLER_UPDATE_GOLDENS=1 KEPLER_MODELS=/path/to/models cargo test -p kepler-hsr-cli --test end_to_end goldens
 //! ```
 
 use std::path::{Path, PathBuf};
