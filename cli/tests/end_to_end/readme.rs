@@ -48,3 +48,37 @@ fn install_uses_the_lock_file() {
     let sh = block("sh");
     assert!(sh.contains("cargo install --locked --path cli"), "{sh}");
 }
+
+#[test]
+fn the_first_command_writes_only_where_git_ignores() {
+    let sh = block("sh");
+    let first = sh.lines().next().unwrap_or_default();
+    let outputs: Vec<&str> = first
+        .split_whitespace()
+        .skip_while(|w| !w.starts_with("--"))
+        .collect::<Vec<_>>()
+        .windows(2)
+        .filter(|w| ["--svg", "--png", "--json"].contains(&w[0]))
+        .map(|w| w[1])
+        .collect();
+    assert_eq!(outputs.len(), 3, "{first}");
+    let ignore = std::fs::read_to_string(root().join(".gitignore")).unwrap();
+    assert!(ignore.lines().any(|l| l == "/target"), "{ignore}");
+    for path in outputs {
+        assert!(
+            path.starts_with("target/"),
+            "{path} is not in the ignored target/"
+        );
+    }
+}
+
+#[test]
+fn the_test_command_shares_the_install_profile() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    assert!(readme.contains("cargo test --workspace --locked --release"));
+    let ci = std::fs::read_to_string(root().join(".ci/run")).unwrap();
+    assert!(
+        ci.contains("cargo test --workspace --locked --release"),
+        "CI runs README's command"
+    );
+}
