@@ -23,7 +23,8 @@ OPTIONS = [
     ("target", True, "Point looked at X,Y,Z."),
     ("fov", True, "Perspective field of view in degrees."),
     ("ortho", False, "Orthographic from --eye towards --target."),
-    ("up", True, "Up vector X,Y,Z."),
+    ("up", True, "Up vector X,Y,Z, or auto (the base the mesh stands on)."),
+    ("view", True, "Named view: front, back, left, right, top, bottom or iso."),
     ("edges", True, "Which edges: feature or all."),
     ("crease", True, "Crease threshold in degrees."),
     ("hidden", False, "Draw hidden lines too, as dashes on their own layer."),
@@ -59,7 +60,8 @@ def _with_options(command):
 def drawing(scene_path, options, hierarchy=None):
     """The vpype Document of kepler's SVG for ``options`` (command flag names, ``_`` or ``-``)."""
     options = {k.replace("-", "_"): v for k, v in options.items()}
-    camera_keys = {"dir", "eye", "target", "fov", "ortho", "up", "edges", "crease", "hidden"}
+    camera_keys = {"dir", "eye", "target", "fov", "ortho", "up", "view", "edges", "crease",
+                   "hidden"}
     scene = load(scene_path, hierarchy=hierarchy)
     render = scene.render(**{k: v for k, v in options.items() if k in camera_keys})
     svg = render.to_svg(**{k: v for k, v in options.items() if k not in camera_keys})

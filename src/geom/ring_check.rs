@@ -196,13 +196,13 @@ fn crossing(r: &[Pt2]) -> bool {
 }
 
 /// For collinear p, v, q (both distinct from v): p and q lie on the same side of v.
-fn same_direction(v: Pt2, p: Pt2, q: Pt2) -> bool {
+pub(crate) fn same_direction(v: Pt2, p: Pt2, q: Pt2) -> bool {
     let k = if p[0] != v[0] { 0 } else { 1 };
     (p[k] > v[k]) == (q[k] > v[k])
 }
 
 /// Exact: closed segments ab and cd share a point.
-fn segments_meet(a: Pt2, b: Pt2, c: Pt2, d: Pt2) -> bool {
+pub(crate) fn segments_meet(a: Pt2, b: Pt2, c: Pt2, d: Pt2) -> bool {
     let (d1, d2) = (orient2d(c, d, a), orient2d(c, d, b));
     let (d3, d4) = (orient2d(a, b, c), orient2d(a, b, d));
     if d1 * d2 < 0.0 && d3 * d4 < 0.0 {

@@ -27,7 +27,7 @@ use std::ops::Range;
 
 use crate::geom::orient2d;
 use crate::geom::poly2::{canonicalize, ring_area, MultiPolygon, Polygon, Pt2, Ring};
-use crate::geom::ring_check::ring_defect;
+use crate::geom::ring_check::{ring_defect, same_direction, segments_meet};
 
 /// The merge distance δ in units of f64 rounding (ε) of the view's screen extent: the same
 /// as the exact check's `ROUNDING_ULPS`, the distance it already allows any f64 outline of a
@@ -221,31 +221,6 @@ fn new_contact(a: Pt2, b: Pt2, c: Pt2, d: Pt2) -> bool {
         }
         None => segments_meet(a, b, c, d),
     }
-}
-
-/// For collinear p, v, q (both distinct from v): p and q lie on the same side of v.
-fn same_direction(v: Pt2, p: Pt2, q: Pt2) -> bool {
-    let k = if p[0] != v[0] { 0 } else { 1 };
-    (p[k] > v[k]) == (q[k] > v[k])
-}
-
-/// Exact: the closed segments ab and cd share a point.
-fn segments_meet(a: Pt2, b: Pt2, c: Pt2, d: Pt2) -> bool {
-    let (d1, d2) = (orient2d(c, d, a), orient2d(c, d, b));
-    let (d3, d4) = (orient2d(a, b, c), orient2d(a, b, d));
-    if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
-        return true;
-    }
-    let within = |p: Pt2, q: Pt2, x: Pt2| {
-        x[0] >= p[0].min(q[0])
-            && x[0] <= p[0].max(q[0])
-            && x[1] >= p[1].min(q[1])
-            && x[1] <= p[1].max(q[1])
-    };
-    (d1 == 0.0 && within(c, d, a))
-        || (d2 == 0.0 && within(c, d, b))
-        || (d3 == 0.0 && within(a, b, c))
-        || (d4 == 0.0 && within(a, b, d))
 }
 
 /// Fills thin holes, then drops thin polygons.
