@@ -35,9 +35,7 @@ pub(crate) fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
 /// [`write`], refusing a `path` that is one of `inputs`.
 pub(crate) fn write_from(inputs: &[&Path], path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
     let mut outs = OutputFiles::new(inputs, &[path])?;
-    let mut f = outs.create(path)?;
-    f.write_all(bytes.as_ref()).map_err(|e| f.named(e))?;
-    outs.finish(f)?;
+    outs.write(path, bytes.as_ref())?;
     outs.commit()
 }
 
@@ -96,6 +94,13 @@ impl OutputFiles {
             f.pending = Some(self.pending.clone());
         }
         Ok(f)
+    }
+
+    /// Writes a whole output at once: [`OutputFiles::create`], the bytes, [`OutputFiles::finish`].
+    pub(crate) fn write(&mut self, path: &Path, bytes: &[u8]) -> Result<()> {
+        let mut f = self.create(path)?;
+        f.write_all(bytes).map_err(|e| f.named(e))?;
+        self.finish(f)
     }
 
     /// Closes a written output; it is put in place by [`OutputFiles::commit`].

@@ -1,7 +1,6 @@
 //! `kepler render`: the exact visible region of every face, written as JSON (and pictures).
 
 use std::borrow::Cow;
-use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -247,9 +246,7 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
                 (&a.png, r.png.as_deref()),
             ] {
                 if let (Some(path), Some(bytes)) = (path, bytes) {
-                    let mut f = outs.create(&name(path))?;
-                    f.write_all(bytes).map_err(|e| f.named(e))?;
-                    outs.finish(f)?;
+                    outs.write(&name(path), bytes)?;
                 }
             }
         }
@@ -269,25 +266,12 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     }
     drop_aside(scene);
     if let Some(sh) = &sheet {
-        let pic = &opts.outputs.picture;
-        for (path, bytes) in [
-            (
-                &a.svg,
-                a.svg.as_ref().map(|_| sh.svg(&svg_cells).into_bytes()),
-            ),
-            (
-                &a.png,
-                match &a.png {
-                    Some(_) => Some(sh.png(&png_cells, pic.dpi, a.size, pic.background)?),
-                    None => None,
-                },
-            ),
-        ] {
-            if let (Some(path), Some(bytes)) = (path, bytes) {
-                let mut f = outs.create(path)?;
-                f.write_all(&bytes).map_err(|e| f.named(e))?;
-                outs.finish(f)?;
-            }
+        if let Some(path) = &a.svg {
+            outs.write(path, sh.svg(&svg_cells).as_bytes())?;
+        }
+        if let Some(path) = &a.png {
+            let pic = &opts.outputs.picture;
+            outs.write(path, &sh.png(&png_cells, pic.dpi, a.size, pic.background)?)?;
         }
     }
     // All outputs of the run (every view's, the sheet's) are put in place together, once

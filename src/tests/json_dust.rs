@@ -8,7 +8,7 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use super::common::{load, models, prepare};
+use super::common::{load, models, prepare, SHARED_MESHES};
 use crate::emit::write::dust::DUST_ULPS;
 use crate::geom::poly2::{multipolygon_area, MultiPolygon, Pt2};
 use crate::geom::ring_check::ring_defect;
@@ -148,23 +148,7 @@ fn goldens_hold_no_rounding_dust() {
 #[test]
 fn shared_meshes_json_holds_no_rounding_dust() {
     let Some(dir) = models() else { return };
-    for name in [
-        "beetle.obj",
-        "cow.obj",
-        "cube.obj",
-        "fandisk.obj",
-        "grid100.obj",
-        "ico3.obj",
-        "ico5.obj",
-        "nefertiti.obj",
-        "ogre.obj",
-        "rocker-arm.obj",
-        "spot.obj",
-        "stanford-bunny.obj",
-        "suzanne.obj",
-        "teapot.obj",
-        "twocubes.obj",
-    ] {
+    for name in SHARED_MESHES {
         let path = dir.join(name);
         if !path.is_file() {
             kepler_testkit::skip(kepler_testkit::REQUIRE_MODELS_ENV, name, "absent");

@@ -4,37 +4,18 @@
 use std::collections::HashMap;
 
 use super::common::strokes::double_strokes;
-use super::common::{model, models};
+use super::common::{model, models, SHARED_MESHES};
 use crate::emit::lines::edges::{EdgeOptions, EdgeSet};
 use crate::emit::lines::LineOptions;
 use crate::geom::ring_check::multipolygon_defects;
 use crate::geom::V3;
 use crate::{render, Camera, Outputs, RenderOptions};
 
-/// The shared meshes, by file name.
-const MESHES: [&str; 15] = [
-    "beetle.obj",
-    "cow.obj",
-    "cube.obj",
-    "fandisk.obj",
-    "grid100.obj",
-    "ico3.obj",
-    "ico5.obj",
-    "nefertiti.obj",
-    "ogre.obj",
-    "rocker-arm.obj",
-    "spot.obj",
-    "stanford-bunny.obj",
-    "suzanne.obj",
-    "teapot.obj",
-    "twocubes.obj",
-];
-
 #[test]
 fn shared_meshes_emit_valid_rings_and_stroke_each_line_once() {
     let Some(dir) = models() else { return };
     let only = std::env::var("KEPLER_ONLY").ok();
-    for name in MESHES {
+    for name in SHARED_MESHES {
         if only.as_deref().is_some_and(|o| !name.starts_with(o)) {
             continue;
         }

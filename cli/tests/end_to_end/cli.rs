@@ -1,7 +1,8 @@
 //! The `kepler` binary end to end: `check` against a golden, SVG and PNG output, JSON lines.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::PathBuf;
+
+use super::common::{kepler, s};
 
 const CUBES: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
 v 2 0.2 0.3\nv 2.5 0.2 0.3\nv 2.5 0.7 0.3\nv 2 0.7 0.3\n\
@@ -10,17 +11,6 @@ f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\nf 9 10 11 12\n
 /// A fresh directory for one test.
 fn temp_dir(name: &str) -> PathBuf {
     kepler_testkit::temp_dir("test", name)
-}
-
-fn kepler(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_kepler"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
 }
 
 #[test]

@@ -21,6 +21,8 @@ use std::process::Command;
 
 use serde_json::Value;
 
+use super::common::root;
+
 #[test]
 fn every_scene_matches_its_golden() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -79,11 +81,6 @@ struct Case {
     input: Option<PathBuf>,
     args: Vec<String>,
     expected: PathBuf,
-}
-
-/// The checkout's root.
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
 
 /// Reads `tests/golden/NAME.case`; its input is None when it names a missing shared model.

@@ -3,6 +3,7 @@
 //! `cargo test -p kepler-hsr-cli --test end_to_end MODULE::`.
 
 mod cli;
+mod common;
 mod diff;
 mod goldens;
 mod hostile;

@@ -8,6 +8,8 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+use super::common::{root, s};
+
 const CUBES: &str = "o a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
 f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n\
 o b\nv 2 0.2 0.3\nv 2.5 0.2 0.3\nv 2.5 0.7 0.3\nv 2 0.7 0.3\nf 9 10 11 12\n";
@@ -26,19 +28,11 @@ fn kepler(args: &[&str]) -> Output {
     o
 }
 
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
 /// `kepler render SCENE --svg SVG EXTRA...`.
 fn render_svg(scene: &Path, svg: &Path, extra: &[&str]) {
     let mut args = vec!["render", s(scene), "--svg", s(svg)];
     args.extend(extra);
     kepler(&args);
-}
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
 }
 
 /// A layer read back from the SVG: its label, stroke widths, and polylines (mm).

@@ -1,12 +1,9 @@
 //! README's commands and its complete scene example run as written: the example is the file
 //! `docs/example/town.kdl` byte for byte, and renders without a warning.
 
-use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
+use super::common::root;
 
 /// The text of the first fenced block of `lang` in README.md.
 fn block(lang: &str) -> String {

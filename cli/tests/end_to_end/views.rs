@@ -3,29 +3,20 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use kepler_testkit::cuboid_obj;
 
+use super::common::{kepler, s};
+
 fn temp_dir(name: &str) -> PathBuf {
     kepler_testkit::temp_dir("views", name)
-}
-
-fn kepler(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_kepler"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 fn ok(args: &[&str]) -> Output {
     let o = kepler(args);
     assert!(o.status.success(), "{args:?}: {o:?}");
     o
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
 }
 
 fn json(p: &Path) -> serde_json::Value {

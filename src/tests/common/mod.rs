@@ -12,6 +12,25 @@ use crate::view::{Camera, View};
 use crate::visibility::Visibility;
 use crate::{render, Outputs, RenderOptions};
 
+/// The shared meshes of `../shared/models`, by file name.
+pub(crate) const SHARED_MESHES: [&str; 15] = [
+    "beetle.obj",
+    "cow.obj",
+    "cube.obj",
+    "fandisk.obj",
+    "grid100.obj",
+    "ico3.obj",
+    "ico5.obj",
+    "nefertiti.obj",
+    "ogre.obj",
+    "rocker-arm.obj",
+    "spot.obj",
+    "stanford-bunny.obj",
+    "suzanne.obj",
+    "teapot.obj",
+    "twocubes.obj",
+];
+
 /// Loads a scene or mesh file with the default options, unwatched.
 pub(crate) fn load(path: &std::path::Path) -> Scene {
     crate::load_scene(
