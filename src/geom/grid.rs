@@ -51,6 +51,30 @@ impl Cells {
         }
     }
 
+    /// About `items` square cells over `b`'s area, never coarser than
+    /// [`Cells::fitted`]`(b, per_side(items, max_side))`: a long, thin `b` gets many cells
+    /// along its length (a comb of 100,000 teeth is not one row of a few hundred crowded
+    /// cells), at most `max_long` along either axis.
+    pub(crate) fn by_area(b: &Rect, items: f64, max_side: usize, max_long: usize) -> Cells {
+        let square = Cells::fitted(b, per_side(items, max_side));
+        let (w, h) = (b.width(), b.height());
+        let area = w * h;
+        if b.is_empty() || !(area > 0.0 && area.is_finite()) || items < 1.0 {
+            return square;
+        }
+        let cell = (area / items)
+            .sqrt()
+            .max(b.longer_side() / max_long as f64)
+            .min(square.cell);
+        let count = |v: f64| ((v / cell).ceil() as usize).clamp(1, max_long);
+        Cells {
+            origin: square.origin,
+            cell,
+            nx: count(w),
+            ny: count(h),
+        }
+    }
+
     /// Number of cells.
     pub(crate) fn len(&self) -> usize {
         self.nx * self.ny
@@ -107,5 +131,21 @@ mod tests {
         assert_eq!(fit.index([3.5, 1.0]), 3);
         assert_eq!(per_side(10.0, 1024), 4);
         assert_eq!(per_side(0.0, 1024), 1);
+    }
+
+    #[test]
+    fn long_thin_bounds_get_cells_by_area() {
+        let comb = Rect::of_points([[0.0, 0.0], [25_000.0, 10.0]].iter());
+        let g = Cells::by_area(&comb, 100_000.0, 1024, 1 << 16);
+        assert!((g.cell - 250_000f64.sqrt() / 100_000f64.sqrt()).abs() < 1e-12);
+        assert_eq!((g.nx, g.ny), (15_812, 7));
+        // A square gets the square grid; a segment (no area) too; the long cap holds.
+        let sq = Rect::of_points([[0.0, 0.0], [4.0, 4.0]].iter());
+        let a = Cells::by_area(&sq, 16.0, 1024, 1 << 16);
+        assert_eq!((a.cell, a.nx, a.ny), (1.0, 4, 4));
+        let line = Rect::of_points([[0.0, 0.0], [4.0, 0.0]].iter());
+        assert_eq!(Cells::by_area(&line, 16.0, 1024, 1 << 16).nx, 4);
+        let capped = Cells::by_area(&comb, 1e9, 1024, 1000);
+        assert_eq!(capped.nx, 1000);
     }
 }

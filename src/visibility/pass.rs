@@ -38,6 +38,9 @@ pub struct FaceVisibility {
     pub area: f64,
     /// The face's projected area (0 when edge-on or clipped).
     pub projected_area: f64,
+    /// Nothing hides any of the face: `visible` is its whole projected ring (VISFAC found no
+    /// occluder), so every edge of the face is visible from end to end.
+    pub(crate) whole: bool,
 }
 
 impl FaceVisibility {
@@ -51,6 +54,7 @@ impl FaceVisibility {
             visible,
             area,
             projected_area,
+            whole: false,
         }
     }
 }
@@ -60,6 +64,7 @@ static HIDDEN: FaceVisibility = FaceVisibility {
     visible: Vec::new(),
     area: 0.0,
     projected_area: 0.0,
+    whole: false,
 };
 
 /// The visible-polygon set of a view: the faces the pass solved (a warped face's planar
@@ -288,6 +293,7 @@ fn solve_face(
         visible: Vec::new(),
         area: 0.0,
         projected_area: area,
+        whole: false,
     };
     match sf.facing {
         Facing::EdgeOn | Facing::Clipped => {
@@ -301,12 +307,15 @@ fn solve_face(
         _ => {}
     }
     let ring = view.screen.ring_ccw(f);
-    let visible = match visfac(view, root, f, scratch, c) {
-        Vtp::Whole => vec![vec![ring]],
-        Vtp::Empty => Vec::new(),
-        Vtp::Part(m) => m,
+    let (visible, whole) = match visfac(view, root, f, scratch, c) {
+        Vtp::Whole => (vec![vec![ring]], true),
+        Vtp::Empty => (Vec::new(), false),
+        Vtp::Part(m) => (m, false),
     };
-    FaceVisibility::new(visible, projected_area)
+    FaceVisibility {
+        whole,
+        ..FaceVisibility::new(visible, projected_area)
+    }
 }
 
 /// `ring_area(ring_ccw(f))` without building the ring (same arithmetic, same bits).

@@ -204,6 +204,10 @@ impl<'v> Regions<'v> {
 
     /// [`visible_intervals`] with the regions indexed once.
     fn visible_intervals(&self, a: Pt2, b: Pt2, faces: &[FaceId]) -> Vec<Interval> {
+        // An edge of a face nothing hides lies on that face's closed VTP from end to end.
+        if faces.iter().any(|&f| self.vis.face(f).whole) {
+            return vec![[0.0, 1.0]];
+        }
         let lists: Vec<Vec<Interval>> = faces
             .iter()
             .map(|&f| {

@@ -9,7 +9,7 @@
 //! grid over sampled cells finds candidates, so the work follows the drawing's length.
 
 use crate::count::Count;
-use crate::geom::grid::{per_side, Cells};
+use crate::geom::grid::Cells;
 use crate::geom::poly2::{dist, Pt2};
 use crate::geom::Rect;
 
@@ -248,7 +248,7 @@ struct CellGrid {
 impl CellGrid {
     fn new(segs: &[[Pt2; 2]]) -> CellGrid {
         let b = Rect::of_points(segs.iter().flatten());
-        let frame = Cells::fitted(&b, per_side(segs.len() as f64, 1024));
+        let frame = Cells::by_area(&b, segs.len() as f64, 1024, 1 << 16);
         CellGrid {
             frame,
             cells: vec![Vec::new(); frame.len()],
