@@ -2,7 +2,8 @@
 //! triangles, its volume (tribox's H(S), the tightest convex bound) and its facets as
 //! polygons (the named solids of `primitives`).
 
-use std::collections::{HashMap, HashSet};
+use crate::geom::key_hash::KeyMap;
+use std::collections::HashSet;
 
 use crate::geom::{orient3d, P3, V3};
 
@@ -197,7 +198,7 @@ impl Hull<'_> {
 
     /// Links the neighbours among `ids` by their shared edges.
     fn link_all(&mut self, ids: &[usize]) {
-        let mut by_edge: HashMap<(u32, u32), (usize, usize)> = HashMap::new();
+        let mut by_edge: KeyMap<(u32, u32), (usize, usize)> = KeyMap::default();
         for &t in ids {
             for i in 0..3 {
                 let v = self.tris[t].v;
@@ -264,7 +265,7 @@ impl Hull<'_> {
         }
         // New faces over the horizon edges, linked to the outside neighbours and each other.
         let mut new = Vec::with_capacity(horizon.len());
-        let mut by_start: HashMap<u32, usize> = HashMap::new();
+        let mut by_start: KeyMap<u32, usize> = KeyMap::default();
         for &(a, b, n) in &horizon {
             let id = self.tris.len();
             self.tris.push(Tri {

@@ -9,7 +9,7 @@
 //! a cluster is that centre vertex (an original vertex: no averaging), which keeps the
 //! simplified models of different widths consistent with each other (section 5).
 
-use std::collections::HashMap;
+use crate::geom::key_hash::KeyMap;
 
 use crate::geom::P3;
 use crate::scene::Mesh;
@@ -74,7 +74,7 @@ pub(crate) fn cluster(vertices: &[P3], order: &[u32], width: f64) -> Vec<u32> {
     let key = |p: &P3| {
         [p.x, p.y, p.z].map(|c| (c / width).floor().clamp(i64::MIN as f64, i64::MAX as f64) as i64)
     };
-    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    let mut grid: KeyMap<[i64; 3], Vec<u32>> = KeyMap::default();
     for (k, p) in vertices.iter().enumerate() {
         grid.entry(key(p)).or_default().push(k as u32);
     }

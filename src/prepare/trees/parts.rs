@@ -13,7 +13,7 @@
 //!   no other edge or triangle joins it.
 //! - C1: every remaining point is a part.
 
-use std::collections::HashMap;
+use crate::geom::key_hash::KeyMap;
 
 use super::fcs::{element, sides, Element};
 use crate::scene::Mesh;
@@ -48,7 +48,7 @@ struct Elements {
 }
 
 fn elements(faces: &[u32], mesh: &Mesh, rep: &[u32]) -> Elements {
-    let mut index: HashMap<Element, u32> = HashMap::new();
+    let mut index: KeyMap<Element, u32> = KeyMap::default();
     let mut e = Elements {
         list: Vec::new(),
         sides: Vec::new(),
@@ -78,7 +78,7 @@ pub(crate) fn face_parts(faces: &[u32], mesh: &Mesh, rep: &[u32]) -> Vec<u32> {
     let el = elements(faces, mesh, rep);
     let part = element_parts(&el);
     // Renumber by first appearance in face order.
-    let mut renum: HashMap<u32, u32> = HashMap::new();
+    let mut renum: KeyMap<u32, u32> = KeyMap::default();
     el.of_face
         .iter()
         .map(|&e| {
@@ -95,7 +95,7 @@ fn element_parts(el: &Elements) -> Vec<u32> {
     let mut part = vec![NONE; n];
     // A1: triangles sharing a side.
     let mut sets = Sets((0..n as u32).collect());
-    let mut by_side: HashMap<(u32, u32), u32> = HashMap::new();
+    let mut by_side: KeyMap<(u32, u32), u32> = KeyMap::default();
     for (k, s) in el.sides.iter().enumerate() {
         for side in s {
             match by_side.get(side) {
@@ -107,9 +107,9 @@ fn element_parts(el: &Elements) -> Vec<u32> {
         }
     }
     let mut parts = 0u32;
-    let mut root_part: HashMap<u32, u32> = HashMap::new();
+    let mut root_part: KeyMap<u32, u32> = KeyMap::default();
     // The parts of the triangles incident to each vertex (few, kept sorted).
-    let mut vertex_parts: HashMap<u32, Vec<u32>> = HashMap::new();
+    let mut vertex_parts: KeyMap<u32, Vec<u32>> = KeyMap::default();
     for (k, e) in el.list.iter().enumerate() {
         if let Element::Triangle(vs) = e {
             let r = sets.find(k as u32);
@@ -127,7 +127,7 @@ fn element_parts(el: &Elements) -> Vec<u32> {
         }
     }
     // Edges of S incident to each vertex (for B2).
-    let mut vertex_edges: HashMap<u32, u32> = HashMap::new();
+    let mut vertex_edges: KeyMap<u32, u32> = KeyMap::default();
     for e in &el.list {
         if let Element::Edge(a, b) = e {
             *vertex_edges.entry(*a).or_default() += 1;
@@ -156,7 +156,7 @@ fn element_parts(el: &Elements) -> Vec<u32> {
         }
     }
     // B1, B2: remaining stray edges, each a part with its lone end points.
-    let mut edge_at: HashMap<u32, u32> = HashMap::new();
+    let mut edge_at: KeyMap<u32, u32> = KeyMap::default();
     for (k, e) in el.list.iter().enumerate() {
         if let (Element::Edge(a, b), NONE) = (e, part[k]) {
             part[k] = parts;
