@@ -14,7 +14,8 @@
 //! - An error drops the transaction, which removes its temporaries; SIGINT, SIGTERM and SIGHUP
 //!   reach a watcher thread (signal-hook: libc and nothing else) that removes them and exits
 //!   with 128 + the signal. SIGKILL and an abort cannot be caught: their temporary (hidden,
-//!   `.NAME.kepler-PID-N.tmp`) stays.
+//!   `.NAME.kepler-PID-N.tmp`) stays until the next run that puts NAME in place removes the
+//!   temporaries of NAME whose process is gone ([`remove_stale`]; Linux, where `/proc` says so).
 //! - A path that exists and is not a regular file (`/dev/null`, `/dev/stdout`, a pipe) cannot be
 //!   replaced: it is written directly.
 
@@ -126,8 +127,48 @@ impl OutputFiles {
             }
             std::fs::rename(&tmp, &path).map_err(|e| anyhow!("{}: {e}", path.display()))?;
             lock(&self.pending).retain(|p| p != &tmp);
+            remove_stale(&path);
         }
         Ok(())
+    }
+}
+
+/// Removes the temporaries of `path` that killed runs left beside it: regular files named
+/// `.NAME.kepler-PID-N.tmp` whose PID is neither this process nor a live one. Only where
+/// `/proc` lists processes (a PID reused since is taken as alive: the file stays).
+fn remove_stale(path: &Path) {
+    let (Some(name), Some(dir)) = (path.file_name(), path.parent()) else {
+        return;
+    };
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    let dir = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
+    let prefix = format!(".{}.kepler-", name.to_string_lossy());
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let file = e.file_name();
+        let Some(pid) = file
+            .to_str()
+            .and_then(|f| f.strip_prefix(&prefix))
+            .and_then(|rest| rest.strip_suffix(".tmp"))
+            .and_then(|rest| rest.split_once('-'))
+            .filter(|(_, n)| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+            .and_then(|(pid, _)| pid.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        let gone = pid != std::process::id() && !Path::new(&format!("/proc/{pid}")).exists();
+        let plain = e.file_type().is_ok_and(|t| t.is_file());
+        if gone && plain {
+            let _ = std::fs::remove_file(e.path());
+        }
     }
 }
 

@@ -911,6 +911,49 @@ fn a_terminated_render_leaves_no_temporary() {
 }
 
 #[test]
+fn a_killed_runs_temporary_goes_with_the_next_run_to_that_output() {
+    // SIGKILL cannot be caught: its temporary stays. The next run that puts the same output
+    // in place removes it, and only temporaries of that output whose process is gone.
+    let d = temp_dir("killed");
+    let mut dead = Command::new("true").spawn().unwrap();
+    let dead_pid = dead.id();
+    dead.wait().unwrap();
+    let me = std::process::id();
+    let planted = [
+        format!(".o.json.kepler-{dead_pid}-0.tmp"),
+        format!(".o.json.kepler-{me}-3.tmp"),
+        format!(".other.json.kepler-{dead_pid}-0.tmp"),
+        ".o.json.kepler-x-0.tmp".to_string(),
+    ];
+    for p in &planted {
+        std::fs::write(d.join(p), "partial").unwrap();
+    }
+    let json = d.join("o.json");
+    let out = kepler(&[
+        "render",
+        "hostile_cam.kdl",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let left = names_in(&d);
+    if Path::new("/proc/self").exists() {
+        assert!(
+            !left.contains(&planted[0]),
+            "the dead run's temporary is gone: {left:?}"
+        );
+    }
+    for kept in &planted[1..] {
+        assert!(left.contains(kept), "{kept} kept: {left:?}");
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
 fn views_files_are_regular_bounded_and_never_quoted() {
     let d = temp_dir("views");
     let v = d.join("v.txt");
