@@ -65,6 +65,9 @@ pub(crate) use crate::emit::plot::picture::PictureOptions;
 pub struct RenderStats {
     /// Wall time per stage, in pipeline order (stages that did not run are absent).
     pub times: Vec<(Stage, Duration)>,
+    /// CPU time per stage, all threads together, beside `times` (empty where the system
+    /// does not tell: [`crate::stats::process_cpu_time`]).
+    pub cpu: Vec<(Stage, Duration)>,
     /// What the visibility pass did.
     pub counters: Counters,
     /// What level-of-detail substitution did, under `lod`.
@@ -90,10 +93,34 @@ impl RenderStats {
 
     /// Runs `f` as `stage`, timed (the stage's phases are entered in `f`).
     fn timed<T>(&mut self, stage: Stage, f: impl FnOnce() -> T) -> T {
-        let t = Instant::now();
+        let clock = StageClock::start();
         let out = f();
-        self.times.push((stage, t.elapsed()));
+        clock.stop(stage, self);
         out
+    }
+}
+
+/// A stage's start: wall clock and, where the system tells it, the process's CPU time.
+struct StageClock {
+    wall: Instant,
+    cpu: Option<Duration>,
+}
+
+impl StageClock {
+    fn start() -> StageClock {
+        StageClock {
+            cpu: crate::progress::cpu::process_cpu_time(),
+            wall: Instant::now(),
+        }
+    }
+
+    /// Records the stage's wall time, and its CPU time when both ends were read.
+    fn stop(self, stage: Stage, stats: &mut RenderStats) {
+        stats.times.push((stage, self.wall.elapsed()));
+        let now = crate::progress::cpu::process_cpu_time();
+        if let (Some(a), Some(b)) = (self.cpu, now) {
+            stats.cpu.push((stage, b.saturating_sub(a)));
+        }
     }
 }
 
@@ -243,9 +270,9 @@ fn render_json_to<'s>(
         use_inbox: !opts.no_inbox,
     };
     progress.enter(Stage::Visibility, view.screen.pieces.len());
-    let t = Instant::now();
+    let clock = StageClock::start();
     let visibility = solve(&view, pass, progress.count());
-    stats.times.push((Stage::Visibility, t.elapsed()));
+    clock.stop(Stage::Visibility, &mut stats);
     stats.counters = visibility.counters;
     let mut warnings = Vec::new();
     if let Some(why) = why_empty(scene.face_count(), &view, &visibility) {

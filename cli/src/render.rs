@@ -177,16 +177,16 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     let progress = Progress::new();
     let mut warnings = Vec::new();
     let (scene, load, prepare) = follow(&progress, start, PROGRESS_AFTER, || -> Result<_> {
-        let t = Instant::now();
+        let t = Clock::start();
         let mut scene = kepler_hsr::load_scene(&a.scene, load_opts, &mut warnings, &progress)?;
-        let load = t.elapsed();
-        let t = Instant::now();
+        let load = t.stop();
+        let t = Clock::start();
         let prep = a.hierarchy.prepare();
         kepler_hsr::prepare(&mut scene, &prep, &progress);
         if scene.face_count() >= crate::memory::TRIM_ABOVE_FACES {
             crate::memory::trim();
         }
-        Ok((scene, load, t.elapsed()))
+        Ok((scene, load, t.stop()))
     })?;
     if !a.quiet {
         print_warnings(&warnings);
@@ -233,7 +233,7 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         if !a.quiet {
             print_warnings(&r.warnings);
         }
-        let t = Instant::now();
+        let t = Clock::start();
         if let Some(f) = json {
             outs.finish(f)?;
         }
@@ -250,7 +250,7 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
                 }
             }
         }
-        let written = t.elapsed();
+        let written = t.stop();
         if a.stats {
             if many {
                 eprintln!("view {} of {}", k + 1, cameras.len());
@@ -430,14 +430,75 @@ fn common_frames(scene: &Scene, cams: &[Camera]) -> Vec<Option<Rect>> {
         .collect()
 }
 
-/// `--stats`: stage times, pruning counters and what the plot did.
+/// A stage's wall time and, where the system tells it, its CPU time (all threads).
+#[derive(Debug, Clone, Copy, Default)]
+struct Spent {
+    wall: Duration,
+    cpu: Option<Duration>,
+}
+
+/// A stage of the command's own (load, prepare, write) being timed.
+struct Clock {
+    wall: Instant,
+    cpu: Option<Duration>,
+}
+
+impl Clock {
+    fn start() -> Clock {
+        Clock {
+            cpu: kepler_hsr::stats::process_cpu_time(),
+            wall: Instant::now(),
+        }
+    }
+
+    fn stop(self) -> Spent {
+        let wall = self.wall.elapsed();
+        let now = kepler_hsr::stats::process_cpu_time();
+        Spent {
+            wall,
+            cpu: self.cpu.zip(now).map(|(a, b)| b.saturating_sub(a)),
+        }
+    }
+}
+
+/// The stage table of `--stats`: wall and CPU time per stage, the share of its wall time
+/// that ran on one thread ([`kepler_hsr::stats::serial_share`]), and the run's.
+fn print_times(times: &[(&str, Spent)]) {
+    let threads = kepler_hsr::stats::worker_threads();
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    let (mut wall, mut serial) = (0.0, 0.0);
+    for (name, t) in times {
+        let Some(cpu) = t.cpu else {
+            eprintln!("time {name:<11} {:>10.3} ms", ms(t.wall));
+            continue;
+        };
+        let share = kepler_hsr::stats::serial_share(t.wall, cpu, threads);
+        wall += ms(t.wall);
+        serial += share * ms(t.wall);
+        eprintln!(
+            "time {name:<11} {:>10.3} ms  cpu {:>10.3} ms  serial {:>5.1}%",
+            ms(t.wall),
+            ms(cpu),
+            100.0 * share
+        );
+    }
+    if wall > 0.0 {
+        eprintln!(
+            "serial share of the stages' wall time: {:.1}% on {threads} threads (Amdahl: the part of each stage's time that ran on one thread)",
+            100.0 * serial / wall
+        );
+    }
+}
+
+/// `--stats`: stage times (wall, CPU and the serial share), pruning counters and what the
+/// plot did.
 fn print_stats(
     scene: &Scene,
     hierarchy: &str,
     r: &Rendered,
-    load: Duration,
-    prepare: Duration,
-    written: Duration,
+    load: Spent,
+    prepare: Spent,
+    written: Spent,
 ) {
     eprintln!("faces: {}", scene.face_count());
     eprintln!("hierarchy: {hierarchy}");
@@ -445,11 +506,12 @@ fn print_stats(
         eprintln!("{}", super::tribox::lod_report(l));
     }
     let mut times = vec![(Stage::Load.name(), load), (Stage::Prepare.name(), prepare)];
-    times.extend(r.stats.times.iter().map(|(s, d)| (s.name(), *d)));
+    times.extend(r.stats.times.iter().map(|&(s, wall)| {
+        let cpu = r.stats.cpu.iter().find(|c| c.0 == s).map(|c| c.1);
+        (s.name(), Spent { wall, cpu })
+    }));
     times.push(("write", written));
-    for (name, d) in &times {
-        eprintln!("time {name:<11} {:>10.3} ms", d.as_secs_f64() * 1e3);
-    }
+    print_times(&times);
     for (name, v) in r.stats.counters.lines() {
         eprintln!("{name:<45} {v}");
     }

@@ -8,6 +8,7 @@
 //! - `lane`: work run beside other work of its stage (the picture beside the JSON), whose
 //!   phases reach the bar once the work ahead is done.
 
+pub(crate) mod cpu;
 mod lane;
 pub(crate) mod stage;
 

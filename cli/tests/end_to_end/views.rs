@@ -282,6 +282,19 @@ fn perspective_drawings_fit_inside_the_margin() {
         "--stats",
     ]);
     assert_eq!(clipped_mm(&o), 0.0, "nothing cut away");
+    if std::path::Path::new("/proc/self/task").exists() {
+        // Each stage's CPU time and serial share, and the run's.
+        let err = String::from_utf8_lossy(&o.stderr);
+        let visibility = err.lines().find(|l| l.starts_with("time visibility"));
+        assert!(
+            visibility.is_some_and(|l| l.contains(" cpu ") && l.ends_with('%')),
+            "{err}"
+        );
+        assert!(
+            err.contains("serial share of the stages' wall time: "),
+            "{err}"
+        );
+    }
     let pts = svg_points(&std::fs::read_to_string(&svg).unwrap());
     assert!(pts.len() > 5);
     let eps = 1e-9;

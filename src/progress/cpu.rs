@@ -1,0 +1,76 @@
+//! The process's CPU time, read where the system tells it, so a run can say how much of its
+//! wall time its stages spent on several threads.
+
+use std::time::Duration;
+
+/// CPU time this process's live threads have run, summed (Linux: each thread's
+/// `/proc/self/task/T/schedstat`, in nanoseconds); `None` where the system does not say.
+/// Threads that have ended are not counted: the stages run on the pool's threads, which live
+/// as long as the process.
+pub fn process_cpu_time() -> Option<Duration> {
+    let tasks = std::fs::read_dir("/proc/self/task").ok()?;
+    let mut ns: u64 = 0;
+    for t in tasks.flatten() {
+        let text = std::fs::read_to_string(t.path().join("schedstat")).ok()?;
+        ns += text.split_whitespace().next()?.parse::<u64>().ok()?;
+    }
+    Some(Duration::from_nanos(ns))
+}
+
+/// The threads a render's parallel stages run on (rayon's pool: `RAYON_NUM_THREADS`, else
+/// one a core).
+pub fn worker_threads() -> usize {
+    rayon::current_num_threads()
+}
+
+/// The share of a stage's wall time `wall` that ran on one thread, from its CPU time `cpu` on
+/// `threads` threads, had the rest run on all of them (Amdahl's model: cpu = wall (s + (1 - s)
+/// threads)); clamped to [0, 1]; 1 on one thread or for a stage too short to say.
+pub fn serial_share(wall: Duration, cpu: Duration, threads: usize) -> f64 {
+    let (w, c) = (wall.as_secs_f64(), cpu.as_secs_f64());
+    if threads < 2 || w <= 0.0 {
+        return 1.0;
+    }
+    let t = threads as f64;
+    ((t - c / w) / (t - 1.0)).clamp(0.0, 1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cpu_time_grows_with_work_on_linux() {
+        let Some(a) = process_cpu_time() else {
+            return;
+        };
+        // Spin until this thread's work shows (on a busy machine the wall time it takes is
+        // longer; it never shows if the clock does not move).
+        let (mut x, t) = (0u64, std::time::Instant::now());
+        let grew = loop {
+            for _ in 0..100_000 {
+                x = std::hint::black_box(x.wrapping_mul(31).wrapping_add(7));
+            }
+            if process_cpu_time().unwrap() >= a + Duration::from_millis(10) {
+                break true;
+            }
+            if t.elapsed() > Duration::from_secs(20) {
+                break false;
+            }
+        };
+        assert!(grew, "the CPU time did not move in 20 s of spinning");
+    }
+
+    #[test]
+    fn serial_share_follows_amdahl() {
+        let s =
+            |w: u64, c: u64, t| serial_share(Duration::from_millis(w), Duration::from_millis(c), t);
+        assert_eq!(s(100, 100, 2), 1.0);
+        assert_eq!(s(100, 200, 2), 0.0);
+        assert!((s(100, 150, 2) - 0.5).abs() < 1e-12);
+        assert!((s(100, 400, 16) - 12.0 / 15.0).abs() < 1e-12);
+        assert_eq!(s(100, 50, 2), 1.0);
+        assert_eq!(s(100, 900, 2), 0.0);
+        assert_eq!(s(100, 100, 1), 1.0);
+    }
+}
