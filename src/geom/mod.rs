@@ -14,6 +14,7 @@ pub(crate) mod key_hash;
 pub(crate) mod normal;
 pub(crate) mod poly2;
 pub(crate) mod polymesh;
+pub(crate) mod plane_cut;
 pub(crate) mod predicates;
 pub(crate) mod rect;
 pub(crate) mod ring_check;

@@ -67,6 +67,7 @@ pub(crate) fn load_scene_file(
         camera_at: loader.camera.as_ref().map(|c| c.1.clone()),
         camera: loader.camera.map(|c| c.0),
         source: path.to_path_buf(),
+        section: None,
     })
 }
 

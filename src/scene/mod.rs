@@ -8,6 +8,7 @@ pub(crate) mod names;
 pub(crate) mod object;
 pub(crate) mod object_tree;
 pub(crate) mod proof;
+pub(crate) mod section_info;
 pub(crate) mod texture;
 pub(crate) mod topology;
 pub(crate) mod triangulate;
@@ -59,6 +60,8 @@ pub struct Scene {
     pub(crate) camera_at: Option<crate::error::Location>,
     /// The file the scene came from.
     pub source: PathBuf,
+    /// What a section cut did, when this scene is one (`RenderOptions::sections`).
+    pub(crate) section: Option<std::sync::Arc<section_info::SectionInfo>>,
 }
 
 /// One leaf object placed in the world: its path, its mesh and its world transform.
@@ -104,6 +107,7 @@ impl Scene {
             camera: None,
             camera_at: None,
             source,
+            section: None,
         }
     }
 
@@ -149,6 +153,7 @@ impl Scene {
             camera: self.camera.clone(),
             camera_at: self.camera_at.clone(),
             source: self.source.clone(),
+            section: self.section.clone(),
         }
     }
 }

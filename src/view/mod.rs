@@ -19,6 +19,7 @@ pub(crate) mod lod;
 pub(crate) mod piece_id;
 pub(crate) mod ring_index;
 pub(crate) mod screen;
+pub(crate) mod section;
 pub(crate) mod tree;
 pub(crate) mod turntable;
 pub(crate) mod up;
@@ -132,7 +133,8 @@ impl View {
     ) -> View {
         let kept = cull.leaves.iter().map(|l| l.mesh.faces.len()).sum();
         progress.enter_phase(Stage::View, Phase::Project, kept);
-        let screen = ScreenFaces::from_cull(cull, &camera, progress.count());
+        let mut screen = ScreenFaces::from_cull(cull, &camera, progress.count());
+        screen.section_first = scene.section.as_ref().map(|s| s.first_face);
         progress.enter_phase(Stage::View, Phase::Tree, screen.face_count());
         let tree = ViewTree::build(scene, &camera, &screen, &cull.hidden, progress.count());
         View {

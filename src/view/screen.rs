@@ -115,6 +115,8 @@ pub(crate) struct ScreenFaces {
     pub leaves: Vec<LeafInfo>,
     /// Run boxes of every piece of more than [`INDEXED_ABOVE`] points, by ascending piece.
     pub ring_indexes: Vec<(PieceId, RingIndex)>,
+    /// In a section view, the first face a cut made (those from it on are section faces).
+    pub section_first: Option<u32>,
 }
 
 impl ScreenFaces {
@@ -156,6 +158,11 @@ impl ScreenFaces {
         out.face_starts
             .resize(cull.face_count as usize + 1, out.pieces.len() as u32);
         out
+    }
+
+    /// True when face `f` was made by a section cut.
+    pub(crate) fn is_section(&self, f: FaceId) -> bool {
+        self.section_first.is_some_and(|s| f.0 >= s)
     }
 
     /// Number of faces (not pieces).

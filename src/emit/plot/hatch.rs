@@ -135,6 +135,46 @@ pub(crate) fn hatch(
     Ok(Hatching { segments, tones })
 }
 
+/// The 45° hatching of the visible parts of a section view's section faces, `spacing_mm`
+/// apart on the page, each segment with its face's leaf (in face order).
+pub(crate) fn section_hatch(
+    view: &View,
+    vis: &Visibility,
+    layout: &Layout,
+    spacing_mm: f64,
+) -> Result<Vec<(u32, [Pt2; 2])>> {
+    let Some(first) = view.screen.section_first else {
+        return Ok(Vec::new());
+    };
+    let fam = Family::new(layout, 45.0, spacing_mm);
+    let faces: Vec<FaceId> = (first as usize..view.screen.face_count())
+        .map(|f| FaceId(f as u32))
+        .filter(|&f| !vis.face(f).visible.is_empty())
+        .collect();
+    let lines: u64 = faces
+        .iter()
+        .map(|&f| fam.count(&vis.face(f).visible))
+        .fold(0, u64::saturating_add);
+    if lines > MAX_HATCH_LINES {
+        return Err(Error::Usage(format!(
+            "--section-hatch {spacing_mm}: hatching the section faces would draw {lines} lines, more than {MAX_HATCH_LINES}: give a wider spacing"
+        )));
+    }
+    Ok(faces
+        .par_iter()
+        .map(|&f| {
+            let leaf = view.screen.leaf_index_of_face(f);
+            fam.clip(&vis.face(f).visible)
+                .into_iter()
+                .map(|s| (leaf, s))
+                .collect::<Vec<_>>()
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .flatten()
+        .collect())
+}
+
 /// The most hatch lines (one line of one family across one face) a picture may have: each
 /// is cut against its face exactly and may become several strokes, so this bounds the time
 /// and memory of hatching (10 million lines: about a GB of strokes) before any is made.

@@ -39,7 +39,7 @@ use crate::visibility::Visibility;
 use self::clip_rect::clip_polyline;
 use self::dash::dashes;
 use self::dedup::{dedup, SegmentIndex};
-use self::hatch::{hatch, tone_outlines};
+use self::hatch::{hatch, section_hatch, tone_outlines};
 use self::join::join;
 use self::page::Layout;
 use self::picture::{Fill, Layer, LayerMode, Pen, Picture, PictureOptions, PlotStats, Run};
@@ -139,6 +139,15 @@ pub(crate) fn picture(
                 });
             }
         }
+    }
+
+    // Section faces: hatched at 45° on the section layer, whatever else is hatched.
+    for (leaf, s) in section_hatch(view, vis, &layout, opts.section_hatch_mm)? {
+        items.push(Item {
+            pen: Pen::SectionHatch,
+            leaf,
+            pts: s.to_vec(),
+        });
     }
 
     // On the page, clipped to the drawing area, as segments in priority order.
@@ -320,6 +329,12 @@ fn check(o: &PictureOptions) -> Result<()> {
         if h.angle_deg.is_some_and(|a| !a.is_finite()) {
             return bad("--hatch-angle: expected degrees".into());
         }
+    }
+    if !(o.section_hatch_mm.is_finite() && o.section_hatch_mm >= 0.01) {
+        return bad(format!(
+            "--section-hatch {}: expected mm >= 0.01",
+            o.section_hatch_mm
+        ));
     }
     if let Some(r) = o.frame {
         if r.is_empty()

@@ -26,17 +26,23 @@ pub enum Pen {
     Hatch,
     /// Hidden lines, as dashes.
     Hidden,
+    /// Outlines of section faces and cut edges (heavy, layer 7 with the section hatching).
+    Section,
+    /// The section faces' 45° hatching (layer 7).
+    SectionHatch,
 }
 
 impl Pen {
     /// Every pen, in layer order.
-    pub const ALL: [Pen; 6] = [
+    pub const ALL: [Pen; 8] = [
         Pen::Outline,
         Pen::Edges,
         Pen::Intersection,
         Pen::Mark,
         Pen::Hatch,
         Pen::Hidden,
+        Pen::Section,
+        Pen::SectionHatch,
     ];
 
     /// The pen of a visible line kind.
@@ -45,6 +51,7 @@ impl Pen {
             EdgeKind::Silhouette | EdgeKind::Border => Pen::Outline,
             EdgeKind::Intersection => Pen::Intersection,
             EdgeKind::Crease | EdgeKind::Plain => Pen::Edges,
+            EdgeKind::Section => Pen::Section,
         }
     }
 
@@ -57,6 +64,7 @@ impl Pen {
             Pen::Mark => 4,
             Pen::Hatch => 5,
             Pen::Hidden => 6,
+            Pen::Section | Pen::SectionHatch => 7,
         }
     }
 
@@ -69,15 +77,17 @@ impl Pen {
             Pen::Mark => "marks",
             Pen::Hatch => "hatching",
             Pen::Hidden => "hidden",
+            Pen::Section => "section",
+            Pen::SectionHatch => "section-hatching",
         }
     }
 
     /// Stroke width as a fraction of the outline pen's (`--pen`).
     pub fn width_factor(self) -> f64 {
         match self {
-            Pen::Outline => 1.0,
+            Pen::Outline | Pen::Section => 1.0,
             Pen::Edges | Pen::Intersection => 0.6,
-            Pen::Mark | Pen::Hatch | Pen::Hidden => 0.5,
+            Pen::Mark | Pen::Hatch | Pen::Hidden | Pen::SectionHatch => 0.5,
         }
     }
 
@@ -138,6 +148,8 @@ pub struct PictureOptions {
     /// Frame this screen rectangle instead of the drawing's bounds (the same frame for every
     /// view of a turntable).
     pub frame: Option<Rect>,
+    /// Spacing in mm of the 45° hatching of section faces (`--section-hatch`).
+    pub section_hatch_mm: f64,
 }
 
 impl Default for PictureOptions {
@@ -157,6 +169,7 @@ impl Default for PictureOptions {
             hatch: None,
             light: None,
             frame: None,
+            section_hatch_mm: 2.0,
         }
     }
 }
@@ -289,7 +302,7 @@ mod tests {
         assert_eq!(Pen::of(EdgeKind::Crease), Pen::Edges);
         assert_eq!(Pen::of(EdgeKind::Intersection), Pen::Intersection);
         let nums: Vec<u32> = Pen::ALL.iter().map(|p| p.number()).collect();
-        assert_eq!(nums, vec![1, 2, 3, 4, 5, 6]);
+        assert_eq!(nums, vec![1, 2, 3, 4, 5, 6, 7, 7]);
         assert!(Pen::Outline.width_factor() > Pen::Edges.width_factor());
     }
 

@@ -173,9 +173,14 @@ fn json_into(
         let leaf = view.screen.leaf_index_of_face(id);
         let _ = write!(
             s,
-            "{{\"id\":{id},\"object\":{},\"area\":",
+            "{{\"id\":{id},\"object\":{},",
             paths[leaf as usize]
         );
+        // Faces made by a section cut say so; others are as they always were.
+        if view.screen.is_section(id) {
+            s.push_str("\"section\":true,");
+        }
+        s.push_str("\"area\":");
         write_num(s, area);
         s.push_str(",\"visible\":");
         list(s, &visible, |s, poly| list(s, poly, |s, r| ring(s, r)));
