@@ -42,6 +42,7 @@ pub struct RenderOptions {
     /// Section planes, each a point and a normal: the side each normal points to is removed,
     /// exactly, and every closed solid cut gets its section faces, numbered after the
     /// scene's faces (`"section": true` in the JSON; the drawing's layer `7 section`).
+    /// Empty: the scene file's `section` planes, if any.
     pub sections: Vec<(crate::geom::P3, crate::geom::V3)>,
 }
 
@@ -228,10 +229,16 @@ fn render_json_to<'s>(
         }
         None => Cow::Borrowed(scene),
     };
-    let scene = if opts.sections.is_empty() {
+    // The render's planes, or else the scene file's.
+    let asked = if opts.sections.is_empty() {
+        &scene.sections
+    } else {
+        &opts.sections
+    };
+    let scene = if asked.is_empty() || scene.section.is_some() {
         scene
     } else {
-        let planes = crate::view::section::check_planes(&opts.sections)?;
+        let planes = crate::view::section::check_planes(asked)?;
         // Timed with the view stage: the cut is the view's first step.
         progress.enter(Stage::View, 0);
         Cow::Owned(stats.timed(Stage::View, || {

@@ -2,6 +2,7 @@
 
 mod args;
 mod camera_node;
+mod section_node;
 mod confine;
 mod geometry;
 mod kdl;

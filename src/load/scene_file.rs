@@ -11,6 +11,7 @@ use std::sync::Arc;
 
 use super::args::{quoted_list, Node};
 use super::camera_node::parse_camera;
+use super::section_node::parse_section;
 use super::confine;
 use super::geometry::{self, is_geometry, GeomCtx, MeshCache};
 use super::limits::LoadOptions;
@@ -18,12 +19,19 @@ use super::source::Source;
 use super::transform::{compose, is_transform, transform_box};
 use crate::error::{Error, Location, Result, Warning, Warnings};
 use crate::geom::MAX_COORD;
-use crate::geom::{Box3, M4, P3};
+use crate::geom::{Box3, M4, P3, V3};
 use crate::progress::{Progress, Stage};
 use crate::scene::{CameraSpec, Object, Scene};
 
 /// The nodes allowed at the top level of a scene file.
-const TOP_NODES: [&str; 5] = ["camera", "include", "prototype", "object", "instance"];
+const TOP_NODES: [&str; 6] = [
+    "camera",
+    "section",
+    "include",
+    "prototype",
+    "object",
+    "instance",
+];
 
 /// Loads the scene file at `path` (and the files it includes and the meshes it uses).
 /// Repairs made on the way are appended to `warnings`. An instance, object or scene with
@@ -52,6 +60,7 @@ pub(crate) fn load_scene_file(
         stack: Vec::new(),
         loaded: HashSet::new(),
         camera: None,
+        sections: Vec::new(),
     };
     let placed = loader.file(path, None)?;
     if placed.is_empty() {
@@ -68,6 +77,7 @@ pub(crate) fn load_scene_file(
         camera: loader.camera.map(|c| c.0),
         source: path.to_path_buf(),
         section: None,
+        sections: loader.sections,
     })
 }
 
@@ -112,6 +122,8 @@ struct Loader<'w> {
     /// Files already loaded (an include of one again is skipped).
     loaded: HashSet<PathBuf>,
     camera: Option<(CameraSpec, Location)>,
+    /// The top file's `section` planes, in order.
+    sections: Vec<(P3, V3)>,
 }
 
 /// What an object's `{ ... }` block holds, sorted by role.
@@ -180,6 +192,17 @@ impl Loader<'_> {
             let before = placed.len();
             match n.name() {
                 "camera" => self.camera_node(n, top)?,
+                "section" => {
+                    let plane = parse_section(n)?;
+                    if top {
+                        self.sections.push(plane);
+                    } else {
+                        self.warnings.push(Warning {
+                            location: n.loc(),
+                            message: "the section of an included file is ignored".into(),
+                        });
+                    }
+                }
                 "include" => placed.extend(self.include(n)?),
                 "prototype" => self.prototype(n, &later)?,
                 "object" => {

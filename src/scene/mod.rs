@@ -62,6 +62,8 @@ pub struct Scene {
     pub source: PathBuf,
     /// What a section cut did, when this scene is one (`RenderOptions::sections`).
     pub(crate) section: Option<std::sync::Arc<section_info::SectionInfo>>,
+    /// The scene file's `section` planes (point, normal), cut when a render gives none.
+    pub(crate) sections: Vec<(P3, V3)>,
 }
 
 /// One leaf object placed in the world: its path, its mesh and its world transform.
@@ -108,6 +110,7 @@ impl Scene {
             camera_at: None,
             source,
             section: None,
+            sections: Vec::new(),
         }
     }
 
@@ -154,6 +157,7 @@ impl Scene {
             camera_at: self.camera_at.clone(),
             source: self.source.clone(),
             section: self.section.clone(),
+            sections: self.sections.clone(),
         }
     }
 }

@@ -26,7 +26,7 @@
 //!   top-level group `section` whose tree repeats the cut leaves' paths.
 //! - An open mesh gets no section face: the drawing shows its cut edges on the section pen.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
 use crate::error::{Error, Result};
@@ -79,6 +79,7 @@ pub(crate) fn cut_scene(scene: &Scene, planes: &[CutPlane]) -> Scene {
         removed: Vec::new(),
         cut_leaves: Vec::new(),
         sections: Vec::new(),
+        on_cut: vec![HashSet::new(); planes.len()],
     };
     let first_face = scene.face_count() as u32;
     let mut root = c.object(&scene.root, &M4::identity(), &mut Vec::new());
@@ -110,6 +111,7 @@ pub(crate) fn cut_scene(scene: &Scene, planes: &[CutPlane]) -> Scene {
         first_face,
         removed: c.removed,
         cut_leaves: c.cut_leaves,
+        on_cut: c.on_cut,
     }));
     out
 }
@@ -151,6 +153,8 @@ struct Cutter<'p> {
     cut_leaves: Vec<std::ops::Range<u32>>,
     /// Section faces of each cut solid: its path and a mesh of them.
     sections: Vec<(Vec<String>, Mesh)>,
+    /// By plane, the points on it in cut leaves: corners on it and crossings made.
+    on_cut: Vec<HashSet<[u64; 3]>>,
 }
 
 impl Cutter<'_> {
@@ -271,18 +275,20 @@ impl Cutter<'_> {
             Vec::new()
         };
         let mut secs: Vec<Vec<P3>> = Vec::new();
-        for pl in self.planes {
+        for (pk, pl) in self.planes.iter().enumerate() {
             let hit = |r: &Vec<P3>| r.iter().any(|p| side(p, pl).is_gt());
             if !faces.iter().chain(&caps).chain(&secs).any(hit) {
                 continue;
             }
+            let mut on = HashSet::new();
             for r in faces.iter_mut().chain(caps.iter_mut()).chain(secs.iter_mut()) {
-                *r = clip(r, pl);
+                *r = clip(r, pl, &mut on);
             }
             if closed {
-                let loops = open_loops(faces.iter().chain(&caps).chain(&secs), pl);
+                let loops = open_loops(faces.iter().chain(&caps).chain(&secs), &on);
                 secs.extend(section_faces(loops, pl));
             }
+            self.on_cut[pk].extend(on);
             secs.retain(|r| r.len() >= 3);
         }
         // The mesh: vertices once each (by exact coordinates), faces in their places.
@@ -346,15 +352,20 @@ impl VertexSet {
 }
 
 /// A point's exact coordinates as a hash key (−0 as +0).
-fn key(p: &P3) -> [u64; 3] {
+pub(crate) fn key(p: &P3) -> [u64; 3] {
     [(p.x + 0.0).to_bits(), (p.y + 0.0).to_bits(), (p.z + 0.0).to_bits()]
 }
 
 /// `ring` clipped to the kept side of `pl` (Sutherland–Hodgman with exact sides): points on
 /// the plane stay, each edge that crosses gets its exact crossing rounded once. Empty when
 /// nothing with area is left.
-fn clip(ring: &[P3], pl: &CutPlane) -> Vec<P3> {
+///
+/// The points on the plane (corners on it, crossings made) are added to `on`.
+fn clip(ring: &[P3], pl: &CutPlane, on: &mut HashSet<[u64; 3]>) -> Vec<P3> {
     let s: Vec<i8> = ring.iter().map(|p| side(p, pl) as i8).collect();
+    for (p, _) in ring.iter().zip(&s).filter(|(_, &x)| x == 0) {
+        on.insert(key(p));
+    }
     if s.iter().all(|&x| x <= 0) {
         return ring.to_vec();
     }
@@ -369,7 +380,9 @@ fn clip(ring: &[P3], pl: &CutPlane) -> Vec<P3> {
             out.push(ring[i]);
         }
         if s[i] * s[j] < 0 {
-            out.push(crossing(&ring[i], &ring[j], pl));
+            let x = crossing(&ring[i], &ring[j], pl);
+            on.insert(key(&x));
+            out.push(x);
         }
     }
     out.dedup();
@@ -383,9 +396,13 @@ fn clip(ring: &[P3], pl: &CutPlane) -> Vec<P3> {
 }
 
 /// The edges of `rings` (one closed, consistently oriented surface) that no other edge pairs
-/// the other way, with both ends on `pl`, chained into closed loops (in ring direction). A
-/// chain that does not close is dropped.
-fn open_loops<'a>(rings: impl Iterator<Item = &'a Vec<P3>>, pl: &CutPlane) -> Vec<Vec<P3>> {
+/// the other way, with both ends on the plane (in `on`: corners on it, crossings made by the
+/// cut, which are rounded and so not exactly on it), chained into closed loops (in ring
+/// direction). A chain that does not close is dropped.
+fn open_loops<'a>(
+    rings: impl Iterator<Item = &'a Vec<P3>>,
+    on: &HashSet<[u64; 3]>,
+) -> Vec<Vec<P3>> {
     // Net count of each undirected edge, + for least-key-first traversals.
     let mut net: HashMap<([u64; 3], [u64; 3]), (i32, P3, P3)> = HashMap::new();
     let mut order: Vec<([u64; 3], [u64; 3])> = Vec::new();
@@ -412,7 +429,7 @@ fn open_loops<'a>(rings: impl Iterator<Item = &'a Vec<P3>>, pl: &CutPlane) -> Ve
     let mut edges: Vec<(P3, P3)> = Vec::new();
     for k in &order {
         let (c, lo, hi) = net[k];
-        if c == 0 || !side(&lo, pl).is_eq() || !side(&hi, pl).is_eq() {
+        if c == 0 || !on.contains(&k.0) || !on.contains(&k.1) {
             continue;
         }
         let (a, b) = if c > 0 { (lo, hi) } else { (hi, lo) };

@@ -11,7 +11,6 @@ use rayon::prelude::*;
 use crate::count::{Count, Share};
 use crate::geom::{P3, V3};
 use crate::scene::topology::{sort_by_key, sort_by_pair};
-use crate::geom::plane_cut::side;
 use crate::scene::{FaceId, Scene};
 use crate::view::{Facing, View};
 
@@ -283,7 +282,8 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
 }
 
 /// True when an outline or border edge of face `face` lies where a section cut the scene:
-/// an edge of a section face, or one of a cut leaf with both ends on a plane (exactly).
+/// an edge of a section face, or one of a cut leaf with both ends on the cut (corners on a
+/// plane, crossings the cut made).
 fn on_section(world: &WorldFaces, face: u32, kind: EdgeKind, ends: [&P3; 2]) -> bool {
     let Some(info) = world.section.as_deref() else {
         return false;
@@ -292,11 +292,7 @@ fn on_section(world: &WorldFaces, face: u32, kind: EdgeKind, ends: [&P3; 2]) -> 
         return false;
     }
     info.is_section(face)
-        || (info.in_cut_leaf(face)
-            && info
-                .planes
-                .iter()
-                .any(|pl| ends.iter().all(|p| side(p, pl).is_eq())))
+        || (info.in_cut_leaf(face) && info.on_one_plane(ends[0], ends[1]))
 }
 
 /// Kind of a mesh edge in this view.
