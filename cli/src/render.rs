@@ -100,6 +100,12 @@ pub(crate) struct RenderArgs {
     /// `"section": true`, drawn hatched on layer 7). Repeatable: every plane removes its side.
     #[arg(long, value_name = "PX,PY,PZ,NX,NY,NZ", allow_hyphen_values = true)]
     pub(crate) section: Vec<String>,
+    /// Style objects by path: a KDL file of `style "PATH-OR-PATTERN" pen=N weight=MM
+    /// occlude-only=#true` nodes (`*` matches any run of characters), applied after the
+    /// scene file's own `style` nodes; for OBJ groups, STL/PLY files and other scenes
+    /// without styles of their own.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) styles: Option<PathBuf>,
     #[command(flatten)]
     pub(crate) lod: super::tribox::LodArgs,
     #[command(flatten)]
@@ -206,6 +212,7 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         .map(PathBuf::as_path)
         .collect();
     let mut inputs = vec![a.scene.as_path()];
+    inputs.extend(a.styles.as_deref());
     inputs.extend(a.views.as_deref());
     let mut outs = OutputFiles::new(&inputs, &wanted)?;
     let start = Instant::now();
@@ -216,6 +223,9 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     let (scene, load, prepare) = follow(&progress, start, PROGRESS_AFTER, || -> Result<_> {
         let t = Instant::now();
         let mut scene = kepler_hsr::load_scene(&a.scene, load_opts, &mut warnings, &progress)?;
+        if let Some(f) = &a.styles {
+            scene.load_styles(f)?;
+        }
         let load = t.elapsed();
         let t = Instant::now();
         let prep = a.hierarchy.prepare();

@@ -3,6 +3,7 @@
 mod args;
 mod camera_node;
 mod section_node;
+mod style_node;
 mod confine;
 mod geometry;
 mod kdl;

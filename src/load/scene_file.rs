@@ -12,6 +12,7 @@ use std::sync::Arc;
 use super::args::{quoted_list, Node};
 use super::camera_node::parse_camera;
 use super::section_node::parse_section;
+use super::style_node::parse_style;
 use super::confine;
 use super::geometry::{self, is_geometry, GeomCtx, MeshCache};
 use super::limits::LoadOptions;
@@ -78,6 +79,7 @@ pub(crate) fn load_scene_file(
         source: path.to_path_buf(),
         section: None,
         sections: loader.sections,
+        styles: Vec::new(),
     })
 }
 
@@ -131,6 +133,7 @@ struct Loader<'w> {
 struct Body<'a> {
     transforms: Vec<Node<'a>>,
     inbox: Option<Node<'a>>,
+    style: Option<Node<'a>>,
     faces: Vec<Node<'a>>,
     /// Geometry nodes, `object` and `instance` nodes, in source order.
     parts: Vec<Node<'a>>,
@@ -344,6 +347,9 @@ impl Loader<'_> {
         if let Some(ib) = &body.inbox {
             object.inbox = self.checked_inbox(ib, &xf, &object)?;
         }
+        if let Some(st) = &body.style {
+            object.style = Some(parse_style(st)?);
+        }
         Ok(object)
     }
 
@@ -369,10 +375,12 @@ impl Loader<'_> {
         let proto = self.find_prototype(proto_name, n, later)?;
         let mut transforms = Vec::new();
         let mut inbox = None;
+        let mut style = None;
         for c in n.children_or_none() {
             match c.name() {
                 t if is_transform(t) => transforms.push(c),
                 "inbox" => set_once(&mut inbox, c)?,
+                "style" => set_once(&mut style, c)?,
                 other => {
                     return Err(c.parse_err(format!(
                     "unknown node `{other}` in `instance`: expected a transform ({}) or `inbox`",
@@ -390,6 +398,9 @@ impl Loader<'_> {
             Some(ib) => self.checked_inbox(ib, &m, &object)?,
             None => proto.inbox.and_then(|b| transform_box(&b, &m)),
         };
+        if let Some(st) = &style {
+            object.style = Some(parse_style(st)?);
+        }
         Ok(object)
     }
 
@@ -572,6 +583,7 @@ fn sort_body<'a>(n: &Node<'a>) -> Result<Body<'a>> {
         match c.name() {
             t if is_transform(t) => b.transforms.push(c),
             "inbox" => set_once(&mut b.inbox, c)?,
+            "style" => set_once(&mut b.style, c)?,
             "face" => b.faces.push(c),
             "vertices" => {
                 set_once(&mut vertices, c)?;

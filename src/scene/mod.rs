@@ -9,6 +9,7 @@ pub(crate) mod object;
 pub(crate) mod object_tree;
 pub(crate) mod proof;
 pub(crate) mod section_info;
+pub(crate) mod style;
 pub(crate) mod texture;
 pub(crate) mod topology;
 pub(crate) mod triangulate;
@@ -64,6 +65,8 @@ pub struct Scene {
     pub(crate) section: Option<std::sync::Arc<section_info::SectionInfo>>,
     /// The scene file's `section` planes (point, normal), cut when a render gives none.
     pub(crate) sections: Vec<(P3, V3)>,
+    /// Style rules by object path or pattern (`--styles`), applied after the objects' own.
+    pub(crate) styles: Vec<(String, style::Style)>,
 }
 
 /// One leaf object placed in the world: its path, its mesh and its world transform.
@@ -111,6 +114,7 @@ impl Scene {
             source,
             section: None,
             sections: Vec::new(),
+            styles: Vec::new(),
         }
     }
 
@@ -158,6 +162,7 @@ impl Scene {
             source: self.source.clone(),
             section: self.section.clone(),
             sections: self.sections.clone(),
+            styles: self.styles.clone(),
         }
     }
 }

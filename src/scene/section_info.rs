@@ -4,14 +4,11 @@
 use std::collections::HashSet;
 use std::ops::Range;
 
-use crate::geom::plane_cut::CutPlane;
 use crate::geom::P3;
 
 /// The record of a cut, kept on the cut [`super::Scene`].
 #[derive(Debug, Clone, Default)]
 pub(crate) struct SectionInfo {
-    /// The planes, in the order given.
-    pub planes: Vec<CutPlane>,
     /// The first section face: the scene's own faces run below it, the cut faces from it.
     pub first_face: u32,
     /// Faces wholly on a removed side, ascending: they keep their ids and get no pieces.

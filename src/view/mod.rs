@@ -135,6 +135,7 @@ impl View {
         progress.enter_phase(Stage::View, Phase::Project, kept);
         let mut screen = ScreenFaces::from_cull(cull, &camera, progress.count());
         screen.section_first = scene.section.as_ref().map(|s| s.first_face);
+        mark_occlude_only(scene, &mut screen);
         progress.enter_phase(Stage::View, Phase::Tree, screen.face_count());
         let tree = ViewTree::build(scene, &camera, &screen, &cull.hidden, progress.count());
         View {
@@ -147,6 +148,27 @@ impl View {
                 tested: cull.objects_tested,
             },
         }
+    }
+}
+
+/// Marks the projected leaves whose style is occlude-only.
+fn mark_occlude_only(scene: &Scene, screen: &mut ScreenFaces) {
+    let styles = scene.leaf_styles();
+    if styles.is_empty() {
+        return;
+    }
+    let hidden: std::collections::HashMap<usize, bool> = scene
+        .leaves()
+        .iter()
+        .zip(&styles)
+        .filter(|(l, _)| !l.mesh.faces.is_empty())
+        .map(|(l, s)| (l.first_face, s.hidden()))
+        .collect();
+    for l in &mut screen.leaves {
+        l.occlude_only = hidden
+            .get(&(l.first_face.index()))
+            .copied()
+            .unwrap_or(false);
     }
 }
 

@@ -79,6 +79,8 @@ pub(crate) struct LeafInfo {
     pub face_count: u32,
     /// Where its vertices' world points start in [`ScreenFaces::world`].
     pub world_first: u32,
+    /// Styled occlude-only: it hides, but is never drawn nor listed.
+    pub occlude_only: bool,
 }
 
 impl LeafInfo {
@@ -158,6 +160,11 @@ impl ScreenFaces {
         out.face_starts
             .resize(cull.face_count as usize + 1, out.pieces.len() as u32);
         out
+    }
+
+    /// True when face `f` (which must have pieces) belongs to an occlude-only object.
+    pub(crate) fn occlude_only(&self, f: FaceId) -> bool {
+        self.leaf_of_face(f).occlude_only
     }
 
     /// True when face `f` was made by a section cut.
@@ -314,6 +321,7 @@ impl ScreenFaces {
             first_face: FaceId(leaf.first_face as u32),
             face_count: leaf.mesh.faces.len() as u32,
             world_first,
+            occlude_only: false,
         });
         let mut hidden = hidden.iter().peekable();
         let mut scratch = Vec::new();

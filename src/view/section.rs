@@ -33,6 +33,7 @@ use crate::error::{Error, Result};
 use crate::geom::plane_cut::{crossing, side, CutPlane};
 use crate::geom::{Box3, MAX_COORD, M4, P3, V3};
 use crate::scene::section_info::SectionInfo;
+use crate::scene::style::Style;
 use crate::scene::{Content, Face, Mesh, Object, Scene};
 
 /// Checks the planes a render is asked to cut with: finite, within the coordinate limit,
@@ -107,7 +108,6 @@ pub(crate) fn cut_scene(scene: &Scene, planes: &[CutPlane]) -> Scene {
     }
     let mut out = scene.with_root(root);
     out.section = Some(Arc::new(SectionInfo {
-        planes: planes.to_vec(),
         first_face,
         removed: c.removed,
         cut_leaves: c.cut_leaves,
@@ -168,6 +168,7 @@ impl Cutter<'_> {
             return Object::instance(obj.name.clone(), Arc::new(obj.clone()), *xf);
         }
         let mut out = self.content(&obj.name, &obj.content, xf, path);
+        out.style = chain(obj.style, out.style);
         out.inbox = obj
             .inbox
             .filter(|b| *xf == M4::identity() && self.box_kept(b));
@@ -197,7 +198,9 @@ impl Cutter<'_> {
                 Object::group(name, subs)
             }
             Content::Instance(i) => {
-                self.content(name, &i.prototype.content, &(xf * i.transform), path)
+                let mut o = self.content(name, &i.prototype.content, &(xf * i.transform), path);
+                o.style = chain(i.prototype.style, o.style);
+                o
             }
         }
     }
@@ -330,6 +333,14 @@ impl Cutter<'_> {
             faces: out_faces,
             ..Mesh::default()
         }
+    }
+}
+
+/// An outer style then an inner one (the inner's fields win).
+fn chain(outer: Option<Style>, inner: Option<Style>) -> Option<Style> {
+    match (outer, inner) {
+        (Some(o), Some(i)) => Some(o.then(&i)),
+        (o, i) => i.or(o),
     }
 }
 

@@ -105,7 +105,7 @@ pub(crate) fn hatch(
             let first = leaf.first_face;
             (0..leaf.mesh.faces.len()).map(move |k| (FaceId((first + k) as u32), li as u32))
         })
-        .filter(|(f, _)| !vis.face(*f).visible.is_empty())
+        .filter(|(f, _)| !vis.face(*f).visible.is_empty() && !view.screen.occlude_only(*f))
         .collect();
     let tones: Vec<(FaceId, u32, u8)> = faces
         .par_iter()
@@ -138,6 +138,7 @@ pub(crate) fn hatch(
 /// The 45° hatching of the visible parts of a section view's section faces, `spacing_mm`
 /// apart on the page, each segment with its face's leaf (in face order).
 pub(crate) fn section_hatch(
+    scene: &Scene,
     view: &View,
     vis: &Visibility,
     layout: &Layout,
@@ -147,6 +148,7 @@ pub(crate) fn section_hatch(
         return Ok(Vec::new());
     };
     let fam = Family::new(layout, 45.0, spacing_mm);
+    let firsts: Vec<usize> = scene.leaves().iter().map(|l| l.first_face).collect();
     let faces: Vec<FaceId> = (first as usize..view.screen.face_count())
         .map(|f| FaceId(f as u32))
         .filter(|&f| !vis.face(f).visible.is_empty())
@@ -163,7 +165,8 @@ pub(crate) fn section_hatch(
     Ok(faces
         .par_iter()
         .map(|&f| {
-            let leaf = view.screen.leaf_index_of_face(f);
+            // The leaf's index in the scene's order (the drawing's), not the view's.
+            let leaf = firsts.partition_point(|&ff| ff <= f.index()) as u32 - 1;
             fam.clip(&vis.face(f).visible)
                 .into_iter()
                 .map(|s| (leaf, s))

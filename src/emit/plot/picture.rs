@@ -188,6 +188,8 @@ pub(crate) struct Fill {
 pub(crate) struct Run {
     /// The pen.
     pub pen: Pen,
+    /// A stroke width in mm instead of the pen's (an object's style weight).
+    pub width_mm: Option<f64>,
     /// Polylines in mm, in drawing order and direction.
     pub lines: Vec<Vec<Pt2>>,
 }
@@ -275,6 +277,11 @@ pub(crate) struct Picture {
 
 impl Picture {
     /// Stroke width of a pen in mm.
+    /// The stroke width of a run in mm: its own, or its pen's.
+    pub(crate) fn run_width(&self, run: &Run) -> f64 {
+        run.width_mm.unwrap_or_else(|| self.width(run.pen))
+    }
+
     pub(crate) fn width(&self, pen: Pen) -> f64 {
         self.pen_mm * pen.width_factor()
     }
@@ -313,6 +320,7 @@ mod tests {
             name: "outline".into(),
             runs: vec![Run {
                 pen: Pen::Outline,
+                width_mm: None,
                 lines: vec![vec![[0., 0.], [3., 0.]], vec![[3., 4.], [3., 5.]]],
             }],
         };
@@ -322,6 +330,7 @@ mod tests {
         let one = Layer {
             runs: vec![Run {
                 pen: Pen::Outline,
+                width_mm: None,
                 lines: vec![vec![[0., 0.], [3., 0.]]],
             }],
             ..l.clone()

@@ -160,7 +160,8 @@ fn json_into(
     for (k, (id, f)) in vis.iter().enumerate() {
         done.tick(k);
         let visible = clean(&f.visible, delta);
-        if visible.is_empty() {
+        // An occlude-only object hides what is behind it but is not listed.
+        if visible.is_empty() || view.screen.occlude_only(id) {
             continue;
         }
         let area = match &visible {
