@@ -188,7 +188,12 @@ pub(crate) fn parse_section(s: &str) -> Result<(kepler_hsr::P3, kepler_hsr::V3)>
         }
     }
     if v[3..].iter().all(|&x| x == 0.0) {
-        bail!("--section {s}: the normal {},{},{} is zero", v[3], v[4], v[5]);
+        bail!(
+            "--section {s}: the normal {},{},{} is zero",
+            v[3],
+            v[4],
+            v[5]
+        );
     }
     Ok((
         kepler_hsr::P3::new(v[0], v[1], v[2]),

@@ -85,7 +85,10 @@ pub(crate) fn side(v: &P3, pl: &CutPlane) -> Ordering {
     if d.abs() > bound && bound > 1e-280 {
         return d.partial_cmp(&0.0).unwrap_or(Ordering::Equal);
     }
-    exact_distance(v, pl).0.sign().cmp(&num_bigint::Sign::NoSign)
+    exact_distance(v, pl)
+        .0
+        .sign()
+        .cmp(&num_bigint::Sign::NoSign)
 }
 
 /// The point where segment a→b crosses the plane, `a` and `b` strictly on opposite sides:
@@ -103,7 +106,10 @@ pub(crate) fn crossing(a: &P3, b: &P3, pl: &CutPlane) -> P3 {
         let (mb, xb) = split(b[k]);
         let (ma, xa) = split(a[k]);
         // x = (b·A − a·B) / (A − B): the 2^e cancels.
-        let (num, e0) = sum_terms(&[(BigInt::from(mb) * &big_a, xb), (-(BigInt::from(ma) * &big_b), xa)]);
+        let (num, e0) = sum_terms(&[
+            (BigInt::from(mb) * &big_a, xb),
+            (-(BigInt::from(ma) * &big_b), xa),
+        ]);
         *o = round_quotient(&num, &den, e0);
     }
     P3::new(out[0], out[1], out[2])
@@ -247,9 +253,21 @@ mod tests {
             round_quotient(&num, &(BigInt::from(1) << 53), 0),
             1.0 + 2f64.powi(-51)
         );
-        assert_eq!(round_quotient(&BigInt::from(1), &BigInt::from(3), 0), 1.0 / 3.0);
-        assert_eq!(round_quotient(&BigInt::from(-2), &BigInt::from(3), 0), -2.0 / 3.0);
-        assert_eq!(round_quotient(&BigInt::from(1), &BigInt::from(1), -1074), 5e-324);
-        assert_eq!(round_quotient(&BigInt::from(7), &BigInt::from(1), 10), 7168.0);
+        assert_eq!(
+            round_quotient(&BigInt::from(1), &BigInt::from(3), 0),
+            1.0 / 3.0
+        );
+        assert_eq!(
+            round_quotient(&BigInt::from(-2), &BigInt::from(3), 0),
+            -2.0 / 3.0
+        );
+        assert_eq!(
+            round_quotient(&BigInt::from(1), &BigInt::from(1), -1074),
+            5e-324
+        );
+        assert_eq!(
+            round_quotient(&BigInt::from(7), &BigInt::from(1), 10),
+            7168.0
+        );
     }
 }

@@ -11,12 +11,12 @@ use std::sync::Arc;
 
 use super::args::{quoted_list, Node};
 use super::camera_node::parse_camera;
-use super::section_node::parse_section;
-use super::style_node::parse_style;
 use super::confine;
 use super::geometry::{self, is_geometry, GeomCtx, MeshCache};
 use super::limits::LoadOptions;
+use super::section_node::parse_section;
 use super::source::Source;
+use super::style_node::parse_style;
 use super::transform::{compose, is_transform, transform_box};
 use crate::error::{Error, Location, Result, Warning, Warnings};
 use crate::geom::MAX_COORD;

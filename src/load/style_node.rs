@@ -29,7 +29,9 @@ pub(super) fn style_props(n: &Node) -> Result<Style> {
     }
     if let Some(w) = n.number_prop("weight")? {
         if !(w.is_finite() && w > 0.0 && w <= 100.0) {
-            return Err(n.invalid(format!("weight={w}: expected a stroke width in mm, above 0 and at most 100")));
+            return Err(n.invalid(format!(
+                "weight={w}: expected a stroke width in mm, above 0 and at most 100"
+            )));
         }
         s.weight = Some(w);
     }
@@ -63,7 +65,9 @@ impl Scene {
                     crate::scene::names::printable(n.name())
                 )));
             }
-            let pattern = n.one_string("string (an object path or pattern)")?.to_string();
+            let pattern = n
+                .one_string("string (an object path or pattern)")?
+                .to_string();
             rules.push((pattern, style_props(&n)?));
         }
         self.add_styles(rules);

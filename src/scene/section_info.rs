@@ -28,7 +28,13 @@ impl SectionInfo {
 
     /// True when `a` and `b` are points of cut leaves on one plane: the ends of a cut edge.
     pub(crate) fn on_one_plane(&self, a: &P3, b: &P3) -> bool {
-        let key = |p: &P3| [(p.x + 0.0).to_bits(), (p.y + 0.0).to_bits(), (p.z + 0.0).to_bits()];
+        let key = |p: &P3| {
+            [
+                (p.x + 0.0).to_bits(),
+                (p.y + 0.0).to_bits(),
+                (p.z + 0.0).to_bits(),
+            ]
+        };
         let (a, b) = (key(a), key(b));
         self.on_cut.iter().any(|s| s.contains(&a) && s.contains(&b))
     }

@@ -75,15 +75,20 @@ impl Scene {
             return out;
         }
         let mut path = Vec::new();
-        walk(&self.root, Style::default(), &mut path, &mut |path, style| {
-            let p = path.join("/");
-            let s = self
-                .styles
-                .iter()
-                .filter(|(pat, _)| matches(pat, &p))
-                .fold(style, |s, (_, r)| s.then(r));
-            out.push(s);
-        });
+        walk(
+            &self.root,
+            Style::default(),
+            &mut path,
+            &mut |path, style| {
+                let p = path.join("/");
+                let s = self
+                    .styles
+                    .iter()
+                    .filter(|(pat, _)| matches(pat, &p))
+                    .fold(style, |s, (_, r)| s.then(r));
+                out.push(s);
+            },
+        );
         out
     }
 

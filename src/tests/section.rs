@@ -60,8 +60,11 @@ fn exact_agrees(r: &Rendered, camera: &Camera) {
     assert!(rep.agrees(), "{:?}", rep.disagreements());
 }
 
+/// A closed shell: points and faces.
+type Shell = (Vec<[f64; 3]>, Vec<Vec<u32>>);
+
 /// A prism over a 2D polygon (counter-clockwise), from z0 to z1, outward faces.
-fn prism(poly: &[[f64; 2]], z0: f64, z1: f64) -> Vec<(Vec<[f64; 3]>, Vec<Vec<u32>>)> {
+fn prism(poly: &[[f64; 2]], z0: f64, z1: f64) -> Vec<Shell> {
     let n = poly.len() as u32;
     let mut pts: Vec<[f64; 3]> = poly.iter().map(|p| [p[0], p[1], z0]).collect();
     pts.extend(poly.iter().map(|p| [p[0], p[1], z1]));
@@ -73,7 +76,7 @@ fn prism(poly: &[[f64; 2]], z0: f64, z1: f64) -> Vec<(Vec<[f64; 3]>, Vec<Vec<u32
     vec![(pts, faces)]
 }
 
-fn mesh_of(shells: Vec<(Vec<[f64; 3]>, Vec<Vec<u32>>)>) -> Mesh {
+fn mesh_of(shells: Vec<Shell>) -> Mesh {
     let mut pts = Vec::new();
     let mut faces: Vec<Vec<u32>> = Vec::new();
     for (p, f) in shells {
@@ -113,7 +116,11 @@ fn the_cube_cut_in_half_shows_its_section_alone() {
 fn cut_points_are_exact() {
     let s = cube_scene();
     // A cut 1e-9 from a face: the new corners sit exactly on the plane.
-    let r = cut(&s, &Camera::three_quarter(), &[plane([1e-9, 0., 0.], [-1., 0., 0.])]);
+    let r = cut(
+        &s,
+        &Camera::three_quarter(),
+        &[plane([1e-9, 0., 0.], [-1., 0., 0.])],
+    );
     let secs = section_faces(&r);
     assert_eq!(secs.len(), 1);
     assert!(secs[0].iter().all(|p| p.x == 1e-9), "{:?}", secs[0]);
@@ -121,7 +128,11 @@ fn cut_points_are_exact() {
     exact_agrees(&r, &Camera::three_quarter());
     // Oblique, through the centre: a regular hexagon whose corners are edge midpoints, the
     // exact crossings (representable here), on the plane x + y + z = 1.5 exactly.
-    let r = cut(&s, &Camera::three_quarter(), &[plane([0.5; 3], [1., 1., 1.])]);
+    let r = cut(
+        &s,
+        &Camera::three_quarter(),
+        &[plane([0.5; 3], [1., 1., 1.])],
+    );
     let secs = section_faces(&r);
     assert_eq!(secs.len(), 1);
     assert_eq!(secs[0].len(), 6);
@@ -149,7 +160,11 @@ fn cut_points_are_exact() {
 fn vertices_on_the_plane_stay_and_make_no_new_points() {
     let s = cube_scene();
     // Through three corners: the kept corner tetrahedron's section is that triangle.
-    let r = cut(&s, &Camera::three_quarter(), &[plane([1., 0., 0.], [1., 1., 1.])]);
+    let r = cut(
+        &s,
+        &Camera::three_quarter(),
+        &[plane([1., 0., 0.], [1., 1., 1.])],
+    );
     let secs = section_faces(&r);
     assert_eq!(secs.len(), 1);
     let mut got: Vec<[f64; 3]> = secs[0].iter().map(|p| [p.x, p.y, p.z]).collect();
@@ -290,7 +305,10 @@ fn an_open_mesh_gets_its_cut_outline_only() {
         .iter()
         .filter(|s| s.kind == EdgeKind::Section)
         .collect();
-    assert!(!sec.is_empty(), "the cut outline is drawn with the section pen");
+    assert!(
+        !sec.is_empty(),
+        "the cut outline is drawn with the section pen"
+    );
     exact_agrees(&r, &cam);
     // A closed cube's cut gets a section face, and its outline is the section's too.
     let cube = cube_scene();
@@ -304,7 +322,10 @@ fn inboxes_on_the_removed_side_are_dropped() {
     // front of the box, obliquely (x + z > 7.5), and what is left of the box shows.
     let mut wall = Object::group(
         "g",
-        vec![Object::from_mesh("wall", cuboid([0., 0., 1.], [10., 10., 2.]))],
+        vec![Object::from_mesh(
+            "wall",
+            cuboid([0., 0., 1.], [10., 10., 2.]),
+        )],
     );
     wall.inbox = Some(crate::geom::Box3::new(
         P3::new(0., 0., 1.),
@@ -314,7 +335,10 @@ fn inboxes_on_the_removed_side_are_dropped() {
     let s = Scene::new(Object::group("", vec![wall, small]), "test".into());
     let cam = along([0., 0., -1.]);
     let plain = cut(&s, &cam, &[]);
-    assert!(plain.view.culled.subtrees > 0, "the INBOX hides the small box uncut");
+    assert!(
+        plain.view.culled.subtrees > 0,
+        "the INBOX hides the small box uncut"
+    );
     let r = cut(&s, &cam, &[plane([7.5, 0., 0.], [1., 0., 1.])]);
     assert_eq!(r.view.culled.subtrees, 0);
     let small_seen: f64 = r
@@ -345,8 +369,14 @@ fn prepared_solids_and_several_planes() {
     for cam in [
         Camera::three_quarter(),
         along([-1., -0.4, -0.2]),
-        Camera::perspective(P3::new(6., 5., 7.), P3::new(1., 0.5, 0.5), V3::y(), 50., 0.01)
-            .unwrap(),
+        Camera::perspective(
+            P3::new(6., 5., 7.),
+            P3::new(1., 0.5, 0.5),
+            V3::y(),
+            50.,
+            0.01,
+        )
+        .unwrap(),
     ] {
         let r = cut(&s, &cam, &planes);
         assert!(!section_faces(&r).is_empty());
@@ -384,9 +414,14 @@ fn bad_planes_are_refused() {
         (plane([f64::NAN, 0., 0.], [1., 0., 0.]), "not finite"),
         (plane([2e12, 0., 0.], [1., 0., 0.]), "beyond 1e12"),
     ] {
-        let e = render(&s, &Camera::three_quarter(), &opts(&[pl]), &Progress::default())
-            .unwrap_err()
-            .to_string();
+        let e = render(
+            &s,
+            &Camera::three_quarter(),
+            &opts(&[pl]),
+            &Progress::default(),
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains(why), "{e}");
     }
 }

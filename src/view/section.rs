@@ -31,7 +31,7 @@ use std::sync::Arc;
 
 use crate::error::{Error, Result};
 use crate::geom::plane_cut::{crossing, side, CutPlane};
-use crate::geom::{Box3, MAX_COORD, M4, P3, V3};
+use crate::geom::{Box3, M4, MAX_COORD, P3, V3};
 use crate::scene::section_info::SectionInfo;
 use crate::scene::style::Style;
 use crate::scene::{Content, Face, Mesh, Object, Scene};
@@ -284,7 +284,11 @@ impl Cutter<'_> {
                 continue;
             }
             let mut on = HashSet::new();
-            for r in faces.iter_mut().chain(caps.iter_mut()).chain(secs.iter_mut()) {
+            for r in faces
+                .iter_mut()
+                .chain(caps.iter_mut())
+                .chain(secs.iter_mut())
+            {
                 *r = clip(r, pl, &mut on);
             }
             if closed {
@@ -364,7 +368,11 @@ impl VertexSet {
 
 /// A point's exact coordinates as a hash key (−0 as +0).
 pub(crate) fn key(p: &P3) -> [u64; 3] {
-    [(p.x + 0.0).to_bits(), (p.y + 0.0).to_bits(), (p.z + 0.0).to_bits()]
+    [
+        (p.x + 0.0).to_bits(),
+        (p.y + 0.0).to_bits(),
+        (p.z + 0.0).to_bits(),
+    ]
 }
 
 /// `ring` clipped to the kept side of `pl` (Sutherland–Hodgman with exact sides): points on
@@ -415,8 +423,8 @@ fn open_loops<'a>(
     on: &HashSet<[u64; 3]>,
 ) -> Vec<Vec<P3>> {
     // Net count of each undirected edge, + for least-key-first traversals.
-    let mut net: HashMap<([u64; 3], [u64; 3]), (i32, P3, P3)> = HashMap::new();
-    let mut order: Vec<([u64; 3], [u64; 3])> = Vec::new();
+    let mut net: HashMap<EdgeKey, (i32, P3, P3)> = HashMap::new();
+    let mut order: Vec<EdgeKey> = Vec::new();
     for r in rings {
         for i in 0..r.len() {
             let (a, b) = (r[i], r[(i + 1) % r.len()]);
@@ -483,6 +491,17 @@ fn open_loops<'a>(
     loops
 }
 
+/// An undirected edge by its ends' exact coordinates, least first.
+type EdgeKey = ([u64; 3], [u64; 3]);
+
+/// An outer loop of a section: its points, in plane coordinates, its area and its holes.
+struct Outer {
+    ring: Vec<P3>,
+    flat: Vec<[f64; 2]>,
+    area: f64,
+    holes: Vec<Vec<P3>>,
+}
+
 /// A basis (u, w) of the plane with (u, w, n) right-handed.
 fn plane_basis(n: &V3) -> (V3, V3) {
     let n = n.normalize();
@@ -538,14 +557,19 @@ fn section_faces(loops: Vec<Vec<P3>>, pl: &CutPlane) -> Vec<Vec<P3>> {
             })
             .collect()
     };
-    let mut outers: Vec<(Vec<P3>, Vec<[f64; 2]>, f64, Vec<Vec<P3>>)> = Vec::new();
+    let mut outers: Vec<Outer> = Vec::new();
     let mut holes: Vec<(Vec<P3>, Vec<[f64; 2]>)> = Vec::new();
     for mut l in loops {
         l.reverse();
         let f = flat(&l);
         let a = area2(&f);
         if a > 0.0 {
-            outers.push((l, f, a, Vec::new()));
+            outers.push(Outer {
+                ring: l,
+                flat: f,
+                area: a,
+                holes: Vec::new(),
+            });
         } else if a < 0.0 {
             holes.push((l, f));
         }
@@ -554,15 +578,20 @@ fn section_faces(loops: Vec<Vec<P3>>, pl: &CutPlane) -> Vec<Vec<P3>> {
         let around = outers
             .iter()
             .enumerate()
-            .filter(|(_, o)| inside(f[0], &o.1))
-            .min_by(|a, b| a.1 .2.total_cmp(&b.1 .2))
+            .filter(|(_, o)| inside(f[0], &o.flat))
+            .min_by(|a, b| a.1.area.total_cmp(&b.1.area))
             .map(|(k, _)| k);
         if let Some(k) = around {
-            outers[k].3.push(h);
+            outers[k].holes.push(h);
         }
     }
     let mut out = Vec::new();
-    for (outer, _, _, hs) in outers {
+    for Outer {
+        ring: outer,
+        holes: hs,
+        ..
+    } in outers
+    {
         if hs.is_empty() {
             out.push(outer);
             continue;

@@ -69,7 +69,14 @@ fn the_unit_cube_cut_in_half_seen_along_minus_x_shows_one_section_face_of_area_1
     )
     .unwrap();
     let out2 = d.join("n.json");
-    ok(&["render", s(&with_node), "--dir", "-1,0,0", "--json", s(&out2)]);
+    ok(&[
+        "render",
+        s(&with_node),
+        "--dir",
+        "-1,0,0",
+        "--json",
+        s(&out2),
+    ]);
     assert_eq!(faces(&json(&out2)), f);
 }
 
@@ -99,7 +106,12 @@ fn uncut_faces_keep_their_ids_and_the_drawing_has_a_hatched_section_layer() {
         assert_eq!(section, id >= n, "{f}");
     }
     // The floor's top is cut but keeps its id; a face wholly behind the plane is as it was.
-    let by_id = |v: &Value, id: u64| faces(v).iter().find(|f| f["id"].as_u64() == Some(id)).cloned();
+    let by_id = |v: &Value, id: u64| {
+        faces(v)
+            .iter()
+            .find(|f| f["id"].as_u64() == Some(id))
+            .cloned()
+    };
     let kept = faces(&p)
         .iter()
         .filter(|f| by_id(&c, f["id"].as_u64().unwrap()) == Some((*f).clone()))
@@ -128,9 +140,18 @@ fn bad_sections_are_refused_clearly() {
         assert!(!o.status.success() && err.contains(why), "{flag}: {err}");
     }
     for (node, why) in [
-        ("section { point 0 0 0 }", "cube.kdl:1:1: the section needs `point X Y Z` and `normal X Y Z`"),
-        ("section { point 0 0 0; normal 0 0 0 }", "cube.kdl:1:24: the section's normal is zero"),
-        ("section { point 0 0 0; normal 1 0 0; tilt 3 }", "cube.kdl:1:38: unknown section setting `tilt`"),
+        (
+            "section { point 0 0 0 }",
+            "cube.kdl:1:1: the section needs `point X Y Z` and `normal X Y Z`",
+        ),
+        (
+            "section { point 0 0 0; normal 0 0 0 }",
+            "cube.kdl:1:24: the section's normal is zero",
+        ),
+        (
+            "section { point 0 0 0; normal 1 0 0; tilt 3 }",
+            "cube.kdl:1:38: unknown section setting `tilt`",
+        ),
     ] {
         std::fs::write(&scene, format!("{node}\n{CUBE}")).unwrap();
         let o = kepler(&["render", s(&scene), "--json", s(&out)]);
@@ -160,13 +181,23 @@ fn layers(svg: &str) -> Vec<(String, String)> {
 fn styles_in_a_scene_file_hide_move_and_weigh_lines() {
     let d = temp_dir("styles");
     let scene = d.join("st.kdl");
-    let unstyled = "object \"front\" { box -2 -2 2 2 2 3 }\nobject \"back\" { box -3 -1 0 3 1 1 }\n";
+    let unstyled =
+        "object \"front\" { box -2 -2 2 2 2 3 }\nobject \"back\" { box -3 -1 0 3 1 1 }\n";
     let styled = "object \"front\" {\n    box -2 -2 2 2 2 3\n    style occlude-only=#true\n}\n\
                   object \"back\" {\n    box -3 -1 0 3 1 1\n    style pen=3 weight=1.2\n}\n";
     let (j, svg) = (d.join("s.json"), d.join("s.svg"));
     let run = |text: &str| {
         std::fs::write(&scene, text).unwrap();
-        ok(&["render", s(&scene), "--dir", "0,0,-1", "--json", s(&j), "--svg", s(&svg)]);
+        ok(&[
+            "render",
+            s(&scene),
+            "--dir",
+            "0,0,-1",
+            "--json",
+            s(&j),
+            "--svg",
+            s(&svg),
+        ]);
         (json(&j), std::fs::read_to_string(&svg).unwrap())
     };
     let (pj, psvg) = run(unstyled);
@@ -180,12 +211,22 @@ fn styles_in_a_scene_file_hide_move_and_weigh_lines() {
     let area: f64 = faces(&sj).iter().map(|f| f["area"].as_f64().unwrap()).sum();
     assert_eq!(area, 4.0);
     // Pen 3: the back box's lines are on layer 3, 1.2 mm wide; nothing else is drawn.
-    assert_eq!(layers(&ssvg), vec![("3 intersections".into(), "1.2".into())]);
+    assert_eq!(
+        layers(&ssvg),
+        vec![("3 intersections".into(), "1.2".into())]
+    );
     // Errors name the line.
-    std::fs::write(&scene, "object \"a\" {\n    box 0 0 0 1 1 1\n    style pen=0\n}\n").unwrap();
+    std::fs::write(
+        &scene,
+        "object \"a\" {\n    box 0 0 0 1 1 1\n    style pen=0\n}\n",
+    )
+    .unwrap();
     let o = kepler(&["render", s(&scene), "--json", s(&j)]);
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("st.kdl:3:5: pen=0: expected a whole number from 1 to 99"), "{err}");
+    assert!(
+        err.contains("st.kdl:3:5: pen=0: expected a whole number from 1 to 99"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -199,7 +240,11 @@ fn a_style_file_applies_by_object_name_to_obj_groups() {
     )
     .unwrap();
     let styles = d.join("two.styles.kdl");
-    std::fs::write(&styles, "style \"wall\" occlude-only=#true\nstyle \"fl*\" pen=5 weight=0.8\n").unwrap();
+    std::fs::write(
+        &styles,
+        "style \"wall\" occlude-only=#true\nstyle \"fl*\" pen=5 weight=0.8\n",
+    )
+    .unwrap();
     let (j, svg) = (d.join("t.json"), d.join("t.svg"));
     ok(&[
         "render",
@@ -223,5 +268,8 @@ fn a_style_file_applies_by_object_name_to_obj_groups() {
     std::fs::write(&styles, "style \"wall\" colour=3\n").unwrap();
     let o = kepler(&["render", s(&obj), "--styles", s(&styles), "--json", s(&j)]);
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("two.styles.kdl:1:"), "{err}");
+    assert!(
+        !o.status.success() && err.contains("two.styles.kdl:1:"),
+        "{err}"
+    );
 }

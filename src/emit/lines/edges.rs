@@ -291,8 +291,7 @@ fn on_section(world: &WorldFaces, face: u32, kind: EdgeKind, ends: [&P3; 2]) -> 
     if !matches!(kind, EdgeKind::Border | EdgeKind::Silhouette) {
         return false;
     }
-    info.is_section(face)
-        || (info.in_cut_leaf(face) && info.on_one_plane(ends[0], ends[1]))
+    info.is_section(face) || (info.in_cut_leaf(face) && info.on_one_plane(ends[0], ends[1]))
 }
 
 /// Kind of a mesh edge in this view.

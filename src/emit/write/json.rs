@@ -172,11 +172,7 @@ fn json_into(
         s.push_str(if first { "\n" } else { ",\n" });
         first = false;
         let leaf = view.screen.leaf_index_of_face(id);
-        let _ = write!(
-            s,
-            "{{\"id\":{id},\"object\":{},",
-            paths[leaf as usize]
-        );
+        let _ = write!(s, "{{\"id\":{id},\"object\":{},", paths[leaf as usize]);
         // Faces made by a section cut say so; others are as they always were.
         if view.screen.is_section(id) {
             s.push_str("\"section\":true,");

@@ -13,9 +13,9 @@ use crate::count::Count;
 use crate::geom::poly2::Pt2;
 
 use super::json::num;
-use crate::emit::plot::picture::{LayerMode, Picture, Run};
 #[cfg(test)]
 use crate::emit::plot::picture::Pen;
+use crate::emit::plot::picture::{LayerMode, Picture, Run};
 
 /// The Inkscape namespace (layers).
 const INKSCAPE: &str = "http://www.inkscape.org/namespaces/inkscape";
