@@ -440,3 +440,39 @@ fn the_line_options_do_not_matter_to_the_cut() {
     let b = render(&s, &cam, &o, &Progress::default()).unwrap().json;
     assert_eq!(a, b);
 }
+
+#[test]
+fn hidden_lines_leave_out_what_the_cut_removed() {
+    let s = cube_scene();
+    let cam = Camera::orthographic(V3::new(-0.3, -0.4, -1.), V3::y()).unwrap();
+    let mut o = opts(&[plane([0.5, 0., 0.], [1., 0., 0.])]);
+    o.lines = LineOptions {
+        hidden: true,
+        ..LineOptions::default()
+    };
+    let r = render(&s, &cam, &o, &Progress::default()).unwrap();
+    let d = r.drawing.as_ref().unwrap();
+    assert!(!d.hidden.is_empty());
+    // Every point drawn is the projection of a point with x <= 0.5: screen x is world
+    // x·m00 + y·m01 + z·m02; the removed half would reach further.
+    let reach = |x: f64| {
+        let m = cam.matrix;
+        let mut best = f64::NEG_INFINITY;
+        for y in [0., 1.] {
+            for z in [0., 1.] {
+                best = best.max(m[(0, 0)] * x + m[(0, 1)] * y + m[(0, 2)] * z);
+            }
+        }
+        best
+    };
+    let limit = reach(0.5).max(reach(0.0)) + 1e-9;
+    assert!(
+        reach(1.0) > limit + 0.1,
+        "the removed half would show beyond the limit"
+    );
+    for st in d.hidden.iter().chain(&d.visible) {
+        for p in &st.pts {
+            assert!(p[0] <= limit, "{p:?} beyond {limit}");
+        }
+    }
+}

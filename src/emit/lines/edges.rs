@@ -177,6 +177,11 @@ pub(crate) fn mesh_edges(
         let half = half_edges(world, start, end, base);
         let edge = |g: Range<u32>| {
             let adj = &half[g.start as usize..g.end as usize];
+            // An edge only of faces a section cut removed is not in the scene (not even as a
+            // hidden line).
+            if removed_only(world, adj) {
+                return None;
+            }
             let mut kind = classify(adj, world, base, &facing, cos_crease);
             (opts.set == EdgeSet::All || kind != EdgeKind::Plain).then(|| {
                 let h = &adj[0];
@@ -279,6 +284,14 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
     }
     sort_by_key(&mut groups, |g| half[g.start as usize].seq);
     groups
+}
+
+/// True when every face beside an edge was removed whole by a section cut.
+fn removed_only(world: &WorldFaces, adj: &[HalfEdge]) -> bool {
+    world.section.as_deref().is_some_and(|info| {
+        adj.iter()
+            .all(|h| info.removed.binary_search(&h.face).is_ok())
+    })
 }
 
 /// True when an outline or border edge of face `face` lies where a section cut the scene:
