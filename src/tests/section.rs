@@ -369,6 +369,7 @@ fn prepared_solids_and_several_planes() {
     for cam in [
         Camera::three_quarter(),
         along([-1., -0.4, -0.2]),
+        along([1., 0.3, 0.5]),
         Camera::perspective(
             P3::new(6., 5., 7.),
             P3::new(1., 0.5, 0.5),
@@ -381,6 +382,8 @@ fn prepared_solids_and_several_planes() {
         let r = cut(&s, &cam, &planes);
         assert!(!section_faces(&r).is_empty());
         exact_agrees(&r, &cam);
+        // Regions of different faces do not overlap and cover the projected faces.
+        super::invariants::check_partition(&r.view, &r.visibility, 1e-9);
     }
 }
 
