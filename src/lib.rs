@@ -91,6 +91,7 @@ pub mod plot {
     pub use crate::emit::plot::page::PageSize;
     pub use crate::emit::plot::picture::{LayerMode, LayerSummary, Pen, PictureOptions, PlotStats};
     pub use crate::geom::rect::Rect;
+    pub use crate::scene::style::Style;
 }
 
 /// What a render did: stage times, progress stages and phases, and the counters of the cull,

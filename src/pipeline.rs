@@ -39,6 +39,11 @@ pub struct RenderOptions {
     /// The object tree the substitutes of `lod` are prepared with (the caller prepares the
     /// scene itself: [`crate::prepare()`]); None: the default choice.
     pub hierarchy: Option<HierarchyKind>,
+    /// Section planes, each a point and a normal: the side each normal points to is removed,
+    /// exactly, and every closed solid cut gets its section faces, numbered after the
+    /// scene's faces (`"section": true` in the JSON; the drawing's layer `7 section`).
+    /// Empty: the scene file's `section` planes, if any.
+    pub sections: Vec<(crate::geom::P3, crate::geom::V3)>,
 }
 
 /// The outputs [`render`] emits (each into memory, in [`Rendered`]).
@@ -251,14 +256,34 @@ fn render_json_to<'s>(
         }
         None => Cow::Borrowed(scene),
     };
+    // The render's planes, or else the scene file's.
+    let asked = if opts.sections.is_empty() {
+        &scene.sections
+    } else {
+        &opts.sections
+    };
+    let scene = if asked.is_empty() || scene.section.is_some() {
+        scene
+    } else {
+        let planes = crate::view::section::check_planes(asked)?;
+        // Timed with the view stage: the cut is the view's first step.
+        progress.enter(Stage::View, 0);
+        Cow::Owned(stats.timed(Stage::View, || {
+            crate::view::section::cut_scene(&scene, &planes)
+        }))
+    };
     // Hidden lines need every face's facing, so they keep every face in the view.
     progress.enter(Stage::Cull, 0);
     let cull = stats.timed(Stage::Cull, || {
-        if opts.no_inbox || opts.lines.hidden {
+        let mut cull = if opts.no_inbox || opts.lines.hidden {
             Cull::none(&scene)
         } else {
             Cull::new(&scene, camera)
+        };
+        if let Some(info) = &scene.section {
+            cull.hide_removed(info);
         }
+        cull
     });
     let mut view = stats.timed(Stage::View, || {
         View::from_cull(&scene, *camera, &cull, progress)

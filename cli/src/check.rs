@@ -54,6 +54,10 @@ pub(crate) struct CheckArgs {
     pub(crate) report: Report,
     #[command(flatten)]
     pub(crate) camera: CameraArgs,
+    /// Cut the scene as `kepler render --section` does (repeatable); the exact checker
+    /// checks the cut scene.
+    #[arg(long, value_name = "PX,PY,PZ,NX,NY,NZ", allow_hyphen_values = true)]
+    pub(crate) section: Vec<String>,
     /// Do not print warnings.
     #[arg(long, short)]
     pub(crate) quiet: bool,
@@ -74,13 +78,18 @@ fn check(a: CheckArgs, opts: &kepler_hsr::LoadOptions) -> Result<ExitCode> {
             json: true,
             ..Outputs::default()
         },
+        sections: a
+            .section
+            .iter()
+            .map(|s| super::render::parse_section(s))
+            .collect::<Result<_>>()?,
         ..RenderOptions::default()
     };
     let r = render(&scene, &camera, &opts, &kepler_hsr::Progress::default())?;
     let mut failed = false;
     if a.exact {
         let say = if a.report == Report::Json { err } else { out };
-        failed |= !exact(&scene, &camera, &r.visibility, &r.view, say);
+        failed |= !exact(&r.scene, &camera, &r.visibility, &r.view, say);
     }
     let Some(golden_path) = &a.golden else {
         return Ok(if failed {

@@ -196,6 +196,7 @@ fn refuse_command_only(a: &RenderArgs, one_view: bool) -> Result<()> {
         (one_view && a.views.is_some(), "views"),
         (one_view && a.turntable.is_some(), "turntable"),
         (a.stats, "stats"),
+        (a.styles.is_some(), "styles"),
         (a.shard.is_some(), "shard"),
         (a.sheet.is_some(), "sheet"),
     ] {

@@ -29,7 +29,7 @@ pub(crate) struct PlotArgs {
     #[arg(long, value_name = "DPI")]
     pub(crate) dpi: Option<f64>,
     /// Layers of the SVG: one per pen (1 outline, 2 edges, 3 intersections, 4 marks,
-    /// 5 hatching, 6 hidden), one per top-level object, or none.
+    /// 5 hatching, 6 hidden, 7 section), one per top-level object, or none.
     #[arg(long, value_enum, value_name = "BY", default_value = "pen")]
     pub(crate) layers: LayersArg,
     /// Background colour (#rrggbb, #rgb, white, ivory, ...): a rectangle under the SVG,
@@ -63,6 +63,10 @@ pub(crate) struct PlotArgs {
     /// regions replace creases and plain edges (silhouettes and intersections stay).
     #[arg(long)]
     pub(crate) hatch_outline: bool,
+    /// Distance in mm between the 45° hatch lines of section faces (--section), drawn on
+    /// layer 7 with the faces' heavy outlines.
+    #[arg(long, value_name = "MM", default_value_t = 2.0)]
+    pub(crate) section_hatch: f64,
 }
 
 /// `--layers` values.
@@ -129,6 +133,7 @@ impl PlotArgs {
             hatch,
             light,
             frame: None,
+            section_hatch_mm: self.section_hatch,
         })
     }
 }

@@ -95,6 +95,17 @@ pub(crate) struct RenderArgs {
     /// Render without inboxes (for comparison).
     #[arg(long)]
     pub(crate) no_inbox: bool,
+    /// Cut the scene with the plane through PX,PY,PZ with normal NX,NY,NZ, removing the
+    /// side the normal points to; each closed solid cut gets its section faces (JSON
+    /// `"section": true`, drawn hatched on layer 7). Repeatable: every plane removes its side.
+    #[arg(long, value_name = "PX,PY,PZ,NX,NY,NZ", allow_hyphen_values = true)]
+    pub(crate) section: Vec<String>,
+    /// Style objects by path: a KDL file of `style "PATH-OR-PATTERN" pen=N weight=MM
+    /// occlude-only=#true` nodes (`*` matches any run of characters), applied after the
+    /// scene file's own `style` nodes; for OBJ groups, STL/PLY files and other scenes
+    /// without styles of their own.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) styles: Option<PathBuf>,
     #[command(flatten)]
     pub(crate) lod: super::tribox::LodArgs,
     #[command(flatten)]
@@ -149,8 +160,45 @@ impl RenderArgs {
             no_inbox: self.no_inbox,
             lod: self.lod.options(self.size)?,
             hierarchy: self.hierarchy.kind(),
+            sections: self
+                .section
+                .iter()
+                .map(|s| parse_section(s))
+                .collect::<Result<_>>()?,
         })
     }
+}
+
+/// Parses a `--section` value: six numbers, a point and a normal (not zero).
+pub(crate) fn parse_section(s: &str) -> Result<(kepler_hsr::P3, kepler_hsr::V3)> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != 6 {
+        bail!("--section {s}: expected six numbers PX,PY,PZ,NX,NY,NZ (a point and a normal)");
+    }
+    let mut v = [0.0; 6];
+    for (k, p) in parts.iter().enumerate() {
+        v[k] = p
+            .parse::<f64>()
+            .map_err(|_| anyhow::anyhow!("--section {s}: '{p}' is not a number"))?;
+        if !v[k].is_finite() {
+            bail!("--section {s}: '{p}' is not finite");
+        }
+        if v[k].abs() > 1e12 {
+            bail!("--section {s}: '{p}' is beyond 1e12, the limit scene coordinates have");
+        }
+    }
+    if v[3..].iter().all(|&x| x == 0.0) {
+        bail!(
+            "--section {s}: the normal {},{},{} is zero",
+            v[3],
+            v[4],
+            v[5]
+        );
+    }
+    Ok((
+        kepler_hsr::P3::new(v[0], v[1], v[2]),
+        kepler_hsr::V3::new(v[3], v[4], v[5]),
+    ))
 }
 
 /// Runs `kepler render`.
@@ -169,6 +217,7 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         .map(PathBuf::as_path)
         .collect();
     let mut inputs = vec![a.scene.as_path()];
+    inputs.extend(a.styles.as_deref());
     inputs.extend(a.views.as_deref());
     let mut outs = OutputFiles::new(&inputs, &wanted)?;
     let start = Instant::now();
@@ -179,6 +228,9 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     let (scene, load, prepare) = follow(&progress, start, PROGRESS_AFTER, || -> Result<_> {
         let t = Clock::start();
         let mut scene = kepler_hsr::load_scene(&a.scene, load_opts, &mut warnings, &progress)?;
+        if let Some(f) = &a.styles {
+            scene.load_styles(f)?;
+        }
         let load = t.stop();
         let t = Clock::start();
         let prep = a.hierarchy.prepare();

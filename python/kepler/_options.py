@@ -8,7 +8,9 @@ def to_flags(options):
     """``{"dir": (-1, -2, -3), "hidden": True}`` -> ``["--dir=-1.0,-2.0,-3.0", "--hidden"]``.
 
     ``None`` and ``False`` leave a flag out; ``True`` gives it bare; a sequence is joined
-    with commas; numbers are written so that they read back exactly (``repr`` of a float).
+    with commas, and a sequence of sequences repeats the flag (``section=[(0, 0, 0, 1, 0, 0),
+    (0, 0, 0, 0, 1, 0)]``: two planes); numbers are written so that they read back exactly
+    (``repr`` of a float).
     """
     flags = []
     for key, value in options.items():
@@ -19,6 +21,11 @@ def to_flags(options):
             flags.append(name)
         elif isinstance(value, str):
             flags.append(f"{name}={value}")
+        elif _is_sequence(value) and len(value) > 0 and all(
+            _is_sequence(v) and not isinstance(v, str) for v in value
+        ):
+            for v in value:
+                flags.append(f"{name}=" + ",".join(_number(x, key) for x in v))
         elif _is_sequence(value):
             flags.append(f"{name}=" + ",".join(_number(v, key) for v in value))
         else:

@@ -169,6 +169,7 @@ mod tests {
                 SetFace {
                     object: format!("o{id}"),
                     visible: vec![vec![ring]],
+                    section: false,
                 },
             );
         }
@@ -228,6 +229,7 @@ mod tests {
             SetFace {
                 object: "o7".into(),
                 visible: dust,
+                section: false,
             },
         );
         let rel = 2.09e-19 / 2e-12;

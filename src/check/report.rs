@@ -128,6 +128,7 @@ mod tests {
         SetFace {
             object: "a \"b\"".into(),
             visible: vec![vec![vec![[x, 0.], [x + s, 0.], [x + s, s], [x, s]]]],
+            section: false,
         }
     }
 

@@ -16,6 +16,8 @@ pub struct SetFace {
     pub object: String,
     /// The face's visible region.
     pub visible: MultiPolygon,
+    /// True for a face a section cut made (`"section": true`).
+    pub section: bool,
 }
 
 /// A `kepler-visible/1` set: faces by id and the flattened camera matrix (row by row).
@@ -89,7 +91,13 @@ impl VisibleSet {
                     " (id {id}): \"visible\" is not a multipolygon of finite [x, y] points"
                 ))
             })?;
-            if faces.insert(id, SetFace { object, visible }).is_some() {
+            let section = f.get("section").and_then(Value::as_bool) == Some(true);
+            let face = SetFace {
+                object,
+                visible,
+                section,
+            };
+            if faces.insert(id, face).is_some() {
                 return Err(bad(format!(": id {id} appears twice")));
             }
         }

@@ -38,6 +38,12 @@ pub(crate) fn exact_pieces(scene: &Scene, camera: &Camera) -> Vec<ExactPiece> {
     let near = q(camera.near);
     let persp = camera.projection == Projection::Perspective;
     let mut out = Vec::new();
+    let removed = |f: u32| {
+        scene
+            .section
+            .as_ref()
+            .is_some_and(|s| s.removed.binary_search(&f).is_ok())
+    };
     for leaf in scene.leaves() {
         let world: Vec<P3> = (0..leaf.mesh.vertices.len() as u32)
             .map(|k| leaf.world_vertex(k))
@@ -45,6 +51,10 @@ pub(crate) fn exact_pieces(scene: &Scene, camera: &Camera) -> Vec<ExactPiece> {
         let clip: Vec<[Q; 4]> = world.iter().map(|p| homogeneous(&m, p)).collect();
         for (k, f) in leaf.mesh.faces.iter().enumerate() {
             let face = (leaf.first_face + k) as u32;
+            // A face a section cut removed whole is not in the scene (it keeps its id only).
+            if removed(face) {
+                continue;
+            }
             for piece in planar_pieces(&f.vertices, &world) {
                 let mut poly: Vec<[Q; 4]> =
                     piece.iter().map(|&v| clip[v as usize].clone()).collect();

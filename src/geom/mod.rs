@@ -12,6 +12,7 @@ pub(crate) mod hull2;
 pub(crate) mod hull3;
 pub(crate) mod key_hash;
 pub(crate) mod normal;
+pub(crate) mod plane_cut;
 pub(crate) mod poly2;
 pub(crate) mod polymesh;
 pub(crate) mod predicates;

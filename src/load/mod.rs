@@ -11,8 +11,10 @@ pub(crate) mod obj;
 pub(crate) mod ply;
 mod read;
 pub(crate) mod scene_file;
+mod section_node;
 mod source;
 pub(crate) mod stl;
+mod style_node;
 mod text;
 mod transform;
 

@@ -14,16 +14,25 @@ use super::camera_node::parse_camera;
 use super::confine;
 use super::geometry::{self, is_geometry, GeomCtx, MeshCache};
 use super::limits::LoadOptions;
+use super::section_node::parse_section;
 use super::source::Source;
+use super::style_node::parse_style;
 use super::transform::{compose, is_transform, transform_box};
 use crate::error::{Error, Location, Result, Warning, Warnings};
 use crate::geom::MAX_COORD;
-use crate::geom::{Box3, M4, P3};
+use crate::geom::{Box3, M4, P3, V3};
 use crate::progress::{Progress, Stage};
 use crate::scene::{CameraSpec, Object, Scene};
 
 /// The nodes allowed at the top level of a scene file.
-const TOP_NODES: [&str; 5] = ["camera", "include", "prototype", "object", "instance"];
+const TOP_NODES: [&str; 6] = [
+    "camera",
+    "section",
+    "include",
+    "prototype",
+    "object",
+    "instance",
+];
 
 /// Loads the scene file at `path` (and the files it includes and the meshes it uses).
 /// Repairs made on the way are appended to `warnings`. An instance, object or scene with
@@ -52,6 +61,7 @@ pub(crate) fn load_scene_file(
         stack: Vec::new(),
         loaded: HashSet::new(),
         camera: None,
+        sections: Vec::new(),
     };
     let placed = loader.file(path, None)?;
     if placed.is_empty() {
@@ -67,6 +77,9 @@ pub(crate) fn load_scene_file(
         camera_at: loader.camera.as_ref().map(|c| c.1.clone()),
         camera: loader.camera.map(|c| c.0),
         source: path.to_path_buf(),
+        section: None,
+        sections: loader.sections,
+        styles: Vec::new(),
     })
 }
 
@@ -111,6 +124,8 @@ struct Loader<'w> {
     /// Files already loaded (an include of one again is skipped).
     loaded: HashSet<PathBuf>,
     camera: Option<(CameraSpec, Location)>,
+    /// The top file's `section` planes, in order.
+    sections: Vec<(P3, V3)>,
 }
 
 /// What an object's `{ ... }` block holds, sorted by role.
@@ -118,6 +133,7 @@ struct Loader<'w> {
 struct Body<'a> {
     transforms: Vec<Node<'a>>,
     inbox: Option<Node<'a>>,
+    style: Option<Node<'a>>,
     faces: Vec<Node<'a>>,
     /// Geometry nodes, `object` and `instance` nodes, in source order.
     parts: Vec<Node<'a>>,
@@ -179,6 +195,17 @@ impl Loader<'_> {
             let before = placed.len();
             match n.name() {
                 "camera" => self.camera_node(n, top)?,
+                "section" => {
+                    let plane = parse_section(n)?;
+                    if top {
+                        self.sections.push(plane);
+                    } else {
+                        self.warnings.push(Warning {
+                            location: n.loc(),
+                            message: "the section of an included file is ignored".into(),
+                        });
+                    }
+                }
                 "include" => placed.extend(self.include(n)?),
                 "prototype" => self.prototype(n, &later)?,
                 "object" => {
@@ -320,6 +347,9 @@ impl Loader<'_> {
         if let Some(ib) = &body.inbox {
             object.inbox = self.checked_inbox(ib, &xf, &object)?;
         }
+        if let Some(st) = &body.style {
+            object.style = Some(parse_style(st)?);
+        }
         Ok(object)
     }
 
@@ -345,10 +375,12 @@ impl Loader<'_> {
         let proto = self.find_prototype(proto_name, n, later)?;
         let mut transforms = Vec::new();
         let mut inbox = None;
+        let mut style = None;
         for c in n.children_or_none() {
             match c.name() {
                 t if is_transform(t) => transforms.push(c),
                 "inbox" => set_once(&mut inbox, c)?,
+                "style" => set_once(&mut style, c)?,
                 other => {
                     return Err(c.parse_err(format!(
                     "unknown node `{other}` in `instance`: expected a transform ({}) or `inbox`",
@@ -366,6 +398,9 @@ impl Loader<'_> {
             Some(ib) => self.checked_inbox(ib, &m, &object)?,
             None => proto.inbox.and_then(|b| transform_box(&b, &m)),
         };
+        if let Some(st) = &style {
+            object.style = Some(parse_style(st)?);
+        }
         Ok(object)
     }
 
@@ -548,6 +583,7 @@ fn sort_body<'a>(n: &Node<'a>) -> Result<Body<'a>> {
         match c.name() {
             t if is_transform(t) => b.transforms.push(c),
             "inbox" => set_once(&mut b.inbox, c)?,
+            "style" => set_once(&mut b.style, c)?,
             "face" => b.faces.push(c),
             "vertices" => {
                 set_once(&mut vertices, c)?;

@@ -8,6 +8,8 @@ pub(crate) mod names;
 pub(crate) mod object;
 pub(crate) mod object_tree;
 pub(crate) mod proof;
+pub(crate) mod section_info;
+pub(crate) mod style;
 pub(crate) mod texture;
 pub(crate) mod topology;
 pub(crate) mod triangulate;
@@ -59,6 +61,12 @@ pub struct Scene {
     pub(crate) camera_at: Option<crate::error::Location>,
     /// The file the scene came from.
     pub source: PathBuf,
+    /// What a section cut did, when this scene is one (`RenderOptions::sections`).
+    pub(crate) section: Option<std::sync::Arc<section_info::SectionInfo>>,
+    /// The scene file's `section` planes (point, normal), cut when a render gives none.
+    pub(crate) sections: Vec<(P3, V3)>,
+    /// Style rules by object path or pattern (`--styles`), applied after the objects' own.
+    pub(crate) styles: Vec<(String, style::Style)>,
 }
 
 /// One leaf object placed in the world: its path, its mesh and its world transform.
@@ -104,6 +112,9 @@ impl Scene {
             camera: None,
             camera_at: None,
             source,
+            section: None,
+            sections: Vec::new(),
+            styles: Vec::new(),
         }
     }
 
@@ -149,6 +160,9 @@ impl Scene {
             camera: self.camera.clone(),
             camera_at: self.camera_at.clone(),
             source: self.source.clone(),
+            section: self.section.clone(),
+            sections: self.sections.clone(),
+            styles: self.styles.clone(),
         }
     }
 }

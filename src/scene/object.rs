@@ -155,6 +155,8 @@ pub struct Object {
     pub(crate) tree: Option<Arc<ObjectTree>>,
     /// Vertices in the subtree, instances expanded; saturating.
     vertices: usize,
+    /// How the object is drawn (scene files' `style` node), inherited by its parts.
+    pub(crate) style: Option<super::style::Style>,
 }
 
 /// A placed prototype whose expansion has more vertices than this gets the CBOX of its
@@ -174,6 +176,7 @@ impl Object {
             vertices: mesh.vertices.len(),
             content: Content::Mesh(mesh),
             tree: None,
+            style: None,
         }
     }
 
@@ -188,6 +191,7 @@ impl Object {
             vertices: subs.iter().fold(0, |n, s| n.saturating_add(s.vertices)),
             content: Content::Subobjects(subs),
             tree: None,
+            style: None,
         }
     }
 
@@ -218,6 +222,7 @@ impl Object {
                 transform,
             }),
             tree: None,
+            style: None,
         }
     }
 

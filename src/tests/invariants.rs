@@ -64,7 +64,7 @@ fn cameras(rng: &mut Rng, centre: P3) -> Vec<Camera> {
 }
 
 /// Checks disjointness and coverage to `tol` of the projected scene area.
-fn check_partition(view: &View, vis: &Visibility, tol: f64) {
+pub(super) fn check_partition(view: &View, vis: &Visibility, tol: f64) {
     let vtps: Vec<_> = vis.by_id().into_iter().map(|f| &f.visible).collect();
     let projected: Vec<Vec<Vec<Vec<Pt2>>>> = view
         .screen

@@ -17,6 +17,7 @@ mod load_mesh_files;
 mod long_faces;
 mod rng;
 mod scene_files;
+mod section;
 mod shared_meshes;
 mod tribox;
 mod tribox_uses;

@@ -19,6 +19,7 @@ use crate::geom::hull2::{convex_hull, covers_convex};
 use crate::geom::poly2::Pt2;
 use crate::geom::{Box3, Rect, M4};
 use crate::prepare::trees::bvtree::{HierarchyKind, ObjectTree};
+use crate::scene::section_info::SectionInfo;
 use crate::scene::{Content, FaceId, Leaf, Object, Scene};
 
 use super::camera::{Camera, Projection};
@@ -55,6 +56,8 @@ pub(crate) struct Cull<'a> {
     pub face_count: u32,
     /// Objects whose CBOX was tested against occluders.
     pub objects_tested: u64,
+    /// Faces a section cut removed whole, among `hidden_parts`.
+    pub removed: u64,
 }
 
 impl<'a> Cull<'a> {
@@ -67,6 +70,7 @@ impl<'a> Cull<'a> {
             components_hidden: 0,
             face_count: scene.face_count() as u32,
             objects_tested: 0,
+            removed: 0,
         }
     }
 
@@ -91,6 +95,29 @@ impl<'a> Cull<'a> {
                 .iter()
                 .map(|p| p.len() as u64)
                 .sum::<u64>()
+            - self.removed
+    }
+
+    /// Also hides the faces a section cut removed whole (they keep their ids, get no
+    /// pieces, and are not counted as culled).
+    pub(crate) fn hide_removed(&mut self, info: &SectionInfo) {
+        if info.removed.is_empty() {
+            return;
+        }
+        self.hidden_parts.resize(self.leaves.len(), Vec::new());
+        for (k, leaf) in self.leaves.iter().enumerate() {
+            let first = leaf.first_face as u32;
+            let faces = first..first + leaf.mesh.faces.len() as u32;
+            let mut removed: Vec<u32> = info.removed_in(faces).collect();
+            if removed.is_empty() {
+                continue;
+            }
+            self.removed += removed.len() as u64;
+            removed.extend_from_slice(&self.hidden_parts[k]);
+            removed.sort_unstable();
+            removed.dedup();
+            self.hidden_parts[k] = removed;
+        }
     }
 
     /// The hidden faces (local indices, ascending) of leaf `k`.

@@ -103,6 +103,9 @@ pub(crate) fn substitute(scene: &Scene, camera: &Camera, opts: &LodOptions) -> (
         camera: scene.camera.clone(),
         camera_at: scene.camera_at.clone(),
         source: scene.source.clone(),
+        section: None,
+        sections: scene.sections.clone(),
+        styles: scene.styles.clone(),
     };
     out.root.cbox = scene.root.cbox.union(&out.root.cbox);
     s.stats.faces_modelled = out.face_count();

@@ -19,6 +19,7 @@ pub(crate) mod lod;
 pub(crate) mod piece_id;
 pub(crate) mod ring_index;
 pub(crate) mod screen;
+pub(crate) mod section;
 pub(crate) mod tree;
 pub(crate) mod turntable;
 pub(crate) mod up;
@@ -132,7 +133,9 @@ impl View {
     ) -> View {
         let kept = cull.leaves.iter().map(|l| l.mesh.faces.len()).sum();
         progress.enter_phase(Stage::View, Phase::Project, kept);
-        let screen = ScreenFaces::from_cull(cull, &camera, progress.count());
+        let mut screen = ScreenFaces::from_cull(cull, &camera, progress.count());
+        screen.section_first = scene.section.as_ref().map(|s| s.first_face);
+        mark_occlude_only(scene, &mut screen);
         progress.enter_phase(Stage::View, Phase::Tree, screen.face_count());
         let tree = ViewTree::build(scene, &camera, &screen, &cull.hidden, progress.count());
         View {
@@ -145,6 +148,27 @@ impl View {
                 tested: cull.objects_tested,
             },
         }
+    }
+}
+
+/// Marks the projected leaves whose style is occlude-only.
+fn mark_occlude_only(scene: &Scene, screen: &mut ScreenFaces) {
+    let styles = scene.leaf_styles();
+    if styles.is_empty() {
+        return;
+    }
+    let hidden: std::collections::HashMap<usize, bool> = scene
+        .leaves()
+        .iter()
+        .zip(&styles)
+        .filter(|(l, _)| !l.mesh.faces.is_empty())
+        .map(|(l, s)| (l.first_face, s.hidden()))
+        .collect();
+    for l in &mut screen.leaves {
+        l.occlude_only = hidden
+            .get(&(l.first_face.index()))
+            .copied()
+            .unwrap_or(false);
     }
 }
 

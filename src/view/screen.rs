@@ -79,6 +79,8 @@ pub(crate) struct LeafInfo {
     pub face_count: u32,
     /// Where its vertices' world points start in [`ScreenFaces::world`].
     pub world_first: u32,
+    /// Styled occlude-only: it hides, but is never drawn nor listed.
+    pub occlude_only: bool,
 }
 
 impl LeafInfo {
@@ -115,6 +117,8 @@ pub(crate) struct ScreenFaces {
     pub leaves: Vec<LeafInfo>,
     /// Run boxes of every piece of more than [`INDEXED_ABOVE`] points, by ascending piece.
     pub ring_indexes: Vec<(PieceId, RingIndex)>,
+    /// In a section view, the first face a cut made (those from it on are section faces).
+    pub section_first: Option<u32>,
 }
 
 impl ScreenFaces {
@@ -156,6 +160,16 @@ impl ScreenFaces {
         out.face_starts
             .resize(cull.face_count as usize + 1, out.pieces.len() as u32);
         out
+    }
+
+    /// True when face `f` (which must have pieces) belongs to an occlude-only object.
+    pub(crate) fn occlude_only(&self, f: FaceId) -> bool {
+        self.leaf_of_face(f).occlude_only
+    }
+
+    /// True when face `f` was made by a section cut.
+    pub(crate) fn is_section(&self, f: FaceId) -> bool {
+        self.section_first.is_some_and(|s| f.0 >= s)
     }
 
     /// Number of faces (not pieces).
@@ -307,6 +321,7 @@ impl ScreenFaces {
             first_face: FaceId(leaf.first_face as u32),
             face_count: leaf.mesh.faces.len() as u32,
             world_first,
+            occlude_only: false,
         });
         let mut hidden = hidden.iter().peekable();
         let mut scratch = Vec::new();

@@ -9,4 +9,5 @@ mod goldens;
 mod hostile;
 mod plot;
 mod readme;
+mod section;
 mod views;

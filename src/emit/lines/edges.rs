@@ -30,11 +30,15 @@ pub enum EdgeKind {
     Intersection,
     /// Any other polygon edge.
     Plain,
+    /// Where a section plane cut the scene: the outline of a section face, or the cut edge
+    /// of an open mesh (drawn with the section pen).
+    Section,
 }
 
 impl EdgeKind {
     /// Every kind, in drawing order.
-    pub const ALL: [EdgeKind; 5] = [
+    pub const ALL: [EdgeKind; 6] = [
+        EdgeKind::Section,
         EdgeKind::Silhouette,
         EdgeKind::Border,
         EdgeKind::Crease,
@@ -50,6 +54,7 @@ impl EdgeKind {
             EdgeKind::Crease => "crease",
             EdgeKind::Intersection => "intersection",
             EdgeKind::Plain => "plain",
+            EdgeKind::Section => "section",
         }
     }
 }
@@ -172,12 +177,20 @@ pub(crate) fn mesh_edges(
         let half = half_edges(world, start, end, base);
         let edge = |g: Range<u32>| {
             let adj = &half[g.start as usize..g.end as usize];
-            let kind = classify(adj, world, base, &facing, cos_crease);
+            // An edge only of faces a section cut removed is not in the scene (not even as a
+            // hidden line).
+            if removed_only(world, adj) {
+                return None;
+            }
+            let mut kind = classify(adj, world, base, &facing, cos_crease);
             (opts.set == EdgeSet::All || kind != EdgeKind::Plain).then(|| {
                 let h = &adj[0];
                 let pts = world.points_of(h.face as usize);
                 let at = h.at(world, base);
                 let (i, j) = (at, (at + 1) % pts.len());
+                if on_section(world, h.face, kind, [&pts[i], &pts[j]]) {
+                    kind = EdgeKind::Section;
+                }
                 Edge {
                     leaf,
                     ends: if h.fwd(world, base) {
@@ -271,6 +284,27 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
     }
     sort_by_key(&mut groups, |g| half[g.start as usize].seq);
     groups
+}
+
+/// True when every face beside an edge was removed whole by a section cut.
+fn removed_only(world: &WorldFaces, adj: &[HalfEdge]) -> bool {
+    world.section.as_deref().is_some_and(|info| {
+        adj.iter()
+            .all(|h| info.removed.binary_search(&h.face).is_ok())
+    })
+}
+
+/// True when an outline or border edge of face `face` lies where a section cut the scene:
+/// an edge of a section face, or one of a cut leaf with both ends on the cut (corners on a
+/// plane, crossings the cut made).
+fn on_section(world: &WorldFaces, face: u32, kind: EdgeKind, ends: [&P3; 2]) -> bool {
+    let Some(info) = world.section.as_deref() else {
+        return false;
+    };
+    if !matches!(kind, EdgeKind::Border | EdgeKind::Silhouette) {
+        return false;
+    }
+    info.is_section(face) || (info.in_cut_leaf(face) && info.on_one_plane(ends[0], ends[1]))
 }
 
 /// Kind of a mesh edge in this view.

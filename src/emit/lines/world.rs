@@ -53,6 +53,8 @@ pub(crate) struct WorldFaces<'s> {
     /// that the prepare stage proved free of self-intersection (two of its faces meet only
     /// in shared vertices and edges), [`NO_PIECE`] elsewhere.
     pub clean_piece: Vec<u32>,
+    /// What a section cut did, when the scene is cut.
+    pub section: Option<std::sync::Arc<crate::scene::section_info::SectionInfo>>,
 }
 
 /// [`WorldFaces::clean_piece`] of a face on no piece proven free of self-intersection.
@@ -80,6 +82,7 @@ impl<'s> WorldFaces<'s> {
             ..Default::default()
         };
         w.clean_piece.reserve_exact(scene.face_count());
+        w.section = scene.section.clone();
         let mut next_piece = 0;
         // The projected leaves, in the same global order (a hidden subtree's are absent).
         let mut projected = screen

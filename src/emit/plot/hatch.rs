@@ -105,7 +105,7 @@ pub(crate) fn hatch(
             let first = leaf.first_face;
             (0..leaf.mesh.faces.len()).map(move |k| (FaceId((first + k) as u32), li as u32))
         })
-        .filter(|(f, _)| !vis.face(*f).visible.is_empty())
+        .filter(|(f, _)| !vis.face(*f).visible.is_empty() && !view.screen.occlude_only(*f))
         .collect();
     let tones: Vec<(FaceId, u32, u8)> = faces
         .par_iter()
@@ -133,6 +133,49 @@ pub(crate) fn hatch(
         .collect();
     done.tick_rest(tones.len());
     Ok(Hatching { segments, tones })
+}
+
+/// The 45° hatching of the visible parts of a section view's section faces, `spacing_mm`
+/// apart on the page, each segment with its face's leaf (in face order).
+pub(crate) fn section_hatch(
+    scene: &Scene,
+    view: &View,
+    vis: &Visibility,
+    layout: &Layout,
+    spacing_mm: f64,
+) -> Result<Vec<(u32, [Pt2; 2])>> {
+    let Some(first) = view.screen.section_first else {
+        return Ok(Vec::new());
+    };
+    let fam = Family::new(layout, 45.0, spacing_mm);
+    let firsts: Vec<usize> = scene.leaves().iter().map(|l| l.first_face).collect();
+    let faces: Vec<FaceId> = (first as usize..view.screen.face_count())
+        .map(|f| FaceId(f as u32))
+        .filter(|&f| !vis.face(f).visible.is_empty())
+        .collect();
+    let lines: u64 = faces
+        .iter()
+        .map(|&f| fam.count(&vis.face(f).visible))
+        .fold(0, u64::saturating_add);
+    if lines > MAX_HATCH_LINES {
+        return Err(Error::Usage(format!(
+            "--section-hatch {spacing_mm}: hatching the section faces would draw {lines} lines, more than {MAX_HATCH_LINES}: give a wider spacing"
+        )));
+    }
+    Ok(faces
+        .par_iter()
+        .map(|&f| {
+            // The leaf's index in the scene's order (the drawing's), not the view's.
+            let leaf = firsts.partition_point(|&ff| ff <= f.index()) as u32 - 1;
+            fam.clip(&vis.face(f).visible)
+                .into_iter()
+                .map(|s| (leaf, s))
+                .collect::<Vec<_>>()
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .flatten()
+        .collect())
 }
 
 /// The most hatch lines (one line of one family across one face) a picture may have: each

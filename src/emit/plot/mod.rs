@@ -39,7 +39,7 @@ use crate::visibility::Visibility;
 use self::clip_rect::clip_polyline;
 use self::dash::dashes;
 use self::dedup::{dedup, SegmentIndex};
-use self::hatch::{hatch, tone_outlines};
+use self::hatch::{hatch, section_hatch, tone_outlines};
 use self::join::join;
 use self::page::Layout;
 use self::picture::{Fill, Layer, LayerMode, Pen, Picture, PictureOptions, PlotStats, Run};
@@ -141,6 +141,21 @@ pub(crate) fn picture(
         }
     }
 
+    // Section faces: hatched at 45° on the section layer, whatever else is hatched.
+    for (leaf, s) in section_hatch(scene, view, vis, &layout, opts.section_hatch_mm)? {
+        items.push(Item {
+            pen: Pen::SectionHatch,
+            leaf,
+            pts: s.to_vec(),
+        });
+    }
+
+    // Objects styled occlude-only are never drawn.
+    let styles = scene.leaf_styles();
+    let style = |leaf: u32| styles.get(leaf as usize).copied().unwrap_or_default();
+    if !styles.is_empty() {
+        items.retain(|it| !style(it.leaf).hidden());
+    }
     // On the page, clipped to the drawing area, as segments in priority order.
     let mut stats = PlotStats::default();
     items.sort_by_key(|it| (it.pen, it.leaf));
@@ -174,27 +189,38 @@ pub(crate) fn picture(
     // Every line drawn, to keep the joins' gap bridges off them.
     let mut bridges = Bridges::new(&segs, &kept, &owner, eps);
 
-    // Per layer and pen: join, simplify, dash.
+    // Per layer and pen: join, simplify, dash. An object's style may send its lines (not its
+    // hidden lines, nor hatching) to another pen's layer, and set their width.
+    let styled = |pen: Pen| !matches!(pen, Pen::Hidden | Pen::Hatch | Pen::SectionHatch);
     let layer_of = |pen: Pen, leaf: u32| match opts.layers {
-        LayerMode::Pen => pen.number(),
+        LayerMode::Pen => style(leaf)
+            .pen
+            .filter(|_| styled(pen))
+            .unwrap_or(pen.number()),
         LayerMode::Object => tops.of_leaf[leaf as usize] + 1,
         LayerMode::None => 1,
     };
-    let mut groups: BTreeMap<(u32, Pen), Vec<Vec<Pt2>>> = BTreeMap::new();
+    let weight_of = |pen: Pen, leaf: u32| {
+        style(leaf)
+            .weight
+            .filter(|_| styled(pen))
+            .map_or(0, f64::to_bits)
+    };
+    let mut groups: BTreeMap<(u32, Pen, u64), Vec<Vec<Pt2>>> = BTreeMap::new();
     for (src, s) in kept {
         let (pen, leaf) = owner[src];
         groups
-            .entry((layer_of(pen, leaf), pen))
+            .entry((layer_of(pen, leaf), pen, weight_of(pen, leaf)))
             .or_default()
             .push(s.to_vec());
     }
-    let mut by_layer: BTreeMap<u32, Vec<(Pen, Vec<Pt2>)>> = BTreeMap::new();
+    let mut by_layer: BTreeMap<u32, Vec<(Pen, u64, Vec<Pt2>)>> = BTreeMap::new();
     lane.enter_phase(
         Stage::Emit,
         Phase::Join,
         groups.values().map(Vec::len).sum(),
     );
-    for ((layer, pen), lines) in groups {
+    for ((layer, pen, weight), lines) in groups {
         let share = Share::new(lane.count(), lines.len());
         // The hidden pen's lines are joined twice, before and after dashing.
         let once = if pen == Pen::Hidden { 0.4 } else { 1.0 };
@@ -223,7 +249,7 @@ pub(crate) fn picture(
         by_layer
             .entry(layer)
             .or_default()
-            .extend(strokes.into_iter().map(|l| (pen, l)));
+            .extend(strokes.into_iter().map(|l| (pen, weight, l)));
     }
     // Each layer's drawing order is planned on its own: in parallel, in layer order.
     let by_layer: Vec<_> = by_layer.into_iter().collect();
@@ -321,6 +347,12 @@ fn check(o: &PictureOptions) -> Result<()> {
             return bad("--hatch-angle: expected degrees".into());
         }
     }
+    if !(o.section_hatch_mm.is_finite() && o.section_hatch_mm >= 0.01) {
+        return bad(format!(
+            "--section-hatch {}: expected mm >= 0.01",
+            o.section_hatch_mm
+        ));
+    }
     if let Some(r) = o.frame {
         if r.is_empty()
             || !(r.xmin.is_finite()
@@ -366,24 +398,27 @@ fn simplify(l: &[Pt2], tol: f64) -> Vec<Pt2> {
 
 /// A layer's strokes in plotting order, grouped into runs of one pen; planning the order
 /// fills `span`.
-fn ordered_runs(strokes: Vec<(Pen, Vec<Pt2>)>, span: Span) -> Vec<Run> {
+fn ordered_runs(strokes: Vec<(Pen, u64, Vec<Pt2>)>, span: Span) -> Vec<Run> {
     let ends: Vec<[Pt2; 2]> = strokes
         .iter()
-        .map(|(_, l)| [l[0], l[l.len() - 1]])
+        .map(|(_, _, l)| [l[0], l[l.len() - 1]])
         .collect();
-    let mut strokes: Vec<Option<(Pen, Vec<Pt2>)>> = strokes.into_iter().map(Some).collect();
+    let mut strokes: Vec<Option<(Pen, u64, Vec<Pt2>)>> = strokes.into_iter().map(Some).collect();
     let mut runs: Vec<Run> = Vec::new();
     for (i, rev) in plan(&ends, span) {
-        let Some((pen, mut l)) = strokes[i].take() else {
+        let Some((pen, weight, mut l)) = strokes[i].take() else {
             continue;
         };
         if rev {
             l.reverse();
         }
+        // A weight's bits, 0 for none (a weight is above 0).
+        let width_mm = (weight != 0).then(|| f64::from_bits(weight));
         match runs.last_mut() {
-            Some(r) if r.pen == pen => r.lines.push(l),
+            Some(r) if r.pen == pen && r.width_mm == width_mm => r.lines.push(l),
             _ => runs.push(Run {
                 pen,
+                width_mm,
                 lines: vec![l],
             }),
         }
@@ -405,7 +440,10 @@ fn fills(
 ) -> Vec<Fill> {
     let light = light_direction(&view.camera, light);
     let mut by_grey: BTreeMap<u8, Vec<Vec<Pt2>>> = BTreeMap::new();
-    let visible = || vis.iter().filter(|(_, fv)| !fv.visible.is_empty());
+    let visible = || {
+        vis.iter()
+            .filter(|(f, fv)| !fv.visible.is_empty() && !view.screen.occlude_only(*f))
+    };
     let n = visible().count();
     lane.enter_phase(Stage::Emit, Phase::Fill, n);
     let done = lane.count();

@@ -26,17 +26,23 @@ pub enum Pen {
     Hatch,
     /// Hidden lines, as dashes.
     Hidden,
+    /// Outlines of section faces and cut edges (heavy, layer 7 with the section hatching).
+    Section,
+    /// The section faces' 45° hatching (layer 7).
+    SectionHatch,
 }
 
 impl Pen {
     /// Every pen, in layer order.
-    pub const ALL: [Pen; 6] = [
+    pub const ALL: [Pen; 8] = [
         Pen::Outline,
         Pen::Edges,
         Pen::Intersection,
         Pen::Mark,
         Pen::Hatch,
         Pen::Hidden,
+        Pen::Section,
+        Pen::SectionHatch,
     ];
 
     /// The pen of a visible line kind.
@@ -45,6 +51,7 @@ impl Pen {
             EdgeKind::Silhouette | EdgeKind::Border => Pen::Outline,
             EdgeKind::Intersection => Pen::Intersection,
             EdgeKind::Crease | EdgeKind::Plain => Pen::Edges,
+            EdgeKind::Section => Pen::Section,
         }
     }
 
@@ -57,6 +64,7 @@ impl Pen {
             Pen::Mark => 4,
             Pen::Hatch => 5,
             Pen::Hidden => 6,
+            Pen::Section | Pen::SectionHatch => 7,
         }
     }
 
@@ -69,15 +77,17 @@ impl Pen {
             Pen::Mark => "marks",
             Pen::Hatch => "hatching",
             Pen::Hidden => "hidden",
+            Pen::Section => "section",
+            Pen::SectionHatch => "section-hatching",
         }
     }
 
     /// Stroke width as a fraction of the outline pen's (`--pen`).
     pub fn width_factor(self) -> f64 {
         match self {
-            Pen::Outline => 1.0,
+            Pen::Outline | Pen::Section => 1.0,
             Pen::Edges | Pen::Intersection => 0.6,
-            Pen::Mark | Pen::Hatch | Pen::Hidden => 0.5,
+            Pen::Mark | Pen::Hatch | Pen::Hidden | Pen::SectionHatch => 0.5,
         }
     }
 
@@ -138,6 +148,8 @@ pub struct PictureOptions {
     /// Frame this screen rectangle instead of the drawing's bounds (the same frame for every
     /// view of a turntable).
     pub frame: Option<Rect>,
+    /// Spacing in mm of the 45° hatching of section faces (`--section-hatch`).
+    pub section_hatch_mm: f64,
 }
 
 impl Default for PictureOptions {
@@ -157,6 +169,7 @@ impl Default for PictureOptions {
             hatch: None,
             light: None,
             frame: None,
+            section_hatch_mm: 2.0,
         }
     }
 }
@@ -175,6 +188,8 @@ pub(crate) struct Fill {
 pub(crate) struct Run {
     /// The pen.
     pub pen: Pen,
+    /// A stroke width in mm instead of the pen's (an object's style weight).
+    pub width_mm: Option<f64>,
     /// Polylines in mm, in drawing order and direction.
     pub lines: Vec<Vec<Pt2>>,
 }
@@ -262,6 +277,11 @@ pub(crate) struct Picture {
 
 impl Picture {
     /// Stroke width of a pen in mm.
+    /// The stroke width of a run in mm: its own, or its pen's.
+    pub(crate) fn run_width(&self, run: &Run) -> f64 {
+        run.width_mm.unwrap_or_else(|| self.width(run.pen))
+    }
+
     pub(crate) fn width(&self, pen: Pen) -> f64 {
         self.pen_mm * pen.width_factor()
     }
@@ -289,7 +309,7 @@ mod tests {
         assert_eq!(Pen::of(EdgeKind::Crease), Pen::Edges);
         assert_eq!(Pen::of(EdgeKind::Intersection), Pen::Intersection);
         let nums: Vec<u32> = Pen::ALL.iter().map(|p| p.number()).collect();
-        assert_eq!(nums, vec![1, 2, 3, 4, 5, 6]);
+        assert_eq!(nums, vec![1, 2, 3, 4, 5, 6, 7, 7]);
         assert!(Pen::Outline.width_factor() > Pen::Edges.width_factor());
     }
 
@@ -300,6 +320,7 @@ mod tests {
             name: "outline".into(),
             runs: vec![Run {
                 pen: Pen::Outline,
+                width_mm: None,
                 lines: vec![vec![[0., 0.], [3., 0.]], vec![[3., 4.], [3., 5.]]],
             }],
         };
@@ -309,6 +330,7 @@ mod tests {
         let one = Layer {
             runs: vec![Run {
                 pen: Pen::Outline,
+                width_mm: None,
                 lines: vec![vec![[0., 0.], [3., 0.]]],
             }],
             ..l.clone()

@@ -160,7 +160,8 @@ fn json_into(
     for (k, (id, f)) in vis.iter().enumerate() {
         done.tick(k);
         let visible = clean(&f.visible, delta);
-        if visible.is_empty() {
+        // An occlude-only object hides what is behind it but is not listed.
+        if visible.is_empty() || view.screen.occlude_only(id) {
             continue;
         }
         let area = match &visible {
@@ -171,11 +172,12 @@ fn json_into(
         s.push_str(if first { "\n" } else { ",\n" });
         first = false;
         let leaf = view.screen.leaf_index_of_face(id);
-        let _ = write!(
-            s,
-            "{{\"id\":{id},\"object\":{},\"area\":",
-            paths[leaf as usize]
-        );
+        let _ = write!(s, "{{\"id\":{id},\"object\":{},", paths[leaf as usize]);
+        // Faces made by a section cut say so; others are as they always were.
+        if view.screen.is_section(id) {
+            s.push_str("\"section\":true,");
+        }
+        s.push_str("\"area\":");
         write_num(s, area);
         s.push_str(",\"visible\":");
         list(s, &visible, |s, poly| list(s, poly, |s, r| ring(s, r)));

@@ -91,7 +91,7 @@ pub(crate) fn rasterise(pic: &Picture, k: f64, done: Count) -> Result<Pixmap, Er
             }
             if let Some(path) = pb.finish() {
                 let stroke = Stroke {
-                    width: ((pic.width(run.pen) * k) as f32).max(0.5),
+                    width: ((pic.run_width(run) * k) as f32).max(0.5),
                     line_cap: LineCap::Round,
                     line_join: LineJoin::Round,
                     ..Stroke::default()
@@ -152,6 +152,7 @@ mod tests {
                 name: "outline".into(),
                 runs: vec![Run {
                     pen: Pen::Outline,
+                    width_mm: None,
                     lines: vec![vec![[5., 55.], [105., 5.]]],
                 }],
             }],

@@ -13,7 +13,9 @@ use crate::count::Count;
 use crate::geom::poly2::Pt2;
 
 use super::json::num;
-use crate::emit::plot::picture::{LayerMode, Pen, Picture};
+#[cfg(test)]
+use crate::emit::plot::picture::Pen;
+use crate::emit::plot::picture::{LayerMode, Picture, Run};
 
 /// The Inkscape namespace (layers).
 const INKSCAPE: &str = "http://www.inkscape.org/namespaces/inkscape";
@@ -69,17 +71,20 @@ pub(crate) fn to_svg(pic: &Picture, done: Count) -> String {
         .set("fill", "none")
         .set("stroke-linecap", "round")
         .set("stroke-linejoin", "round");
-        let one_pen = l.runs.windows(2).all(|w| w[0].pen == w[1].pen);
+        let one_pen = l
+            .runs
+            .windows(2)
+            .all(|w| w[0].pen == w[1].pen && w[0].width_mm == w[1].width_mm);
         if let (true, Some(r)) = (one_pen, l.runs.first()) {
             // One pen: its colour and width on the layer, where plotter tools look for them.
-            g = pen_style(g, r.pen, pic);
+            g = pen_style(g, r, pic);
         }
         for r in &l.runs {
             let mut p = Path::new()
                 .set("class", r.pen.name())
                 .set("d", path_data(&r.lines));
             if !one_pen {
-                p = pen_style(p, r.pen, pic);
+                p = pen_style(p, r, pic);
             }
             g = g.add(p);
             done.add(r.lines.len());
@@ -103,12 +108,12 @@ fn layer(number: u32, name: &str) -> Group {
 }
 
 /// Sets a pen's stroke colour and width (mm) on an element.
-fn pen_style<T: svg::Node>(mut e: T, pen: Pen, pic: &Picture) -> T {
+fn pen_style<T: svg::Node>(mut e: T, run: &Run, pic: &Picture) -> T {
     e.assign(
         "stroke",
-        crate::emit::plot::color::Rgb::grey(pen.grey()).hex(),
+        crate::emit::plot::color::Rgb::grey(run.pen.grey()).hex(),
     );
-    e.assign("stroke-width", num(pic.width(pen)));
+    e.assign("stroke-width", num(pic.run_width(run)));
     e
 }
 
@@ -156,6 +161,7 @@ mod tests {
                     name: "outline".into(),
                     runs: vec![Run {
                         pen: Pen::Outline,
+                        width_mm: None,
                         lines: vec![vec![[10.0, 20.0], [1.0 / 3.0, 50.0]]],
                     }],
                 },
@@ -164,6 +170,7 @@ mod tests {
                     name: "hidden".into(),
                     runs: vec![Run {
                         pen: Pen::Hidden,
+                        width_mm: None,
                         lines: vec![vec![[1.0, 1.0], [2.0, 1.0]], vec![[3.0, 1.0], [4.0, 1.0]]],
                     }],
                 },
