@@ -131,3 +131,18 @@ def test_threads_are_released(root):
     for t in threads:
         t.join()
     assert results[0] is not None and results[0] == results[1]
+
+
+def test_a_section_is_flagged_and_matches_the_command(kepler_bin, tmp_path):
+    # The unit cube, cut at x = 0.5 and seen along -x: the cut is all that shows.
+    cube = tmp_path / "cube.obj"
+    cube.write_text(
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+    )
+    options = dict(dir=(-1, 0, 0), section=[(0.5, 0, 0, 1, 0, 0)])
+    r = kepler.load(cube).render(**options)
+    assert [f.section for f in r.faces] == [True]
+    assert r.faces[0].area == pytest.approx(1.0, rel=1e-12)
+    flags = ["--dir", "-1,0,0", "--section", "0.5,0,0,1,0,0"]
+    assert r.to_json().encode() == cli(kepler_bin, tmp_path, cube, flags, "json")
