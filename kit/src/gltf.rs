@@ -278,7 +278,10 @@ mod tests {
         };
         let b = g.glb();
         assert_eq!(&b[..4], b"glTF");
-        assert_eq!(u32::from_le_bytes([b[8], b[9], b[10], b[11]]) as usize, b.len());
+        assert_eq!(
+            u32::from_le_bytes([b[8], b[9], b[10], b[11]]) as usize,
+            b.len()
+        );
         assert!(g.gltf_embedded().contains(";base64,"));
     }
 }

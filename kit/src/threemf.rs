@@ -56,7 +56,11 @@ pub fn model_xml(objects: &[ThreeMfObject], items: &[(u32, Option<[f64; 12]>)]) 
             }
             s.push_str("</vertices>\n<triangles>\n");
             for t in &o.triangles {
-                let _ = writeln!(s, r#"<triangle v1="{}" v2="{}" v3="{}"/>"#, t[0], t[1], t[2]);
+                let _ = writeln!(
+                    s,
+                    r#"<triangle v1="{}" v2="{}" v3="{}"/>"#,
+                    t[0], t[1], t[2]
+                );
             }
             s.push_str("</triangles>\n</mesh>\n");
         } else {

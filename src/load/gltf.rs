@@ -41,7 +41,11 @@ pub(super) fn load_gltf(
     progress: &Progress,
 ) -> Result<Scene> {
     const MAX: u64 = super::read::MAX_MESH_BYTES;
-    progress.enter_phase(Stage::Load, Phase::Read, super::read::file_len(path, None, MAX)?);
+    progress.enter_phase(
+        Stage::Load,
+        Phase::Read,
+        super::read::file_len(path, None, MAX)?,
+    );
     let bytes = super::read::read_file(path, None, MAX, progress.count())?;
     let (json, bin) = if is_glb(&bytes) {
         split_glb(path, &bytes)?
@@ -423,7 +427,10 @@ impl<'a, 'b> Builder<'a, 'b> {
         let scenes = top.list("scenes")?.len();
         if scenes > 1 {
             let s = self.scene.unwrap_or(0);
-            parts.push(format!("{} scenes other than the default one ({s})", scenes - 1));
+            parts.push(format!(
+                "{} scenes other than the default one ({s})",
+                scenes - 1
+            ));
         }
         let s = &self.skipped;
         if s.lines > 0 {

@@ -199,12 +199,12 @@ impl<'a> Buffers<'a> {
             )
         })?;
         let at = Location::file(self.file);
-        super::confine::check_under(self.root.as_deref(), &path, &canonical, &at).map_err(
-            |e| match e {
+        super::confine::check_under(self.root.as_deref(), &path, &canonical, &at).map_err(|e| {
+            match e {
                 Error::Invalid(_, m) => uri.err(m),
                 e => e,
-            },
-        )?;
+            }
+        })?;
         const MAX: u64 = super::read::MAX_MESH_BYTES;
         let bytes = super::read::read_file(&path, None, MAX, self.progress.count())
             .map_err(|e| uri.err(e))?;
@@ -331,6 +331,9 @@ mod tests {
             "m.glb: byte 12: GLB chunk 0: its length is 9 bytes, only 8 follow"
         );
         let e = split_glb(p, &g[..20]).unwrap_err().to_string();
-        assert!(e.contains("the length field says 28 bytes, the file has 20"), "{e}");
+        assert!(
+            e.contains("the length field says 28 bytes, the file has 20"),
+            "{e}"
+        );
     }
 }

@@ -140,10 +140,7 @@ impl<'a> J<'a> {
     pub(super) fn numbers(&self, n: usize) -> Result<Vec<f64>> {
         let items = self.items()?;
         if items.len() != n {
-            return Err(self.err(format!(
-                "expected {n} numbers, found {}",
-                items.len()
-            )));
+            return Err(self.err(format!("expected {n} numbers, found {}", items.len())));
         }
         items.iter().map(J::number).collect()
     }
@@ -206,7 +203,12 @@ mod tests {
         let e = nodes[0].req("x").unwrap_err().to_string();
         assert_eq!(e, "m.gltf: nodes[0].x: required but missing");
         assert!(top.list("scenes").unwrap().is_empty());
-        let e = top.req("nodes").unwrap().numbers(3).unwrap_err().to_string();
+        let e = top
+            .req("nodes")
+            .unwrap()
+            .numbers(3)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("nodes: expected 3 numbers, found 2"), "{e}");
     }
 }

@@ -91,11 +91,7 @@ fn primitive(
         Ok(*s)
     };
     for t in triangles(mode, &idx) {
-        let f = [
-            corner(t[0], out)?,
-            corner(t[1], out)?,
-            corner(t[2], out)?,
-        ];
+        let f = [corner(t[0], out)?, corner(t[1], out)?, corner(t[2], out)?];
         out.faces.push(f.to_vec());
     }
     Ok(())

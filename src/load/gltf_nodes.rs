@@ -47,7 +47,9 @@ fn check_acyclic(nodes: &[J], parent: &[Option<usize>]) -> Result<()> {
                 2 => break,
                 1 => {
                     let on = nodes[c].get("children").unwrap_or_else(|| nodes[c].clone());
-                    return Err(on.err(format!("node {c} is its own ancestor (a cycle of children)")));
+                    return Err(on.err(format!(
+                        "node {c} is its own ancestor (a cycle of children)"
+                    )));
                 }
                 _ => {
                     state[c] = 1;
@@ -141,9 +143,8 @@ mod tests {
         let f = Path::new("t.gltf");
         // A quarter turn about z (x -> y), scale 2, then translate by (10, 0, 0).
         let h = std::f64::consts::FRAC_1_SQRT_2;
-        let text = format!(
-            r#"{{"translation":[10,0,0],"rotation":[0,0,{h},{h}],"scale":[2,2,2]}}"#
-        );
+        let text =
+            format!(r#"{{"translation":[10,0,0],"rotation":[0,0,{h},{h}],"scale":[2,2,2]}}"#);
         let v = doc(&text);
         let m = local_matrix(&J::top(&v, f)).unwrap();
         let p = m.transform_point(&P3::new(1., 0., 0.));

@@ -23,8 +23,8 @@ pub(crate) mod stl;
 mod text;
 mod threemf;
 mod threemf_model;
-mod zip;
 mod transform;
+mod zip;
 
 use std::path::Path;
 

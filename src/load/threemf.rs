@@ -26,7 +26,11 @@ pub(super) fn load_3mf(
     progress: &Progress,
 ) -> Result<Scene> {
     const MAX: u64 = super::read::MAX_MESH_BYTES;
-    progress.enter_phase(Stage::Load, Phase::Read, super::read::file_len(path, None, MAX)?);
+    progress.enter_phase(
+        Stage::Load,
+        Phase::Read,
+        super::read::file_len(path, None, MAX)?,
+    );
     let bytes = super::read::read_file(path, None, MAX, progress.count())?;
     progress.enter_phase(Stage::Load, Phase::Parse, bytes.len());
     let archive = Archive::open(path, &bytes)?;

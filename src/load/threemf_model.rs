@@ -264,9 +264,10 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
         }
         match self.objects.get(&id) {
             Some(r) => Ok((id, r)),
-            None => Err(self
-                .cx
-                .err(ref_node, format!("object {id} does not exist in <resources>"))),
+            None => Err(self.cx.err(
+                ref_node,
+                format!("object {id} does not exist in <resources>"),
+            )),
         }
     }
 
@@ -288,9 +289,10 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
         match done.get(&id) {
             Some(true) => return Ok(()),
             Some(false) => {
-                return Err(self
-                    .cx
-                    .err(node, format!("object {id} contains itself through its components")))
+                return Err(self.cx.err(
+                    node,
+                    format!("object {id} contains itself through its components"),
+                ))
             }
             None => {}
         }
@@ -397,10 +399,7 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
                 for a in ["v1", "v2", "v3"] {
                     let i = cx.index(t, a)?;
                     if i as usize >= n {
-                        return Err(cx.err(
-                            t,
-                            format!("{a}={i}: the mesh has only {n} vertices"),
-                        ));
+                        return Err(cx.err(t, format!("{a}={i}: the mesh has only {n} vertices")));
                     }
                     f.push(i);
                 }
@@ -517,7 +516,10 @@ mod tests {
         assert_eq!(pair.name, "pair");
         let subs = pair.subobjects();
         assert_eq!(subs.len(), 2);
-        assert_eq!((subs[0].name.as_str(), subs[1].name.as_str()), ("tri", "tri.2"));
+        assert_eq!(
+            (subs[0].name.as_str(), subs[1].name.as_str()),
+            ("tri", "tri.2")
+        );
         let (crate::scene::Content::Instance(a), crate::scene::Content::Instance(b)) =
             (&subs[0].content, &subs[1].content)
         else {

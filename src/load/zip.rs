@@ -75,9 +75,8 @@ impl<'b> Archive<'b> {
         let mut entries = Vec::new();
         let mut at = cd_off as usize;
         for _ in 0..count {
-            let (entry, next) = central_entry(bytes, at).ok_or_else(|| {
-                err(at, "a bad central directory entry (signature or lengths)")
-            })?;
+            let (entry, next) = central_entry(bytes, at)
+                .ok_or_else(|| err(at, "a bad central directory entry (signature or lengths)"))?;
             if next as u64 > cd_end {
                 return Err(err(at, "a central directory entry runs past the directory"));
             }
@@ -161,7 +160,9 @@ impl<'b> Archive<'b> {
             )));
         }
         if crc32(&out) != e.crc {
-            return Err(err("its CRC-32 does not match: the archive is damaged".into()));
+            return Err(err(
+                "its CRC-32 does not match: the archive is damaged".into()
+            ));
         }
         Ok(out)
     }
@@ -192,9 +193,9 @@ fn central_entry(b: &[u8], at: usize) -> Option<(Entry, usize)> {
 fn find_eocd(b: &[u8]) -> Option<usize> {
     let last = b.len().checked_sub(22)?;
     let first = last.saturating_sub(0xFFFF);
-    (first..=last)
-        .rev()
-        .find(|&i| u32_at(b, i) == Some(EOCD) && u16_at(b, i + 20).map(usize::from) == Some(b.len() - i - 22))
+    (first..=last).rev().find(|&i| {
+        u32_at(b, i) == Some(EOCD) && u16_at(b, i + 20).map(usize::from) == Some(b.len() - i - 22)
+    })
 }
 
 /// The CRC-32 (IEEE) of `data`.
@@ -202,7 +203,11 @@ pub(crate) fn crc32(data: &[u8]) -> u32 {
     let table: Vec<u32> = (0..256u32)
         .map(|mut c| {
             for _ in 0..8 {
-                c = if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
+                c = if c & 1 != 0 {
+                    0xEDB8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
             }
             c
         })

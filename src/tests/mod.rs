@@ -9,6 +9,7 @@ mod caps;
 mod exact_cases;
 mod exact_check;
 mod flatten;
+mod import;
 mod inbox;
 mod invariants;
 mod json_dust;
