@@ -4,6 +4,7 @@
 
 mod common;
 
+mod bad_import_input;
 mod bad_mesh_input;
 mod caps;
 mod exact_cases;
