@@ -82,6 +82,17 @@ const TOKENS: &[&[u8]] = &[
     b"f 1 2 1 2 3\n",
     b"f 1 2 3 1 2 3 1 2 3\n",
     b"include \"/dev/zero.kdl\"\n",
+    // glTF and 3MF seeds (issue 34).
+    b"\"children\":[0],",
+    b"\"mesh\":0,",
+    b"\"count\":4294967295,",
+    b"\"byteStride\":252,",
+    b"\"mode\":5,",
+    b"\"uri\":\"../x.bin\",",
+    b"\"matrix\":[0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,1],",
+    b"<component objectid=\"2\"/>",
+    b" transform=\"0 0 0 0 0 0 0 0 0 0 0 0\"",
+    b"<triangle v1=\"0\" v2=\"1\" v3=\"99\"/>",
 ];
 
 /// The directory of bad fixtures.
@@ -98,7 +109,7 @@ fn fixtures() -> Vec<PathBuf> {
         for e in std::fs::read_dir(root.join(dir)).unwrap() {
             let p = e.unwrap().path();
             let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
-            if p.is_file() && ["kdl", "obj", "stl", "ply"].contains(&ext) {
+            if p.is_file() && ["kdl", "obj", "stl", "ply", "gltf", "glb", "3mf"].contains(&ext) {
                 here.push(p);
             }
         }
