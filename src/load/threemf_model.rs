@@ -179,7 +179,7 @@ pub(super) fn read_model(
     let mut out = Vec::new();
     for item in kids(build, "item") {
         let xf = transform(&cx, item)?;
-        if let Some(o) = b.place(item, &xf, &mut names, 1)? {
+        if let Some(o) = b.place(item, &xf, &mut names)? {
             out.push(o);
         }
     }
@@ -272,23 +272,38 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
     }
 
     /// Counts each object's placements (once per reference, as an object's tree is met once
-    /// per reference), refusing cycles of components.
+    /// per reference), refusing cycles of components and trees of components deeper than
+    /// [`MAX_COMPONENT_DEPTH`] (by their height, however the objects are shared).
     fn count_uses(&mut self, build: Node) -> Result<()> {
-        let mut seen: HashMap<u32, bool> = HashMap::new();
+        let mut heights: HashMap<u32, Option<usize>> = HashMap::new();
         for item in kids(build, "item") {
             let (id, _) = self.resource(item)?;
             *self.uses.entry(id).or_default() += 1;
-            self.visit(id, &mut seen, 1)?;
+            self.visit(id, &mut heights, 1)?;
         }
         Ok(())
     }
 
-    /// Counts the references below object `id` once (its components), depth first.
-    fn visit(&mut self, id: u32, done: &mut HashMap<u32, bool>, depth: usize) -> Result<()> {
+    /// Counts the references below object `id` once (its components), depth first, and
+    /// returns its height (1 for a mesh); `depth` is where the walk met it.
+    fn visit(
+        &mut self,
+        id: u32,
+        heights: &mut HashMap<u32, Option<usize>>,
+        depth: usize,
+    ) -> Result<usize> {
         let node = self.objects[&id].node;
-        match done.get(&id) {
-            Some(true) => return Ok(()),
-            Some(false) => {
+        let deep = |h: usize| h + depth > MAX_COMPONENT_DEPTH + 1;
+        let too_deep = || {
+            self.cx.err(
+                node,
+                format!("components are nested more than {MAX_COMPONENT_DEPTH} deep"),
+            )
+        };
+        match heights.get(&id) {
+            Some(Some(h)) if deep(*h) => return Err(too_deep()),
+            Some(Some(h)) => return Ok(*h),
+            Some(None) => {
                 return Err(self.cx.err(
                     node,
                     format!("object {id} contains itself through its components"),
@@ -297,32 +312,27 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
             None => {}
         }
         if depth > MAX_COMPONENT_DEPTH {
-            return Err(self.cx.err(
-                node,
-                format!("components are nested more than {MAX_COMPONENT_DEPTH} deep"),
-            ));
+            return Err(too_deep());
         }
-        done.insert(id, false);
+        heights.insert(id, None);
+        let mut height = 1;
         for comps in kids(node, "components") {
             for c in kids(comps, "component") {
                 let (cid, _) = self.resource(c)?;
                 *self.uses.entry(cid).or_default() += 1;
-                self.visit(cid, done, depth + 1)?;
+                height = height.max(1 + self.visit(cid, heights, depth + 1)?);
             }
         }
-        done.insert(id, true);
-        Ok(())
+        if deep(height) {
+            return Err(too_deep());
+        }
+        heights.insert(id, Some(height));
+        Ok(height)
     }
 
     /// The object that `at` (an item or a component) places with `xf`, named in `names`
     /// (None when it has no triangles).
-    fn place(
-        &mut self,
-        at: Node,
-        xf: &M4,
-        names: &mut UniqueNames,
-        depth: usize,
-    ) -> Result<Option<Object>> {
+    fn place(&mut self, at: Node, xf: &M4, names: &mut UniqueNames) -> Result<Option<Object>> {
         let (id, r) = self.resource(at)?;
         let base = match r.name {
             Some(n) if !n.is_empty() => n.replace('/', "_"),
@@ -332,7 +342,7 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
             let proto = match self.protos.get(&id) {
                 Some(p) => p.clone(),
                 None => {
-                    let p = self.build(id, &M4::identity(), depth)?.map(Arc::new);
+                    let p = self.build(id, &M4::identity())?.map(Arc::new);
                     self.protos.insert(id, p.clone());
                     p
                 }
@@ -346,7 +356,7 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
                 None => None,
             }
         } else {
-            self.build(id, xf, depth)?
+            self.build(id, xf)?
         };
         Ok(object.map(|mut o| {
             o.name = names.make(&base);
@@ -355,7 +365,7 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
     }
 
     /// Object `id` built with `xf` into its final frame (None when it has no triangles).
-    fn build(&mut self, id: u32, xf: &M4, depth: usize) -> Result<Option<Object>> {
+    fn build(&mut self, id: u32, xf: &M4) -> Result<Option<Object>> {
         let r = &self.objects[&id];
         let (node, name) = (r.node, r.name.unwrap_or("").to_string());
         if let Some(mesh) = kids(node, "mesh").next() {
@@ -367,7 +377,7 @@ impl<'a, 'i> Builder<'_, 'a, 'i> {
         for comps in kids(node, "components") {
             for c in kids(comps, "component") {
                 let cxf = xf * transform(self.cx, c)?;
-                if let Some(o) = self.place(c, &cxf, &mut names, depth + 1)? {
+                if let Some(o) = self.place(c, &cxf, &mut names)? {
                     subs.push(o);
                 }
             }
@@ -463,6 +473,8 @@ fn check_box(cx: &Ctx, n: Node, b: &Box3) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
+    use std::fmt::Write as _;
+
     use super::*;
 
     fn model(body: &str) -> String {
@@ -548,5 +560,24 @@ mod tests {
         ));
         let e = read(&xml).unwrap_err().to_string();
         assert!(e.contains("contains itself through its components"), "{e}");
+        // A chain of 200 objects, each also a direct component of a hub listed deepest
+        // first: every object is met shallow, but the chain is 200 deep.
+        let mut objects = String::from(TRI.replace("id=\"1\"", "id=\"1000\""));
+        for k in 1..=200 {
+            let below = if k == 200 { 1000 } else { k + 1 };
+            let _ = write!(
+                objects,
+                "<object id=\"{k}\"><components><component objectid=\"{below}\"/></components></object>"
+            );
+        }
+        let hub: String = (1..=200)
+            .rev()
+            .map(|k| format!("<component objectid=\"{k}\"/>"))
+            .collect();
+        let xml = model(&format!(
+            "<resources>{objects}<object id=\"999\"><components>{hub}</components></object></resources><build><item objectid=\"999\"/></build>"
+        ));
+        let e = read(&xml).unwrap_err().to_string();
+        assert!(e.contains("components are nested more than 64 deep"), "{e}");
     }
 }
