@@ -110,7 +110,7 @@ fn locate<'b>(
         )));
     }
     let bytes = buffers.get(b, &arrays.buffers[b])?;
-    let view_end = view_off.checked_add(view_len).unwrap_or(u64::MAX);
+    let view_end = view_off.saturating_add(view_len);
     if view_end > bytes.len() as u64 {
         return Err(view.err(format!(
             "bytes {view_off}..{view_end} of buffer {b}, which has {} bytes",

@@ -81,7 +81,7 @@ pub(super) fn local_matrix(node: &J) -> Result<M4> {
         let q = r.numbers(4)?;
         let quat = nalgebra::Quaternion::new(q[3], q[0], q[1], q[2]);
         let norm = quat.norm();
-        if !(norm > 1e-6) {
+        if norm.is_nan() || norm <= 1e-6 {
             return Err(r.err("the rotation quaternion is zero"));
         }
         let unit = nalgebra::UnitQuaternion::from_quaternion(quat);

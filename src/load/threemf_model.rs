@@ -562,7 +562,7 @@ mod tests {
         assert!(e.contains("contains itself through its components"), "{e}");
         // A chain of 200 objects, each also a direct component of a hub listed deepest
         // first: every object is met shallow, but the chain is 200 deep.
-        let mut objects = String::from(TRI.replace("id=\"1\"", "id=\"1000\""));
+        let mut objects = TRI.replace("id=\"1\"", "id=\"1000\"");
         for k in 1..=200 {
             let below = if k == 200 { 1000 } else { k + 1 };
             let _ = write!(

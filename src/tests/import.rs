@@ -64,6 +64,9 @@ fn tree(scene: &Scene) -> String {
     s
 }
 
+/// Positions and triangles.
+type Tris = (Vec<[f32; 3]>, Vec<[u32; 3]>);
+
 /// A unit cube's 8 corners and 12 outward triangles.
 fn cube() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
     let p = (0..8)
@@ -276,7 +279,7 @@ fn a_gltf_street_renders_as_its_kdl_scene() {
 
 /// A mesh file's groups with positions rounded to f32 (as glTF stores them) and polygons cut
 /// into fans: the same triangles written as OBJ, glTF and 3MF.
-struct Groups(Vec<(String, Vec<[f32; 3]>, Vec<[u32; 3]>)>);
+struct Groups(Vec<(String, Tris)>);
 
 impl Groups {
     fn of(path: &Path) -> Groups {
@@ -289,7 +292,7 @@ impl Groups {
                 .faces
                 .iter()
                 .flat_map(|f| (1..f.len() - 1).map(move |k| [f[0], f[k], f[k + 1]]));
-            (g.name.clone(), p, t.collect())
+            (g.name.clone(), (p, t.collect()))
         });
         Groups(groups.collect())
     }
@@ -297,7 +300,7 @@ impl Groups {
     fn obj(&self) -> String {
         let mut s = String::new();
         let mut base = 1;
-        for (name, p, t) in &self.0 {
+        for (name, (p, t)) in &self.0 {
             let _ = writeln!(s, "o {name}");
             for v in p {
                 let v = v.map(f64::from);
@@ -313,7 +316,7 @@ impl Groups {
 
     fn gltf(&self) -> Gltf {
         let mut g = Gltf::default();
-        for (k, (name, p, t)) in self.0.iter().enumerate() {
+        for (k, (name, (p, t))) in self.0.iter().enumerate() {
             g.meshes.push(gmesh(name, (p.clone(), t.clone())));
             g.nodes.push(GltfNode {
                 mesh: Some(k),
@@ -326,7 +329,7 @@ impl Groups {
 
     fn threemf(&self) -> Vec<u8> {
         let objects: Vec<ThreeMfObject> = (self.0.iter().enumerate())
-            .map(|(k, (name, p, t))| ThreeMfObject {
+            .map(|(k, (name, (p, t)))| ThreeMfObject {
                 id: k as u32 + 1,
                 name: Some(name.clone()),
                 vertices: p.iter().map(|v| v.map(f64::from)).collect(),
@@ -410,7 +413,7 @@ fn add_box(p: &mut Vec<[f32; 3]>, t: &mut Vec<[u32; 3]>, lo: [f32; 3], hi: [f32;
 }
 
 /// A building kind: its body (a box, w × w × h) and its ledges (one per floor on each side).
-fn building(w: f32, h: f32, floors: usize) -> [(Vec<[f32; 3]>, Vec<[u32; 3]>); 2] {
+fn building(w: f32, h: f32, floors: usize) -> [Tris; 2] {
     let mut body = (Vec::new(), Vec::new());
     add_box(&mut body.0, &mut body.1, [0., 0., 0.], [w, w, h]);
     let mut ledges = (Vec::new(), Vec::new());
@@ -504,7 +507,7 @@ fn the_inbox_cull_works_on_a_gltf_town_as_on_its_kdl() {
         assert_eq!(s.root.subobjects().len(), 1001, "{f}");
         prepare(&mut s);
         let r = render_plain(&s, &cam);
-        counters.push(r.stats.counters.clone());
+        counters.push(r.stats.counters);
         jsons.push(to_json(&r.view, &r.visibility, None, Count::NONE));
     }
     let (k, g) = (&counters[0], &counters[1]);
