@@ -104,7 +104,12 @@ fn bad_dir() -> PathBuf {
 fn fixtures() -> Vec<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
-    for dir in ["scenes", "tests/fixtures/meshes", "tests/fixtures/bad"] {
+    for dir in [
+        "scenes",
+        "tests/fixtures/meshes",
+        "tests/fixtures/scenes",
+        "tests/fixtures/bad",
+    ] {
         let mut here = Vec::new();
         for e in std::fs::read_dir(root.join(dir)).unwrap() {
             let p = e.unwrap().path();
