@@ -27,7 +27,7 @@ use super::{load, out, write, CameraArgs};
 #[derive(Args, Debug)]
 #[command(after_help = EXIT_STATUS)]
 pub(crate) struct CheckArgs {
-    /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
+    /// Scene file (.kdl), mesh (.obj, .stl, .ply) or modeller's scene (.gltf, .glb, .3mf).
     pub(crate) scene: PathBuf,
     /// The golden kepler-visible/1 file.
     #[arg(long, value_name = "F.json", required_unless_present = "exact")]

@@ -12,7 +12,7 @@ use super::output::write_from;
 /// Arguments of `kepler flatten`.
 #[derive(Args, Debug)]
 pub(crate) struct FlattenArgs {
-    /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
+    /// Scene file (.kdl), mesh (.obj, .stl, .ply) or modeller's scene (.gltf, .glb, .3mf).
     pub(crate) scene: PathBuf,
     /// Output OBJ file.
     #[arg(

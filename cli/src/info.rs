@@ -15,7 +15,7 @@ use super::{load_with, out};
 /// Arguments of `kepler info`.
 #[derive(Args, Debug)]
 pub(crate) struct InfoArgs {
-    /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
+    /// Scene file (.kdl), mesh (.obj, .stl, .ply) or modeller's scene (.gltf, .glb, .3mf).
     pub(crate) scene: PathBuf,
     /// Print JSON instead of the tree.
     #[arg(long)]

@@ -16,7 +16,7 @@ use super::{load_with, out, CameraArgs};
 /// Arguments of `kepler query`.
 #[derive(Args, Debug)]
 pub(crate) struct QueryArgs {
-    /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
+    /// Scene file (.kdl), mesh (.obj, .stl, .ply) or modeller's scene (.gltf, .glb, .3mf).
     pub(crate) scene: PathBuf,
     /// INCLUDE: is the point X,Y,Z inside the scene's solids? Prints IN or OUT.
     #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]

@@ -27,7 +27,7 @@ const PROGRESS_AFTER: Duration = Duration::from_millis(500);
 /// Arguments of `kepler render`.
 #[derive(Args, Debug)]
 pub(crate) struct RenderArgs {
-    /// Scene file (.kdl) or mesh (.obj, .stl, .ply).
+    /// Scene file (.kdl), mesh (.obj, .stl, .ply) or modeller's scene (.gltf, .glb, .3mf).
     pub(crate) scene: PathBuf,
     /// Write the kepler-visible/1 visible-polygon set here (with `lines` when --edges or
     /// --hidden is given).

@@ -68,7 +68,7 @@ impl LodArgs {
 /// Arguments of `kepler tribox`.
 #[derive(Args, Debug)]
 pub(crate) struct TriboxArgs {
-    /// Mesh (.obj, .stl, .ply) or scene file (.kdl): each object gets its own hierarchy.
+    /// Mesh (.obj, .stl, .ply), scene file (.kdl) or glTF/3MF scene: each object gets its own hierarchy.
     pub(crate) scene: PathBuf,
     /// Number of levels of detail (level 0 is one tribox per object).
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=16))]

@@ -124,7 +124,7 @@ def _take_option(rest, takes_value):
 @_with_options
 @vpype_cli.global_processor
 def kepler(document, scene, hierarchy, **options):
-    """Exact hidden-line drawing of a 3D scene file (.kdl) or mesh (.obj, .stl, .ply).
+    """Exact hidden-line drawing of a 3D scene file (.kdl), mesh (.obj, .stl, .ply) or glTF/3MF scene.
 
     Adds one layer a pen (1 outline, 2 edges, 3 intersections, 4 marks, 5 hatching,
     6 hidden) at the layer ids of kepler's SVG, and sets the page size.

@@ -47,6 +47,9 @@ CASES = [
     ("scenes/assembly.kdl", {}),
     ("scenes/polyhedra.kdl", {"edges": "all", "hidden": True}),
     ("scenes/town.kdl", {"dir": (-1, -2, -3), "up": (0, 1, 0)}),
+    # glTF (with its camera) and 3MF scenes load through the library as through the command.
+    ("tests/fixtures/scenes/cube_nodes.glb", {}),
+    ("tests/fixtures/scenes/cube_parts.3mf", {"dir": (-1, -2, -3), "up": (0, 1, 0)}),
 ]
 
 

@@ -1,9 +1,16 @@
-//! Loading scene input: KDL scene files and mesh files (OBJ, STL, PLY) into a [`Scene`].
+//! Loading scene input: KDL scene files, mesh files (OBJ, STL, PLY) and modellers' scenes
+//! (glTF 2.0, 3MF) into a [`Scene`].
 
 mod args;
 mod camera_node;
 mod confine;
 mod geometry;
+mod gltf;
+mod gltf_accessor;
+mod gltf_buffers;
+mod gltf_json;
+mod gltf_mesh;
+mod gltf_nodes;
 mod kdl;
 pub(crate) mod limits;
 pub(crate) mod mesh_file;
@@ -16,7 +23,10 @@ mod source;
 pub(crate) mod stl;
 mod style_node;
 mod text;
+mod threemf;
+mod threemf_model;
 mod transform;
+mod zip;
 
 use std::path::Path;
 
@@ -45,8 +55,10 @@ pub fn load_scene(
     match mesh_file::extension(path).as_str() {
         "kdl" => scene_file::load_scene_file(path, opts, warnings, progress),
         "obj" | "stl" | "ply" => mesh_scene(path, opts, warnings, progress),
+        "gltf" | "glb" => gltf::load_gltf(path, opts, warnings, progress),
+        "3mf" => threemf::load_3mf(path, opts, warnings, progress),
         _ => Err(Error::Usage(format!(
-            "{}: unknown scene file extension (expected .kdl, .obj, .stl or .ply)",
+            "{}: unknown scene file extension (expected .kdl, .obj, .stl, .ply, .gltf, .glb or .3mf)",
             path.display()
         ))),
     }

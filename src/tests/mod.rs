@@ -4,11 +4,13 @@
 
 mod common;
 
+mod bad_import_input;
 mod bad_mesh_input;
 mod caps;
 mod exact_cases;
 mod exact_check;
 mod flatten;
+mod import;
 mod inbox;
 mod invariants;
 mod json_dust;

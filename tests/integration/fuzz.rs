@@ -82,6 +82,17 @@ const TOKENS: &[&[u8]] = &[
     b"f 1 2 1 2 3\n",
     b"f 1 2 3 1 2 3 1 2 3\n",
     b"include \"/dev/zero.kdl\"\n",
+    // glTF and 3MF seeds (issue 34).
+    b"\"children\":[0],",
+    b"\"mesh\":0,",
+    b"\"count\":4294967295,",
+    b"\"byteStride\":252,",
+    b"\"mode\":5,",
+    b"\"uri\":\"../x.bin\",",
+    b"\"matrix\":[0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,1],",
+    b"<component objectid=\"2\"/>",
+    b" transform=\"0 0 0 0 0 0 0 0 0 0 0 0\"",
+    b"<triangle v1=\"0\" v2=\"1\" v3=\"99\"/>",
 ];
 
 /// The directory of bad fixtures.
@@ -93,12 +104,17 @@ fn bad_dir() -> PathBuf {
 fn fixtures() -> Vec<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
-    for dir in ["scenes", "tests/fixtures/meshes", "tests/fixtures/bad"] {
+    for dir in [
+        "scenes",
+        "tests/fixtures/meshes",
+        "tests/fixtures/scenes",
+        "tests/fixtures/bad",
+    ] {
         let mut here = Vec::new();
         for e in std::fs::read_dir(root.join(dir)).unwrap() {
             let p = e.unwrap().path();
             let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
-            if p.is_file() && ["kdl", "obj", "stl", "ply"].contains(&ext) {
+            if p.is_file() && ["kdl", "obj", "stl", "ply", "gltf", "glb", "3mf"].contains(&ext) {
                 here.push(p);
             }
         }

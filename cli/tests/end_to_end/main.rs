@@ -7,6 +7,7 @@ mod common;
 mod diff;
 mod goldens;
 mod hostile;
+mod import;
 mod plot;
 mod readme;
 mod section;
