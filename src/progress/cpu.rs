@@ -6,15 +6,22 @@ use std::time::Duration;
 /// CPU time this process's live threads have run, summed (Linux: each thread's
 /// `/proc/self/task/T/schedstat`, in nanoseconds); `None` where the system does not say.
 /// Threads that have ended are not counted: the stages run on the pool's threads, which live
-/// as long as the process.
+/// as long as the process. (In a test binary, other tests' threads come and go: the sum can
+/// fall.)
 pub fn process_cpu_time() -> Option<Duration> {
     let tasks = std::fs::read_dir("/proc/self/task").ok()?;
     let mut ns: u64 = 0;
     for t in tasks.flatten() {
-        let text = std::fs::read_to_string(t.path().join("schedstat")).ok()?;
-        ns += text.split_whitespace().next()?.parse::<u64>().ok()?;
+        // A thread that ended while the folder was read has no file left: not counted.
+        ns += task_cpu_ns(&t.path()).unwrap_or(0);
     }
     Some(Duration::from_nanos(ns))
+}
+
+/// The CPU time, in nanoseconds, of the thread whose `/proc` folder is `task`.
+fn task_cpu_ns(task: &std::path::Path) -> Option<u64> {
+    let text = std::fs::read_to_string(task.join("schedstat")).ok()?;
+    text.split_whitespace().next()?.parse().ok()
 }
 
 /// The threads a render's parallel stages run on (rayon's pool: `RAYON_NUM_THREADS`, else
@@ -41,17 +48,17 @@ mod tests {
 
     #[test]
     fn cpu_time_grows_with_work_on_linux() {
-        let Some(a) = process_cpu_time() else {
+        // This thread's own clock (other tests' threads come and go in the process's sum).
+        let me = std::path::Path::new("/proc/thread-self");
+        let Some(a) = task_cpu_ns(me) else {
             return;
         };
-        // Spin until this thread's work shows (on a busy machine the wall time it takes is
-        // longer; it never shows if the clock does not move).
         let (mut x, t) = (0u64, std::time::Instant::now());
         let grew = loop {
             for _ in 0..100_000 {
                 x = std::hint::black_box(x.wrapping_mul(31).wrapping_add(7));
             }
-            if process_cpu_time().unwrap() >= a + Duration::from_millis(10) {
+            if task_cpu_ns(me).is_some_and(|b| b >= a + 10_000_000) {
                 break true;
             }
             if t.elapsed() > Duration::from_secs(20) {
@@ -59,6 +66,11 @@ mod tests {
             }
         };
         assert!(grew, "the CPU time did not move in 20 s of spinning");
+        let all = process_cpu_time().expect("the process's threads");
+        assert!(
+            all >= Duration::from_nanos(a + 10_000_000),
+            "{all:?} holds this thread's"
+        );
     }
 
     #[test]
