@@ -40,13 +40,7 @@ pub(super) fn load_gltf(
     warnings: &mut Warnings,
     progress: &Progress,
 ) -> Result<Scene> {
-    const MAX: u64 = super::read::MAX_MESH_BYTES;
-    progress.enter_phase(
-        Stage::Load,
-        Phase::Read,
-        super::read::file_len(path, None, MAX)?,
-    );
-    let bytes = super::read::read_file(path, None, MAX, progress.count())?;
+    let bytes = super::read::read_mesh_bytes(path, None, progress)?;
     let (json, bin) = if is_glb(&bytes) {
         split_glb(path, &bytes)?
     } else {

@@ -85,13 +85,7 @@ pub(crate) fn load_mesh(
         return Err(Error::invalid(at.clone(), e.to_string()));
     }
     format_of(path)?;
-    const MAX: u64 = super::read::MAX_MESH_BYTES;
-    progress.enter_phase(
-        Stage::Load,
-        Phase::Read,
-        super::read::file_len(path, at, MAX)?,
-    );
-    let bytes = super::read::read_file(path, at, MAX, progress.count())?;
+    let bytes = super::read::read_mesh_bytes(path, at, progress)?;
     parse_mesh(path, &bytes, progress)
 }
 

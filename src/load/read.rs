@@ -25,6 +25,19 @@ pub(crate) const MAX_MESH_BYTES: u64 = 4 << 30;
 /// The most bytes reserved before they are read (the buffer then grows as bytes arrive).
 const FIRST_RESERVE: u64 = 1 << 24;
 
+/// The bytes of the mesh-sized file at `path` (at most [`MAX_MESH_BYTES`]), read as the
+/// `Read` phase of the load stage in `progress`; `at` as for [`read_file`].
+pub(crate) fn read_mesh_bytes(
+    path: &Path,
+    at: Option<&Location>,
+    progress: &crate::progress::Progress,
+) -> Result<Vec<u8>> {
+    use crate::progress::{Phase, Stage};
+    let len = file_len(path, at, MAX_MESH_BYTES)?;
+    progress.enter_phase(Stage::Load, Phase::Read, len);
+    read_file(path, at, MAX_MESH_BYTES, progress.count())
+}
+
 /// The bytes of the regular file at `path`, of at most `limit` bytes, counted in `done` as
 /// they are read (once per chunk). `at` is the node that asked for it (an include or `mesh`
 /// node), where a missing, unreadable or too large file is reported; else the file itself.

@@ -25,13 +25,7 @@ pub(super) fn load_3mf(
     warnings: &mut Warnings,
     progress: &Progress,
 ) -> Result<Scene> {
-    const MAX: u64 = super::read::MAX_MESH_BYTES;
-    progress.enter_phase(
-        Stage::Load,
-        Phase::Read,
-        super::read::file_len(path, None, MAX)?,
-    );
-    let bytes = super::read::read_file(path, None, MAX, progress.count())?;
+    let bytes = super::read::read_mesh_bytes(path, None, progress)?;
     progress.enter_phase(Stage::Load, Phase::Parse, bytes.len());
     let archive = Archive::open(path, &bytes)?;
     let part = model_part(path, &archive)?;
