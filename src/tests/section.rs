@@ -317,6 +317,45 @@ fn an_open_mesh_gets_its_cut_outline_only() {
 }
 
 #[test]
+fn a_non_convex_face_cut_into_parts_gives_simple_rings_and_only_its_cut() {
+    // An arch (legs down) in z = 0, cut at y = 0.5: its kept part is the two legs, one face.
+    // Its region is two simple rings, and the cut outline runs along the legs only (2 units),
+    // not across the gap between them.
+    let pts = [
+        [0., 0., 0.],
+        [1., 0., 0.],
+        [1., 1., 0.],
+        [2., 1., 0.],
+        [2., 0., 0.],
+        [3., 0., 0.],
+        [3., 2., 0.],
+        [0., 2., 0.],
+    ];
+    let faces: [&[u32]; 1] = [&[0, 1, 2, 3, 4, 5, 6, 7]];
+    let s = scene(vec![("arch", mesh(&pts, &faces))]);
+    let cam = along([0., 0., -1.]);
+    let r = cut(&s, &cam, &[plane([0., 0.5, 0.], [0., 1., 0.])]);
+    let fv = r.visibility.face(crate::scene::FaceId(0));
+    assert_eq!(fv.visible.len(), 2, "{:?}", fv.visible);
+    assert!(
+        crate::geom::ring_check::multipolygon_defects(&fv.visible).is_empty(),
+        "{:?}",
+        fv.visible
+    );
+    assert!((fv.area - 1.0).abs() < 1e-15, "{}", fv.area);
+    let d = r.drawing.as_ref().unwrap();
+    let cut_len: f64 = d
+        .visible
+        .iter()
+        .filter(|s| s.kind == EdgeKind::Section)
+        .flat_map(|s| s.pts.windows(2))
+        .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+        .sum();
+    assert!((cut_len - 2.0).abs() < 1e-12, "cut outline {cut_len}");
+    exact_agrees(&r, &cam);
+}
+
+#[test]
 fn inboxes_on_the_removed_side_are_dropped() {
     // A wall with an INBOX on its group hides a small box behind it; cut away the wall in
     // front of the box, obliquely (x + z > 7.5), and what is left of the box shows.

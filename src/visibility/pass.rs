@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use crate::count::Count;
 use crate::geom::boolean;
 use crate::geom::poly2::{canonicalize, multipolygon_area, MultiPolygon};
-use crate::geom::ring_check::repair;
+use crate::geom::ring_check::{repair, ring_defect};
 use crate::geom::Rect;
 use crate::scene::FaceId;
 use crate::view::{Facing, PieceId, ScreenFaces, View};
@@ -307,15 +307,28 @@ fn solve_face(
         _ => {}
     }
     let ring = view.screen.ring_ccw(f);
-    let (visible, whole) = match visfac(view, root, f, scratch, c) {
-        Vtp::Whole => (vec![vec![ring]], true),
-        Vtp::Empty => (Vec::new(), false),
-        Vtp::Part(m) => (m, false),
+    let visible = match visfac(view, root, f, scratch, c) {
+        Vtp::Whole if ring_defect(&ring, true).is_none() => {
+            let mut visible = vec![vec![ring]];
+            canonicalize(&mut visible);
+            return FaceVisibility {
+                area: multipolygon_area(&visible),
+                visible,
+                projected_area,
+                whole: true,
+            };
+        }
+        // A face ring that is not simple (a non-convex face cut by a section plane into
+        // parts joined by zero-width bridges, a face written through a vertex twice): its
+        // region, the points it winds round, as simple rings.
+        Vtp::Whole => {
+            let rect = Rect::of_points(ring.iter());
+            boolean::union([&ring], &rect.padded(1e-9 * rect.longer_side()))
+        }
+        Vtp::Empty => Vec::new(),
+        Vtp::Part(m) => m,
     };
-    FaceVisibility {
-        whole,
-        ..FaceVisibility::new(visible, projected_area)
-    }
+    FaceVisibility::new(visible, projected_area)
 }
 
 /// `ring_area(ring_ccw(f))` without building the ring (same arithmetic, same bits).
