@@ -3,6 +3,26 @@
 
 use std::fmt::Write as _;
 
+/// A unit cube's 8 corners and 12 outward (counter-clockwise seen from outside) triangles.
+pub fn unit_cube_triangles() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let p = (0..8)
+        .map(|k| [(k & 1) as f32, ((k >> 1) & 1) as f32, ((k >> 2) & 1) as f32])
+        .collect();
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let t = quads
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect();
+    (p, t)
+}
+
 /// A mesh of one indexed TRIANGLES primitive.
 #[derive(Debug, Clone, Default)]
 pub struct GltfMesh {

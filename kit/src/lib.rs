@@ -11,7 +11,7 @@ mod rng;
 mod temp;
 mod threemf;
 
-pub use gltf::{base64, glb, json_string, Gltf, GltfMesh, GltfNode};
+pub use gltf::{base64, glb, json_string, unit_cube_triangles, Gltf, GltfMesh, GltfNode};
 pub use models::{model, models_dir, require, skip, MODELS_ENV, REQUIRE_MODELS_ENV};
 pub use obj::{cuboid_obj, obj_text};
 pub use rng::Rng;

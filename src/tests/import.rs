@@ -5,7 +5,10 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use kepler_testkit::{model_xml, temp_dir, threemf, Gltf, GltfMesh, GltfNode, ThreeMfObject};
+use kepler_testkit::{
+    model_xml, temp_dir, threemf, unit_cube_triangles as cube, Gltf, GltfMesh, GltfNode,
+    ThreeMfObject,
+};
 
 use super::common::{models, prepare, render_plain, SHARED_MESHES};
 use crate::count::Count;
@@ -66,26 +69,6 @@ fn tree(scene: &Scene) -> String {
 
 /// Positions and triangles.
 type Tris = (Vec<[f32; 3]>, Vec<[u32; 3]>);
-
-/// A unit cube's 8 corners and 12 outward triangles.
-fn cube() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    let p = (0..8)
-        .map(|k| [(k & 1) as f32, ((k >> 1) & 1) as f32, ((k >> 2) & 1) as f32])
-        .collect();
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let t = quads
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .collect();
-    (p, t)
-}
 
 /// A triangular prism (a gable roof) over the unit square, 1 high.
 fn roof() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
