@@ -3,30 +3,16 @@
 
 use std::path::Path;
 
-use kepler_testkit::{glb, temp_dir, threemf, zip_stored, Gltf, GltfMesh, GltfNode};
+use kepler_testkit::{
+    glb, temp_dir, threemf, unit_cube_triangles, zip_stored, Gltf, GltfMesh, GltfNode,
+};
 use serde_json::{json, Value};
 
 use crate::{load_scene, LoadOptions, Progress};
 
 /// A small valid document: a shared cube placed by two nodes, one under the other.
 fn doc() -> (Value, Vec<u8>) {
-    let p = (0..8)
-        .map(|k| [(k & 1) as f32, ((k >> 1) & 1) as f32, ((k >> 2) & 1) as f32])
-        .collect();
-    let t = vec![
-        [0, 2, 3],
-        [0, 3, 1],
-        [4, 5, 7],
-        [4, 7, 6],
-        [0, 1, 5],
-        [0, 5, 4],
-        [2, 6, 7],
-        [2, 7, 3],
-        [0, 4, 6],
-        [0, 6, 2],
-        [1, 3, 7],
-        [1, 7, 5],
-    ];
+    let (p, t) = unit_cube_triangles();
     let g = Gltf {
         meshes: vec![GltfMesh {
             name: "cube".into(),
