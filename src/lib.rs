@@ -98,7 +98,9 @@ pub mod plot {
 /// the visibility pass and level-of-detail substitution.
 pub mod stats {
     pub use crate::pipeline::RenderStats;
-    pub use crate::progress::cpu::{process_cpu_time, serial_share, worker_threads};
+    pub use crate::progress::cpu::{
+        process_cpu_time, serial_share, worker_threads, Spent, Stopwatch,
+    };
     pub use crate::progress::stage::{Phase, Stage, Unit};
     pub use crate::progress::PhaseCount;
     pub use crate::view::lod::LodStats;

@@ -4,7 +4,7 @@
 
 use std::borrow::Cow;
 use std::io::Write;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use crate::count::Count;
 use crate::emit::lines::marks::face_marks;
@@ -16,6 +16,7 @@ use crate::emit::write::png::to_png;
 use crate::emit::write::svg::to_svg;
 use crate::error::{Error, Location, Result, Warning};
 use crate::prepare::{HierarchyKind, PrepareOptions};
+use crate::progress::cpu::{Spent, Stopwatch};
 use crate::progress::{Lane, Phase};
 pub(crate) use crate::progress::{Progress, Stage};
 use crate::scene::Scene;
@@ -98,33 +99,17 @@ impl RenderStats {
 
     /// Runs `f` as `stage`, timed (the stage's phases are entered in `f`).
     fn timed<T>(&mut self, stage: Stage, f: impl FnOnce() -> T) -> T {
-        let clock = StageClock::start();
+        let clock = Stopwatch::start();
         let out = f();
-        clock.stop(stage, self);
+        self.record(stage, clock.stop());
         out
     }
-}
 
-/// A stage's start: wall clock and, where the system tells it, the process's CPU time.
-struct StageClock {
-    wall: Instant,
-    cpu: Option<Duration>,
-}
-
-impl StageClock {
-    fn start() -> StageClock {
-        StageClock {
-            cpu: crate::progress::cpu::process_cpu_time(),
-            wall: Instant::now(),
-        }
-    }
-
-    /// Records the stage's wall time, and its CPU time when both ends were read.
-    fn stop(self, stage: Stage, stats: &mut RenderStats) {
-        stats.times.push((stage, self.wall.elapsed()));
-        let now = crate::progress::cpu::process_cpu_time();
-        if let (Some(a), Some(b)) = (self.cpu, now) {
-            stats.cpu.push((stage, b.saturating_sub(a)));
+    /// Records a stage's wall time, and its CPU time where it was read.
+    fn record(&mut self, stage: Stage, spent: Spent) {
+        self.times.push((stage, spent.wall));
+        if let Some(cpu) = spent.cpu {
+            self.cpu.push((stage, cpu));
         }
     }
 }
@@ -295,9 +280,9 @@ fn render_json_to<'s>(
         use_inbox: !opts.no_inbox,
     };
     progress.enter(Stage::Visibility, view.screen.pieces.len());
-    let clock = StageClock::start();
+    let clock = Stopwatch::start();
     let visibility = solve(&view, pass, progress.count());
-    clock.stop(Stage::Visibility, &mut stats);
+    stats.record(Stage::Visibility, clock.stop());
     stats.counters = visibility.counters;
     let mut warnings = Vec::new();
     if let Some(why) = why_empty(scene.face_count(), &view, &visibility) {

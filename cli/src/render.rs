@@ -9,7 +9,7 @@ use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use kepler_hsr::lines::{EdgeOptions, EdgeSet, LineOptions};
 use kepler_hsr::plot::Rect;
-use kepler_hsr::stats::Stage;
+use kepler_hsr::stats::{Spent, Stage, Stopwatch};
 use kepler_hsr::{
     render, render_to, Camera, Outputs, Progress, Projection, RenderOptions, Rendered, Scene,
 };
@@ -226,13 +226,13 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
     let progress = Progress::new();
     let mut warnings = Vec::new();
     let (scene, load, prepare) = follow(&progress, start, PROGRESS_AFTER, || -> Result<_> {
-        let t = Clock::start();
+        let t = Stopwatch::start();
         let mut scene = kepler_hsr::load_scene(&a.scene, load_opts, &mut warnings, &progress)?;
         if let Some(f) = &a.styles {
             scene.load_styles(f)?;
         }
         let load = t.stop();
-        let t = Clock::start();
+        let t = Stopwatch::start();
         let prep = a.hierarchy.prepare();
         kepler_hsr::prepare(&mut scene, &prep, &progress);
         if scene.face_count() >= crate::memory::TRIM_ABOVE_FACES {
@@ -285,7 +285,7 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
         if !a.quiet {
             print_warnings(&r.warnings);
         }
-        let t = Clock::start();
+        let t = Stopwatch::start();
         if let Some(f) = json {
             outs.finish(f)?;
         }
@@ -480,37 +480,6 @@ fn common_frames(scene: &Scene, cams: &[Camera]) -> Vec<Option<Rect>> {
                 .then(|| Rect::new(cx - 0.5 * w, cy - 0.5 * h, cx + 0.5 * w, cy + 0.5 * h))
         })
         .collect()
-}
-
-/// A stage's wall time and, where the system tells it, its CPU time (all threads).
-#[derive(Debug, Clone, Copy, Default)]
-struct Spent {
-    wall: Duration,
-    cpu: Option<Duration>,
-}
-
-/// A stage of the command's own (load, prepare, write) being timed.
-struct Clock {
-    wall: Instant,
-    cpu: Option<Duration>,
-}
-
-impl Clock {
-    fn start() -> Clock {
-        Clock {
-            cpu: kepler_hsr::stats::process_cpu_time(),
-            wall: Instant::now(),
-        }
-    }
-
-    fn stop(self) -> Spent {
-        let wall = self.wall.elapsed();
-        let now = kepler_hsr::stats::process_cpu_time();
-        Spent {
-            wall,
-            cpu: self.cpu.zip(now).map(|(a, b)| b.saturating_sub(a)),
-        }
-    }
 }
 
 /// The stage table of `--stats`: wall and CPU time per stage, the share of its wall time

@@ -1,7 +1,7 @@
 //! The process's CPU time, read where the system tells it, so a run can say how much of its
 //! wall time its stages spent on several threads.
 
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// CPU time this process's live threads have run, summed (Linux: each thread's
 /// `/proc/self/task/T/schedstat`, in nanoseconds); `None` where the system does not say.
@@ -16,6 +16,42 @@ pub fn process_cpu_time() -> Option<Duration> {
         ns += task_cpu_ns(&t.path()).unwrap_or(0);
     }
     Some(Duration::from_nanos(ns))
+}
+
+/// A stage's wall time and, where the system tells it, its CPU time (all threads).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Spent {
+    /// Wall-clock time.
+    pub wall: Duration,
+    /// CPU time of the process's threads together; `None` where the system does not say.
+    pub cpu: Option<Duration>,
+}
+
+/// A stage being timed: started with [`Stopwatch::start`], read with [`Stopwatch::stop`].
+#[derive(Debug, Clone, Copy)]
+pub struct Stopwatch {
+    wall: Instant,
+    cpu: Option<Duration>,
+}
+
+impl Stopwatch {
+    /// Starts both clocks.
+    pub fn start() -> Stopwatch {
+        Stopwatch {
+            cpu: process_cpu_time(),
+            wall: Instant::now(),
+        }
+    }
+
+    /// The wall time since the start, and the CPU time when both ends were read.
+    pub fn stop(self) -> Spent {
+        let wall = self.wall.elapsed();
+        let now = process_cpu_time();
+        Spent {
+            wall,
+            cpu: self.cpu.zip(now).map(|(a, b)| b.saturating_sub(a)),
+        }
+    }
 }
 
 /// The CPU time, in nanoseconds, of the thread whose `/proc` folder is `task`.
