@@ -201,27 +201,59 @@ fn terrain_height(x: f64, z: f64) -> f64 {
         + 0.03 * (TAU * 7.0 * z + 1.0).cos() * (TAU * 5.0 * x).sin()
 }
 
+/// Cells along each side of the terrain of at least `target_faces` triangles.
+fn terrain_cells(target_faces: usize) -> usize {
+    ((target_faces as f64 / 2.0).sqrt().ceil() as usize).max(1)
+}
+
+/// The terrain's vertices, row after row of `n + 1`.
+fn terrain_vertices(n: usize) -> impl Iterator<Item = P3> {
+    (0..=n).flat_map(move |j| {
+        (0..=n).map(move |i| {
+            let (x, z) = (i as f64 / n as f64, j as f64 / n as f64);
+            P3::new(x, terrain_height(x, z), z)
+        })
+    })
+}
+
+/// The terrain's triangles (0-based vertex indices), two per cell, counter-clockwise seen
+/// from above (+y).
+fn terrain_triangles(n: usize) -> impl Iterator<Item = [u32; 3]> {
+    let at = move |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    (0..n).flat_map(move |j| {
+        (0..n).flat_map(move |i| {
+            [
+                [at(i, j), at(i, j + 1), at(i + 1, j + 1)],
+                [at(i, j), at(i + 1, j + 1), at(i + 1, j)],
+            ]
+        })
+    })
+}
+
+/// Writes [`terrain`]`(target_faces)` as a Wavefront OBJ (the issues' "10M-face terrain" is
+/// `kepler-bench --terrain-obj 10000000 T.obj`); returns its face count.
+pub fn write_terrain_obj(
+    target_faces: usize,
+    w: &mut impl std::io::Write,
+) -> std::io::Result<usize> {
+    let n = terrain_cells(target_faces);
+    writeln!(w, "# kepler-bench terrain, {n} x {n} cells")?;
+    for p in terrain_vertices(n) {
+        writeln!(w, "v {} {} {}", p.x, p.y, p.z)?;
+    }
+    for [a, b, c] in terrain_triangles(n) {
+        writeln!(w, "f {} {} {}", a + 1, b + 1, c + 1)?;
+    }
+    Ok(2 * n * n)
+}
+
 /// A terrain of at least `target_faces` triangles: one open mesh object, a height field over
 /// the unit square (x, z) with y up, two triangles per grid cell (hills hide valleys from a
 /// low view).
 pub fn terrain(target_faces: usize) -> Scene {
-    let n = ((target_faces as f64 / 2.0).sqrt().ceil() as usize).max(1);
-    let mut vertices = Vec::with_capacity((n + 1) * (n + 1));
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, z) = (i as f64 / n as f64, j as f64 / n as f64);
-            vertices.push(P3::new(x, terrain_height(x, z), z));
-        }
-    }
-    let at = |i: usize, j: usize| (j * (n + 1) + i) as u32;
-    let mut faces = Vec::with_capacity(2 * n * n);
-    for j in 0..n {
-        for i in 0..n {
-            // Counter-clockwise seen from above (+y).
-            faces.push(vec![at(i, j), at(i, j + 1), at(i + 1, j + 1)]);
-            faces.push(vec![at(i, j), at(i + 1, j + 1), at(i + 1, j)]);
-        }
-    }
+    let n = terrain_cells(target_faces);
+    let vertices = terrain_vertices(n).collect();
+    let faces = terrain_triangles(n).map(|t| t.to_vec()).collect();
     let mesh = Mesh::from_polygons(vertices, faces, &mut Vec::new()).expect("terrains are clean");
     Scene::new(
         Object::group("", vec![Object::from_mesh("terrain", mesh)]),
@@ -247,6 +279,26 @@ mod tests {
             assert!(t.face_count() >= target && t.face_count() < target * 2);
         }
         assert_eq!(terrain(100).face_count(), 2 * 8 * 8);
+    }
+
+    #[test]
+    fn the_terrain_obj_loads_as_the_terrain() {
+        let dir = kepler_testkit::temp_dir("bench", "terrain-obj");
+        let path = dir.join("t.obj");
+        let mut file = std::fs::File::create(&path).unwrap();
+        assert_eq!(write_terrain_obj(100, &mut file).unwrap(), 128);
+        drop(file);
+        let loaded = kepler_hsr::load_scene(
+            &path,
+            &Default::default(),
+            &mut Vec::new(),
+            &Default::default(),
+        )
+        .unwrap()
+        .flatten();
+        let made = terrain(100).flatten();
+        assert_eq!((loaded.vertices, loaded.faces), (made.vertices, made.faces));
+        std::fs::remove_dir_all(dir).unwrap();
     }
 
     #[test]

@@ -68,6 +68,10 @@ pub struct BenchArgs {
     /// times (every timed run is such a fresh process).
     #[arg(long, hide = true, value_name = "CASE/VIEW")]
     pub child: Option<String>,
+    /// Only write the generated terrain of at least FACES triangles as an OBJ file (the
+    /// issues' 10M-face terrain: `--terrain-obj 10000000 T.obj`).
+    #[arg(long, num_args = 2, value_names = ["FACES", "FILE"])]
+    pub terrain_obj: Option<Vec<String>>,
 }
 
 /// What one `kepler-bench` run measures.
@@ -298,11 +302,28 @@ fn job_count(p: &Plan, cases: usize, subjects: usize) -> usize {
         + 2 * p.town.len()
 }
 
+/// `--terrain-obj FACES FILE`: the generated terrain written as an OBJ.
+fn terrain_obj(faces: &str, path: &Path) -> Result<ExitCode> {
+    let faces: usize = faces
+        .parse()
+        .with_context(|| format!("--terrain-obj: {faces:?} is not a face count"))?;
+    let file = std::fs::File::create(path).with_context(|| format!("{}", path.display()))?;
+    let mut w = std::io::BufWriter::new(file);
+    let n = generate::write_terrain_obj(faces, &mut w)
+        .and_then(|n| w.flush().map(|()| n))
+        .with_context(|| format!("{}", path.display()))?;
+    eprintln!("{}: terrain of {n} faces", path.display());
+    Ok(ExitCode::SUCCESS)
+}
+
 /// Runs `kepler-bench`.
 pub fn run(a: BenchArgs) -> Result<ExitCode> {
     let models = models_dir(&a);
     if let Some(spec) = &a.child {
         return child(spec, &models);
+    }
+    if let Some(args) = &a.terrain_obj {
+        return terrain_obj(&args[0], Path::new(&args[1]));
     }
     if let Some(steps) = a.trees {
         std::fs::create_dir_all(&a.out).with_context(|| format!("{}", a.out.display()))?;

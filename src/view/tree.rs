@@ -377,40 +377,67 @@ impl Builder<'_> {
         self.push(n)
     }
 
-    /// A median-split hierarchy over pieces by their screen rectangles.
+    /// A median-split hierarchy over pieces by their screen rectangles: the pieces are put
+    /// in the tree's order first (on all threads: [`median_order`]), then the nodes are made
+    /// over that order in one walk, so the tree is the same for any thread count.
     fn bvh(&mut self, mut ids: Vec<PieceId>) -> u32 {
+        median_order(self.sf, &mut ids);
+        self.bvh_over(&ids)
+    }
+
+    /// The nodes of the median-split hierarchy over `ids`, already in [`median_order`].
+    fn bvh_over(&mut self, ids: &[PieceId]) -> u32 {
         if ids.len() <= LEAF_PIECES {
-            return self.leaf(ids);
+            return self.leaf(ids.to_vec());
         }
-        let sf = self.sf;
-        // Axis 0 and 1 are screen x and y, axis 2 is depth: splitting by depth too separates
-        // the front and back layers of a mesh, so the depth test prunes whole nodes.
-        let centre = |p: PieceId, axis: usize| {
-            let pc = sf.piece(p);
-            match axis {
-                2 => pc.zmin + pc.zmax,
-                _ => pc.rect.centre2(axis),
-            }
-        };
-        let span = |axis: usize| {
-            let (lo, hi) = ids
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| {
-                    (lo.min(centre(f, axis)), hi.max(centre(f, axis)))
-                });
-            hi - lo
-        };
-        let axis = (0..3)
-            .max_by(|&a, &b| span(a).total_cmp(&span(b)).then(b.cmp(&a)))
-            .unwrap_or(0);
-        let mid = ids.len() / 2;
-        ids.select_nth_unstable_by(mid, |&a, &b| {
-            centre(a, axis).total_cmp(&centre(b, axis)).then(a.cmp(&b))
-        });
-        let right = ids.split_off(mid);
-        let l = self.bvh(ids);
-        let r = self.bvh(right);
+        let (left, right) = ids.split_at(ids.len() / 2);
+        let l = self.bvh_over(left);
+        let r = self.bvh_over(right);
         self.inner(vec![l, r])
+    }
+}
+
+/// Below this many pieces a median split is made on the calling thread.
+const SPLIT_ALONE_BELOW: usize = 1 << 14;
+
+/// Puts `ids` in the order of a median-split hierarchy: the pieces of the first half by the
+/// axis of greatest spread before those of the second, recursively, down to leaves of
+/// [`LEAF_PIECES`]. The halves are ordered side by side; each split depends on its slice
+/// alone, so the order is the same for any thread count.
+fn median_order(sf: &ScreenFaces, ids: &mut [PieceId]) {
+    if ids.len() <= LEAF_PIECES {
+        return;
+    }
+    // Axis 0 and 1 are screen x and y, axis 2 is depth: splitting by depth too separates
+    // the front and back layers of a mesh, so the depth test prunes whole nodes.
+    let centre = |p: PieceId, axis: usize| {
+        let pc = sf.piece(p);
+        match axis {
+            2 => pc.zmin + pc.zmax,
+            _ => pc.rect.centre2(axis),
+        }
+    };
+    let span = |axis: usize| {
+        let (lo, hi) = ids
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| {
+                (lo.min(centre(f, axis)), hi.max(centre(f, axis)))
+            });
+        hi - lo
+    };
+    let axis = (0..3)
+        .max_by(|&a, &b| span(a).total_cmp(&span(b)).then(b.cmp(&a)))
+        .unwrap_or(0);
+    let mid = ids.len() / 2;
+    ids.select_nth_unstable_by(mid, |&a, &b| {
+        centre(a, axis).total_cmp(&centre(b, axis)).then(a.cmp(&b))
+    });
+    let (left, right) = ids.split_at_mut(mid);
+    if left.len() + right.len() < SPLIT_ALONE_BELOW {
+        median_order(sf, left);
+        median_order(sf, right);
+    } else {
+        rayon::join(|| median_order(sf, left), || median_order(sf, right));
     }
 }
 

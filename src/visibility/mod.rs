@@ -14,7 +14,7 @@ pub(crate) mod visp;
 pub(crate) mod vtp_texture;
 
 pub(crate) use include::include;
-pub(crate) use pass::{solve, PassOptions, Visibility};
+pub(crate) use pass::{solve, FaceVisibility, PassOptions, Visibility};
 pub(crate) use stats::Counters;
 pub(crate) use visobj::visobj;
 pub(crate) use visp::visp;

@@ -95,6 +95,11 @@ impl Visibility {
         self.ids.iter().copied().zip(self.faces.iter())
     }
 
+    /// The solved faces' ids, ascending, and their visibilities, index for index.
+    pub(crate) fn solved(&self) -> (&[FaceId], &[FaceVisibility]) {
+        (&self.ids, &self.faces)
+    }
+
     /// Every face's visibility in global face order, solved or not.
     pub fn by_id(&self) -> Vec<&FaceVisibility> {
         (0..self.face_count as u32)

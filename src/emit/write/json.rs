@@ -11,12 +11,15 @@ use std::borrow::Cow;
 use std::fmt::Write as _;
 use std::io;
 
+use rayon::prelude::*;
+
 use super::dust::{clean, dust_delta, extent};
 use crate::count::Count;
 use crate::geom::poly2::{multipolygon_area, Pt2};
 use crate::scene::flatten::write_num;
+use crate::scene::FaceId;
 use crate::view::{Projection, View};
-use crate::visibility::Visibility;
+use crate::visibility::{FaceVisibility, Visibility};
 
 /// Polylines of a line drawing, in screen space.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -70,6 +73,7 @@ pub(crate) fn to_json(view: &View, vis: &Visibility, lines: Option<&Lines>, done
     let mut out = Sink {
         s: String::with_capacity(256 + vis.solved_count() * 128),
         to: None,
+        ..Sink::default()
     };
     match json_into(&mut out, view, vis, lines, done) {
         Ok(()) => out.s,
@@ -104,6 +108,7 @@ fn write_json_spilling(
     let mut out = Sink {
         s: String::with_capacity(spill_at.min(SPILL_AT) + (SPILL_AT >> 4)),
         to: Some((w, spill_at)),
+        ..Sink::default()
     };
     json_into(&mut out, view, vis, lines, done)?;
     out.spill_all()
@@ -117,7 +122,28 @@ pub(crate) const SPILL_AT: usize = 1 << 20;
 struct Sink<'w> {
     s: String,
     to: Option<(&'w mut dyn io::Write, usize)>,
+    /// Faces formatted between two writes (on all threads).
+    batch_faces: usize,
+    /// Faces one thread formats at a time.
+    task_faces: usize,
 }
+
+impl Default for Sink<'_> {
+    fn default() -> Self {
+        Sink {
+            s: String::new(),
+            to: None,
+            batch_faces: BATCH_FACES,
+            task_faces: TASK_FACES,
+        }
+    }
+}
+
+/// Faces formatted between two writes: a batch's text (about 150 bytes a face) is held.
+const BATCH_FACES: usize = 1 << 16;
+
+/// Faces one thread formats at a time.
+const TASK_FACES: usize = 1 << 10;
 
 impl Sink<'_> {
     /// Writes out the text gathered so far once it is long enough (kept when in memory).
@@ -156,35 +182,32 @@ fn json_into(
         .map(|l| json_string(&l.path))
         .collect();
     let delta = dust_delta(extent(vis.iter().map(|(_, f)| &f.visible)));
+    let (ids, faces) = vis.solved();
     let mut first = true;
-    for (k, (id, f)) in vis.iter().enumerate() {
-        done.tick(k);
-        let visible = clean(&f.visible, delta);
-        // An occlude-only object hides what is behind it but is not listed.
-        if visible.is_empty() || view.screen.occlude_only(id) {
-            continue;
+    // Formatted on all threads a task of faces at a time, a batch of tasks between writes
+    // (the text held is a batch's), joined in face order: the bytes of one thread.
+    for batch in (0..ids.len()).step_by(out.batch_faces) {
+        let end = (batch + out.batch_faces).min(ids.len());
+        let tasks: Vec<usize> = (batch..end).step_by(out.task_faces).collect();
+        let texts: Vec<String> = tasks
+            .par_iter()
+            .map(|&lo| {
+                let hi = (lo + out.task_faces).min(end);
+                let mut s = String::new();
+                for k in lo..hi {
+                    face_entry(&mut s, view, &paths, delta, ids[k], &faces[k]);
+                }
+                s
+            })
+            .collect();
+        for t in texts.iter().filter(|t| !t.is_empty()) {
+            // Every entry starts ",\n"; the document's first starts "\n".
+            out.s.push_str(if first { &t[1..] } else { t });
+            first = false;
+            out.spill()?;
         }
-        let area = match &visible {
-            Cow::Borrowed(_) => f.area,
-            Cow::Owned(m) => multipolygon_area(m),
-        };
-        let s = &mut out.s;
-        s.push_str(if first { "\n" } else { ",\n" });
-        first = false;
-        let leaf = view.screen.leaf_index_of_face(id);
-        let _ = write!(s, "{{\"id\":{id},\"object\":{},", paths[leaf as usize]);
-        // Faces made by a section cut say so; others are as they always were.
-        if view.screen.is_section(id) {
-            s.push_str("\"section\":true,");
-        }
-        s.push_str("\"area\":");
-        write_num(s, area);
-        s.push_str(",\"visible\":");
-        list(s, &visible, |s, poly| list(s, poly, |s, r| ring(s, r)));
-        s.push('}');
-        out.spill()?;
+        done.add(end - batch);
     }
-    done.tick_rest(vis.solved_count());
     out.s.push_str("\n]");
     if let Some(l) = lines {
         out.s.push_str(",\n\"lines\":{\"visible\":");
@@ -195,6 +218,37 @@ fn json_into(
     }
     out.s.push_str("}\n");
     Ok(())
+}
+
+/// Face `id`'s entry, ",\n" first, when it shows (not only rounding dust, not occlude-only).
+fn face_entry(
+    s: &mut String,
+    view: &View,
+    paths: &[String],
+    delta: f64,
+    id: FaceId,
+    f: &FaceVisibility,
+) {
+    let visible = clean(&f.visible, delta);
+    // An occlude-only object hides what is behind it but is not listed.
+    if visible.is_empty() || view.screen.occlude_only(id) {
+        return;
+    }
+    let area = match &visible {
+        Cow::Borrowed(_) => f.area,
+        Cow::Owned(m) => multipolygon_area(m),
+    };
+    let leaf = view.screen.leaf_index_of_face(id);
+    let _ = write!(s, ",\n{{\"id\":{id},\"object\":{},", paths[leaf as usize]);
+    // Faces made by a section cut say so; others are as they always were.
+    if view.screen.is_section(id) {
+        s.push_str("\"section\":true,");
+    }
+    s.push_str("\"area\":");
+    write_num(s, area);
+    s.push_str(",\"visible\":");
+    list(s, &visible, |s, poly| list(s, poly, |s, r| ring(s, r)));
+    s.push('}');
 }
 
 /// The format tag and the camera, up to the camera's closing brace.
@@ -307,6 +361,25 @@ mod tests {
                 write_json_spilling(&r.view, &r.visibility, lines.as_ref(), &mut w, p, spill_at)
                     .unwrap();
                 assert_eq!(String::from_utf8(w).unwrap(), kept, "spilled at {spill_at}");
+            }
+        }
+    }
+
+    #[test]
+    fn formatted_in_any_batches_the_bytes_are_the_same() {
+        for r in rendered() {
+            let kept = to_json(&r.view, &r.visibility, None, Count::NONE);
+            for (batch_faces, task_faces) in [(1, 1), (5, 2), (7, 3), (64, 64)] {
+                let mut out = Sink {
+                    batch_faces,
+                    task_faces,
+                    ..Sink::default()
+                };
+                json_into(&mut out, &r.view, &r.visibility, None, Count::NONE).unwrap();
+                assert_eq!(
+                    out.s, kept,
+                    "batches of {batch_faces}, tasks of {task_faces}"
+                );
             }
         }
     }
