@@ -160,6 +160,12 @@ impl<'a> Words<'a> {
         self
     }
 
+    /// The current physical line's number (after the last, the number of lines read and
+    /// the first line's, less one).
+    pub(super) fn line(&self) -> usize {
+        self.line
+    }
+
     /// Bytes of the text up to the end of the current physical line (a position to count
     /// progress by).
     pub(super) fn consumed(&self) -> usize {
