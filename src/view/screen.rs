@@ -3,6 +3,8 @@
 
 use std::ops::Range;
 
+use rayon::prelude::*;
+
 use crate::count::Count;
 use crate::geom::convexity::{is_convex_ccw, Strictness};
 use crate::geom::poly2::{ring_area, Pt2};
@@ -303,19 +305,28 @@ impl ScreenFaces {
 
     /// Projects the faces of a leaf, except its `hidden` ones (local indices, ascending: faces
     /// of components the cull found HIDDEN get no pieces).
+    ///
+    /// The vertices are projected, then the faces, on all threads: a task of faces at a
+    /// time into a [`Part`] of its own, a batch of tasks between two appends (the parts held
+    /// are a batch's), appended in face order: the tables are those of one thread.
     fn add_leaf(&mut self, li: u32, leaf: &Leaf, camera: &Camera, hidden: &[u32], done: Count) {
         let world_first = self.world.len() as u32;
         self.world.extend(leaf.world_vertices());
-        let world = &self.world[world_first as usize..];
-        let clip: Vec<[f64; 4]> = world.iter().map(|p| camera.clip_coords(p)).collect();
-        self.points.extend(clip.iter().map(|h| project(h, camera)));
+        // Held apart while the parts are appended (their new points after all the tasks).
+        let world = std::mem::take(&mut self.world);
+        let leaf_world = &world[world_first as usize..];
+        let clip: Vec<[f64; 4]> = leaf_world
+            .par_iter()
+            .map(|p| camera.clip_coords(p))
+            .collect();
+        self.points
+            .par_extend(clip.par_iter().map(|h| project(h, camera)));
         let all_in_front = camera.projection == Projection::Orthographic
             || clip.iter().all(|h| h[3] >= camera.near);
         // Back faces hide nothing a front face does not, and are hidden themselves, only on a
         // proven solid (prepare) seen from outside its convex hull (every vertex in front of
         // the near plane), or on a capped open mesh so seen, away from its holes.
         let back_cull = BackCull::of_leaf(leaf, camera, all_in_front);
-        let mirrors = leaf.mirrors();
         self.leaves.push(LeafInfo {
             path: leaf.path.clone(),
             first_face: FaceId(leaf.first_face as u32),
@@ -323,37 +334,159 @@ impl ScreenFaces {
             world_first,
             occlude_only: false,
         });
-        let mut hidden = hidden.iter().peekable();
-        let mut scratch = Vec::new();
-        for (k, f) in leaf.mesh.faces.iter().enumerate() {
-            done.tick(k);
-            if hidden.next_if_eq(&&(k as u32)).is_some() {
-                self.face_starts.push(self.pieces.len() as u32);
-                continue;
+        let job = LeafJob {
+            li,
+            leaf,
+            camera,
+            clip: &clip,
+            world: leaf_world,
+            world_first,
+            all_in_front,
+            back_cull: &back_cull,
+            mirrors: leaf.mirrors(),
+            hidden,
+        };
+        let n = leaf.mesh.faces.len();
+        let tasks: Vec<usize> = (0..n).step_by(TASK_FACES).collect();
+        let mut new_world = Vec::new();
+        for batch in tasks.chunks(TASKS_AT_ONCE) {
+            let parts: Vec<Part> = batch
+                .par_iter()
+                .map(|&lo| {
+                    let faces = lo..(lo + TASK_FACES).min(n);
+                    done.add(faces.len());
+                    job.part(faces)
+                })
+                .collect();
+            for part in parts {
+                let new_base = (world.len() + new_world.len()) as u32;
+                new_world.extend_from_slice(&part.new_world);
+                self.append(part, new_base);
             }
-            let mut idx: Vec<u32> = f.vertices.clone();
-            if mirrors {
-                idx.reverse();
-            }
-            let id = FaceId((leaf.first_face + k) as u32);
-            for piece in planar_pieces(&idx, &self.world[world_first as usize..]) {
-                let mut poly: Vec<Corner> = piece
-                    .iter()
-                    .map(|&v| {
-                        let at = world_first + v;
-                        (clip[v as usize], self.world[at as usize], at)
-                    })
-                    .collect();
-                if !all_in_front {
-                    poly = clip_near(&poly, camera.near);
-                }
-                self.add_piece(id, li, &poly, camera, &back_cull, &mut scratch);
-            }
-            self.face_starts.push(self.pieces.len() as u32);
         }
-        done.tick_rest(leaf.mesh.faces.len());
+        self.world = world;
+        self.world.extend(new_world);
     }
 
+    /// Appends a part's pieces, corners and projected points (its new world points, which
+    /// are to be numbered from `new_base`, are the caller's to append).
+    fn append(&mut self, part: Part, new_base: u32) {
+        let corner_base = self.corner_at.len() as u32;
+        let piece_base = self.pieces.len() as u32;
+        self.points.extend(part.new_points);
+        self.corner_at
+            .extend(part.corner_at.iter().map(|&c| match new_point(c) {
+                Some(k) => new_base + k,
+                None => c,
+            }));
+        self.pieces.extend(part.pieces.into_iter().map(|mut p| {
+            p.start += corner_base;
+            p
+        }));
+        self.face_starts
+            .extend(part.face_ends.iter().map(|&e| piece_base + e));
+        self.ring_indexes.extend(
+            part.ring_indexes
+                .into_iter()
+                .map(|(p, index)| (PieceId(piece_base + p), index)),
+        );
+    }
+
+    /// The run boxes of piece `p`, when it has more than [`INDEXED_ABOVE`] points.
+    pub(crate) fn ring_index(&self, p: PieceId) -> Option<&RingIndex> {
+        if self.piece(p).len as usize <= INDEXED_ABOVE {
+            return None;
+        }
+        let k = self.ring_indexes.binary_search_by_key(&p, |e| e.0).ok()?;
+        Some(&self.ring_indexes[k].1)
+    }
+}
+
+/// Faces one thread projects at a time.
+const TASK_FACES: usize = 1 << 12;
+
+/// Tasks projected side by side before their parts are appended.
+const TASKS_AT_ONCE: usize = 64;
+
+/// A corner of a [`Part`] naming the part's `k`th new point (one clipping made) is
+/// `u32::MAX - k`: no table of world points comes near that length.
+fn new_point(c: u32) -> Option<u32> {
+    (c > u32::MAX / 2).then(|| u32::MAX - c)
+}
+
+/// What projecting the faces of one leaf needs, shared by its tasks.
+struct LeafJob<'a> {
+    li: u32,
+    leaf: &'a Leaf<'a>,
+    camera: &'a Camera,
+    /// Clip coordinates of the leaf's vertices.
+    clip: &'a [[f64; 4]],
+    /// World points of the leaf's vertices (from `world_first` in the table).
+    world: &'a [P3],
+    world_first: u32,
+    all_in_front: bool,
+    back_cull: &'a BackCull<'a>,
+    mirrors: bool,
+    /// The leaf's hidden faces, local indices ascending.
+    hidden: &'a [u32],
+}
+
+/// The pieces of a run of faces, made apart: corners name the table's points, or the
+/// part's new points ([`new_point`]); piece starts and ids count from the part's own.
+#[derive(Default)]
+struct Part {
+    pieces: Vec<Piece>,
+    corner_at: Vec<u32>,
+    new_world: Vec<P3>,
+    new_points: Vec<[f64; 3]>,
+    ring_indexes: Vec<(u32, RingIndex)>,
+    /// The part's pieces after each face.
+    face_ends: Vec<u32>,
+}
+
+impl LeafJob<'_> {
+    /// The pieces of the leaf's faces `faces` (local indices).
+    fn part(&self, faces: Range<usize>) -> Part {
+        let mut part = Part::default();
+        let from = self.hidden.partition_point(|&h| (h as usize) < faces.start);
+        let mut hidden = self.hidden[from..].iter().peekable();
+        let mut scratch = Vec::new();
+        for k in faces {
+            if hidden.next_if_eq(&&(k as u32)).is_none() {
+                self.face(&mut part, k, &mut scratch);
+            }
+            part.face_ends.push(part.pieces.len() as u32);
+        }
+        part
+    }
+
+    /// Adds the pieces of face `k` (local index) to `part`.
+    fn face(&self, part: &mut Part, k: usize, scratch: &mut Vec<[f64; 3]>) {
+        let mut idx: Vec<u32> = self.leaf.mesh.faces[k].vertices.clone();
+        if self.mirrors {
+            idx.reverse();
+        }
+        let id = FaceId((self.leaf.first_face + k) as u32);
+        for piece in planar_pieces(&idx, self.world) {
+            let mut poly: Vec<Corner> = piece
+                .iter()
+                .map(|&v| {
+                    (
+                        self.clip[v as usize],
+                        self.world[v as usize],
+                        self.world_first + v,
+                    )
+                })
+                .collect();
+            if !self.all_in_front {
+                poly = clip_near(&poly, self.camera.near);
+            }
+            part.add_piece(id, self.li, &poly, self.camera, self.back_cull, scratch);
+        }
+    }
+}
+
+impl Part {
     fn add_piece(
         &mut self,
         face: FaceId,
@@ -364,46 +497,35 @@ impl ScreenFaces {
         pts: &mut Vec<[f64; 3]>,
     ) {
         let start = self.corner_at.len() as u32;
+        pts.clear();
         for (h, w, at) in poly {
-            // A point clipping made joins the tables.
+            let q = project(h, camera);
+            // A point clipping made joins the part's new points.
             let at = if *at == NEW_POINT {
-                self.world.push(*w);
-                self.points.push(project(h, camera));
-                self.world.len() as u32 - 1
+                self.new_world.push(*w);
+                self.new_points.push(q);
+                u32::MAX - (self.new_world.len() as u32 - 1)
             } else {
                 *at
             };
             self.corner_at.push(at);
+            pts.push(q);
         }
-        let corners = &self.corner_at[start as usize..];
-        pts.clear();
-        pts.extend(corners.iter().map(|&i| self.points[i as usize]));
         let mut piece = describe(face, pts, start, leaf);
         piece.culled = back_cull.culls(&piece);
-        let w = Corners::new(corners, &self.world);
-        if let (Some(eye), true) = (camera.eye, w.len() >= 3) {
+        if let (Some(eye), true) = (camera.eye, poly.len() >= 3) {
             // The eye exactly in the piece's plane: edge-on, whatever rounding the divide did.
-            let refs = piece.refs.map(|k| w[k as usize]);
+            let refs = piece.refs.map(|k| poly[k as usize].1);
             if orient3d_refs(&refs, &eye) == 0.0 {
                 piece.facing = Facing::EdgeOn;
                 piece.culled = false;
             }
         }
         if poly.len() > INDEXED_ABOVE {
-            let id = PieceId(self.pieces.len() as u32);
-            let index = RingIndex::new(pts);
-            self.ring_indexes.push((id, index));
+            let id = self.pieces.len() as u32;
+            self.ring_indexes.push((id, RingIndex::new(pts)));
         }
         self.pieces.push(piece);
-    }
-
-    /// The run boxes of piece `p`, when it has more than [`INDEXED_ABOVE`] points.
-    pub(crate) fn ring_index(&self, p: PieceId) -> Option<&RingIndex> {
-        if self.piece(p).len as usize <= INDEXED_ABOVE {
-            return None;
-        }
-        let k = self.ring_indexes.binary_search_by_key(&p, |e| e.0).ok()?;
-        Some(&self.ring_indexes[k].1)
     }
 }
 
@@ -577,6 +699,64 @@ mod tests {
             0.5
         )
         .is_empty());
+    }
+
+    /// A grid of many tasks' faces seen in perspective from an eye just above it, so that
+    /// the near plane cuts faces in every task: the parts join into consistent tables.
+    #[test]
+    fn faces_projected_in_parts_make_one_table() {
+        use crate::scene::{Mesh, Object};
+        let n = 70; // 2 * 70 * 70 = 9,800 faces: three tasks.
+        let mut vertices = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                vertices.push(P3::new(i as f64 / n as f64, 0.0, j as f64 / n as f64));
+            }
+        }
+        let at = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+        let mut faces = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                faces.push(vec![at(i, j), at(i, j + 1), at(i + 1, j + 1)]);
+                faces.push(vec![at(i, j), at(i + 1, j + 1), at(i + 1, j)]);
+            }
+        }
+        let mesh = Mesh::from_polygons(vertices, faces, &mut Vec::new()).unwrap();
+        let scene = Scene::new(Object::from_mesh("grid", mesh), "grid".into());
+        let eye = P3::new(0.5, 0.05, -0.2);
+        let camera =
+            Camera::perspective(eye, P3::new(0.5, 0.0, 1.0), crate::V3::y(), 90.0, 0.3).unwrap();
+        let sf = ScreenFaces::build(&scene, &camera);
+        assert_eq!(sf.face_count(), 2 * n * n);
+        assert_eq!(sf.world.len(), sf.points.len());
+        let vertices = (n + 1) * (n + 1);
+        let mut made = 0;
+        for p in sf.piece_ids() {
+            let piece = sf.piece(p);
+            let mut rect = Rect::EMPTY;
+            for &c in sf.corners(p) {
+                let q = sf.points[c as usize];
+                rect.add([q[0], q[1]]);
+                if c as usize >= vertices {
+                    // A point clipping made: on the near plane, projected where it is.
+                    made += 1;
+                    let h = camera.clip_coords(&sf.world[c as usize]);
+                    assert!((h[3] - camera.near).abs() < 1e-12, "{h:?}");
+                    let r = project(&h, &camera);
+                    assert!(
+                        (r[0] - q[0]).abs() + (r[1] - q[1]).abs() < 1e-9,
+                        "{r:?} {q:?}"
+                    );
+                }
+            }
+            if piece.facing != Facing::Clipped {
+                assert_eq!(rect, piece.rect);
+            }
+        }
+        assert!(made > 100, "only {made} points made by clipping");
+        let starts = &sf.face_starts;
+        assert!(starts.windows(2).all(|w| w[0] <= w[1]));
+        assert_eq!(*starts.last().unwrap() as usize, sf.pieces.len());
     }
 
     #[test]
