@@ -138,14 +138,15 @@ pub(crate) fn merge_duplicate_vertices(verts: &[P3]) -> (Vec<P3>, Vec<u32>) {
     // for grouping, so that equal points always sit next to each other in the sorted order.
     let folded = |p: &P3| [p.x + 0.0, p.y + 0.0, p.z + 0.0];
     let key = |p: &P3| folded(p).map(f64::to_bits);
+    // By x, y, z in f64::total_cmp's order, then index: a total order, the same sorted on
+    // any number of threads.
+    let total = |x: f64| {
+        let b = x.to_bits() as i64;
+        b ^ ((((b >> 63) as u64) >> 1) as i64)
+    };
     let mut order: Vec<u32> = (0..verts.len() as u32).collect();
-    order.sort_unstable_by(|&a, &b| {
-        let (pa, pb) = (folded(&verts[a as usize]), folded(&verts[b as usize]));
-        pa[0]
-            .total_cmp(&pb[0])
-            .then(pa[1].total_cmp(&pb[1]))
-            .then(pa[2].total_cmp(&pb[2]))
-            .then(a.cmp(&b))
+    crate::scene::topology::sort_by_key(&mut order, |&a| {
+        (folded(&verts[a as usize]).map(total), a)
     });
     // First occurrence of each coordinate value.
     let mut rep = vec![0u32; verts.len()];
@@ -507,6 +508,30 @@ mod tests {
         let (u, remap) = merge_duplicate_vertices(&v);
         assert_eq!(u, vec![P3::new(1., 0., 0.), P3::new(0., 0., 0.)]);
         assert_eq!(remap, vec![0, 1, 0, 1]);
+    }
+
+    #[test]
+    fn many_vertices_merge_as_one_at_a_time_would() {
+        // Enough to be sorted on all threads: every vertex maps to the first equal one.
+        let mut rng = crate::geom::rng::XorShift::new(35);
+        let pick = [-1.5, -0.0, 0.0, 0.25, 1e300, -1e-300];
+        let v: Vec<P3> = (0..40_000)
+            .map(|_| P3::new(pick[rng.below(6)], pick[rng.below(6)], rng.below(3) as f64))
+            .collect();
+        let (u, remap) = merge_duplicate_vertices(&v);
+        let same = |a: &P3, b: &P3| a.x == b.x && a.y == b.y && a.z == b.z;
+        let mut firsts: Vec<usize> = Vec::new();
+        for (i, p) in v.iter().enumerate() {
+            let k = match firsts.iter().position(|&f| same(&v[f], p)) {
+                Some(k) => k,
+                None => {
+                    firsts.push(i);
+                    firsts.len() - 1
+                }
+            };
+            assert_eq!(remap[i] as usize, k, "vertex {i}");
+        }
+        assert_eq!(u.len(), firsts.len());
     }
 
     #[test]
