@@ -16,6 +16,9 @@ pub(crate) type Bounds3 = [[f64; 3]; 2];
 /// the thread pool: 200k one-box objects would each wait on it).
 const PARALLEL_ABOVE: usize = 1024;
 
+/// Boxes a thread takes at a time in the passes over all boxes.
+const CHUNK: usize = 4096;
+
 /// Most grid cells a box enters, on average: bounds the grid's memory.
 const MAX_CELLS_PER_BOX: f64 = 8.0;
 
@@ -49,7 +52,11 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
     f: impl Fn(u32, u32) -> Option<T> + Sync,
     span: Span,
 ) -> Vec<T> {
-    let ids: Vec<u32> = (0..n as u32).filter(|&i| valid(&box_of(i))).collect();
+    let ids: Vec<u32> = (0..n as u32)
+        .into_par_iter()
+        .with_min_len(CHUNK)
+        .filter(|&i| valid(&box_of(i)))
+        .collect();
     let Some(grid) = Grid::fit(&box_of, n, &ids) else {
         return Vec::new();
     };
@@ -62,17 +69,24 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
     // no pair needs a float-to-cell conversion.
     let mut lo_cell = vec![[0u16; 3]; n];
     let entered = span.span(0.0, 0.1).steps(ids.len());
-    for (k, &i) in ids.iter().enumerate() {
-        entered.tick(k);
-        let [lo, hi] = grid.cell_range(&box_of(i));
-        lo_cell[i as usize] = lo.map(|c| c as u16);
-        for x in lo[0]..=hi[0] {
-            for y in lo[1]..=hi[1] {
-                for z in lo[2]..=hi[2] {
-                    entries.push(grid.key([x, y, z]) << shift | u64::from(i));
+    // The boxes' cells found on all threads a chunk at a time, entered in order.
+    for (c, chunk) in ids.chunks(CHUNK * 64).enumerate() {
+        let ranges: Vec<[[u64; 3]; 2]> = chunk
+            .par_iter()
+            .with_min_len(CHUNK)
+            .map(|&i| grid.cell_range(&box_of(i)))
+            .collect();
+        for (&i, [lo, hi]) in chunk.iter().zip(ranges) {
+            lo_cell[i as usize] = lo.map(|c| c as u16);
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        entries.push(grid.key([x, y, z]) << shift | u64::from(i));
+                    }
                 }
             }
         }
+        entered.tick_in(c, 1);
     }
     let parallel = ids.len() > PARALLEL_ABOVE;
     if parallel {
@@ -171,18 +185,32 @@ impl Grid {
     /// cells), coarsened until the boxes enter about
     /// `MAX_CELLS_PER_BOX` cells each on average, and until a cell's coordinates fit 16 bits
     /// and its key and a box index fit one 64-bit entry (a coarser grid finds the same pairs).
-    fn fit(box_of: &impl Fn(u32) -> Bounds3, n: usize, ids: &[u32]) -> Option<Grid> {
+    fn fit(box_of: &(impl Fn(u32) -> Bounds3 + Sync), n: usize, ids: &[u32]) -> Option<Grid> {
         let first = box_of(*ids.first()?);
-        let mut lo = first[0];
-        let mut hi = first[1];
-        let mut mean = 0.0;
-        for &i in ids {
-            let b = &box_of(i);
+        // Bounds and the sum of box sizes by fixed chunks on all threads, the chunks'
+        // sums added in order: the same grid for any thread count.
+        let parts: Vec<([f64; 3], [f64; 3], f64)> = ids
+            .par_chunks(CHUNK)
+            .map(|chunk| {
+                let (mut lo, mut hi, mut sum) = (first[0], first[1], 0.0);
+                for &i in chunk {
+                    let b = &box_of(i);
+                    for k in 0..3 {
+                        lo[k] = lo[k].min(b[0][k]);
+                        hi[k] = hi[k].max(b[1][k]);
+                    }
+                    sum += (0..3).map(|k| b[1][k] - b[0][k]).fold(0.0, f64::max);
+                }
+                (lo, hi, sum)
+            })
+            .collect();
+        let (mut lo, mut hi, mut mean) = (first[0], first[1], 0.0);
+        for (l, h, sum) in parts {
             for k in 0..3 {
-                lo[k] = lo[k].min(b[0][k]);
-                hi[k] = hi[k].max(b[1][k]);
+                lo[k] = lo[k].min(l[k]);
+                hi[k] = hi[k].max(h[k]);
             }
-            mean += (0..3).map(|k| b[1][k] - b[0][k]).fold(0.0, f64::max);
+            mean += sum;
         }
         mean /= ids.len() as f64;
         let span = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
@@ -206,13 +234,17 @@ impl Grid {
                 cell *= 2.0;
                 continue;
             }
-            let cells: f64 = ids
-                .iter()
+            // Counted in integers: the same sum in any order.
+            let cells = ids
+                .par_iter()
+                .with_min_len(CHUNK)
                 .map(|&i| {
                     let [a, b] = g.cell_range(&box_of(i));
-                    (0..3).map(|k| (b[k] - a[k] + 1) as f64).product::<f64>()
+                    (0..3)
+                        .map(|k| u128::from(b[k] - a[k] + 1))
+                        .product::<u128>()
                 })
-                .sum();
+                .sum::<u128>() as f64;
             if cells <= MAX_CELLS_PER_BOX * ids.len() as f64 || cell >= span {
                 return Some(g);
             }
