@@ -26,15 +26,29 @@ pub struct DedupStats {
     pub length: f64,
 }
 
-/// The parts of `segs` (in priority order) not covered by an earlier segment's kept parts,
-/// each with the index of the segment it comes from, in input order.
-///
-/// The segments looked at go to `done`, once per chunk.
+/// [`dedup_indexed`] without its index (the tests').
+#[cfg(test)]
 pub(crate) fn dedup(
     segs: &[[Pt2; 2]],
     eps: f64,
     done: Count,
 ) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
+    let (kept, stats, _) = dedup_indexed(segs, eps, done);
+    (kept, stats)
+}
+
+/// The parts of `segs` (in priority order) not covered by an earlier segment's kept parts,
+/// each with the index of the segment it comes from, in input order; and the index it ends
+/// with: every kept part, in order, over `segs`' bounds (the index
+/// [`SegmentIndex::new`]`(segs, eps)` with the kept parts inserted would be, which the joins'
+/// bridges then ask).
+///
+/// The segments looked at go to `done`, once per chunk.
+pub(crate) fn dedup_indexed(
+    segs: &[[Pt2; 2]],
+    eps: f64,
+    done: Count,
+) -> (Vec<(usize, [Pt2; 2])>, DedupStats, SegmentIndex) {
     let mut index = SegmentIndex::new(segs, eps);
     let mut kept: Vec<(usize, [Pt2; 2])> = Vec::with_capacity(segs.len());
     let mut stats = DedupStats {
@@ -83,7 +97,7 @@ pub(crate) fn dedup(
         }
     }
     done.tick_rest(segs.len());
-    (kept, stats)
+    (kept, stats, index)
 }
 
 /// Segments in a grid, to ask which of them run along a new segment.
@@ -119,6 +133,44 @@ impl SegmentIndex {
             around: Vec::new(),
             cell_seen: vec![0; cells],
             eps,
+        }
+    }
+
+    /// A new index over the same cells holding only the segments `keep` accepts (by their
+    /// number, in the order inserted), answering every query as one they were inserted into
+    /// in order would: each cell lists them in that order.
+    pub(crate) fn filtered(&self, keep: impl Fn(usize) -> bool) -> SegmentIndex {
+        let mut renumber = vec![usize::MAX; self.segs.len()];
+        let mut segs = Vec::with_capacity(self.segs.len());
+        for (k, &s) in self.segs.iter().enumerate() {
+            if keep(k) {
+                renumber[k] = segs.len();
+                segs.push(s);
+            }
+        }
+        let cells = self
+            .grid
+            .cells
+            .iter()
+            .map(|c| {
+                c.iter()
+                    .filter_map(|&k| Some(renumber[k]).filter(|&r| r != usize::MAX))
+                    .collect()
+            })
+            .collect();
+        SegmentIndex {
+            grid: CellGrid {
+                frame: self.grid.frame,
+                cells,
+            },
+            seen: vec![0; segs.len()],
+            segs,
+            query: 0,
+            cells: Vec::new(),
+            cells_for: None,
+            around: Vec::new(),
+            cell_seen: vec![0; self.cell_seen.len()],
+            eps: self.eps,
         }
     }
 
