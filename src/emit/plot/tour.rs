@@ -35,15 +35,14 @@ const OR_RUN: usize = 3;
 const MOVES_PER_STROKE: usize = 64;
 
 /// Kicks of the iterated local search per stroke, over at most [`MAX_KICKED_STROKES`].
-/// Two (four before issue 35) leave the shared meshes' hidden layers 0-2.3% longer than four
-/// did, for half the kicks' time (docs/history/issue35-hidden.md).
-const KICKS_PER_STROKE: usize = 2;
+const KICKS_PER_STROKE: usize = 4;
 
 /// Longest run of positions a move of the kicks' local search may reverse: a kick is local
 /// (runs of at most [`KICK_RUN`]), and so is its repair. Unbounded, a move after a kick on a
 /// layer of 30,000 dashes reversed thousands of positions, and twice when the kick was
-/// undone; bounded, the kicks take a fifth of the time for 0-1% more travel (the first
-/// local search stays unbounded: it mends the greedy order's long jumps).
+/// undone; bounded, the kicks take a fifth of the time for at most 1.3% more travel on the
+/// shared meshes' hidden layers, and layers under 2,000 strokes never reach the bound (the
+/// first local search stays unbounded: it mends the greedy order's long jumps).
 const KICK_REVERSAL: usize = 1000;
 
 /// Strokes counted for the number of kicks (a bound on the work for huge layers).
