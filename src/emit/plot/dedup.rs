@@ -510,4 +510,41 @@ mod tests {
         );
         assert_eq!((again.len(), st.dropped, st.trimmed), (kept.len(), 0, 0));
     }
+
+    #[test]
+    fn a_filtered_index_answers_as_one_built_of_what_it_keeps() {
+        // Pieces along a few lines (so that queries find covers), every third left out.
+        let mut rng = crate::geom::rng::XorShift::new(35);
+        let piece = |rng: &mut crate::geom::rng::XorShift| {
+            let line = rng.below(4) as f64;
+            let (t, u) = (rng.range(0.0, 100.0), rng.range(0.0, 100.0));
+            let at = |t: f64| [t, 0.5 * t + 7.0 * line];
+            [at(t), at(u)]
+        };
+        let segs: Vec<[Pt2; 2]> = (0..600).map(|_| piece(&mut rng)).collect();
+        let keep = |k: usize| k % 3 != 0;
+        let mut all = SegmentIndex::new(&segs, 1e-9);
+        let mut only = SegmentIndex::new(&segs, 1e-9);
+        for (k, &s) in segs.iter().enumerate() {
+            all.insert(s);
+            if keep(k) {
+                only.insert(s);
+            }
+        }
+        let mut filtered = all.filtered(keep);
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        let mut found = 0;
+        for _ in 0..300 {
+            let [p, q] = piece(&mut rng);
+            filtered.covers(p, q, &mut a);
+            only.covers(p, q, &mut b);
+            let key = |c: &Cover| (c.t0, c.p0, c.t1, c.p1);
+            assert_eq!(
+                a.iter().map(key).collect::<Vec<_>>(),
+                b.iter().map(key).collect::<Vec<_>>()
+            );
+            found += a.len();
+        }
+        assert!(found > 300, "{found} covers");
+    }
 }

@@ -216,7 +216,7 @@ fn split_at_virtual(
 /// Joins stroke ends closer than `tol` where `bridge` allows, closest pairs first; a stroke
 /// is never joined to itself. Fills `span` as the pairs are tried.
 fn join_near(
-    lines: Vec<Vec<Pt2>>,
+    mut lines: Vec<Vec<Pt2>>,
     tol: f64,
     bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
     span: Span,
@@ -293,6 +293,12 @@ fn join_near(
         if !free_start && !free_end {
             continue; // inside a chain: reached from one of its ends
         }
+        if free_start && free_end {
+            // Joined to nothing (most dashes): the line itself.
+            done[i] = true;
+            out.push(std::mem::take(&mut lines[i]));
+            continue;
+        }
         // Enter line i at its free end.
         let mut slot = if free_start { 2 * i } else { 2 * i + 1 };
         let mut chain: Vec<Pt2> = Vec::new();
@@ -300,13 +306,16 @@ fn join_near(
             let li = slot / 2;
             done[li] = true;
             let l = &lines[li];
-            let pts: Vec<Pt2> = if slot % 2 == 0 {
-                l.clone()
+            // Its points in the direction walked, the first one only where the chain does
+            // not end there already.
+            let forward = slot % 2 == 0;
+            let first = if forward { l[0] } else { l[l.len() - 1] };
+            let skip = usize::from(chain.last() == Some(&first));
+            if forward {
+                chain.extend(l.iter().skip(skip));
             } else {
-                l.iter().rev().copied().collect()
-            };
-            let skip = usize::from(chain.last() == pts.first());
-            chain.extend_from_slice(&pts[skip..]);
+                chain.extend(l.iter().rev().skip(skip));
+            }
             let exit = slot ^ 1;
             match link[exit] {
                 usize::MAX => break,

@@ -741,7 +741,8 @@ mod tests {
 
     #[test]
     fn plan_is_a_permutation_and_beats_greedy() {
-        for (n, seed) in [(3, 1), (10, 2), (200, 3), (2000, 4)] {
+        // 6,000 strokes: the kicks' reversals reach their bound.
+        for (n, seed) in [(3, 1), (10, 2), (200, 3), (2000, 4), (6000, 5)] {
             let ends = random_strokes(n, seed);
             let p = plan(&ends, Span::NONE);
             let mut seen: Vec<usize> = p.iter().map(|o| o.0).collect();
@@ -858,10 +859,22 @@ mod tests {
             let x = f64::from(k % 3);
             ends.push([[50.0, 50.0], [50.0 + x, 50.0]]);
         }
-        for ends in [ends, random_strokes(5, 12)] {
+        // More slots than one parallel task takes: checked at every 37th slot and across
+        // the tasks' seam.
+        let many = random_strokes(NEAR_TASK, 13);
+        for ends in [ends, random_strokes(5, 12), many] {
             let near = neighbours(&ends, Span::NONE);
             let pts: Vec<Pt2> = ends.iter().flatten().copied().collect();
-            for (s, &p) in pts.iter().enumerate() {
+            let checked: Vec<usize> = if pts.len() > NEAR_TASK {
+                (0..pts.len())
+                    .step_by(37)
+                    .chain(NEAR_TASK - 3..NEAR_TASK + 3)
+                    .collect()
+            } else {
+                (0..pts.len()).collect()
+            };
+            for s in checked {
+                let p = pts[s];
                 let mut all: Vec<(f64, usize)> = (0..pts.len())
                     .filter(|t| t / 2 != s / 2)
                     .map(|t| (dist(p, pts[t]), t))
