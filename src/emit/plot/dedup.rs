@@ -522,7 +522,7 @@ mod tests {
             [at(t), at(u)]
         };
         let segs: Vec<[Pt2; 2]> = (0..600).map(|_| piece(&mut rng)).collect();
-        let keep = |k: usize| k % 3 != 0;
+        let keep = |k: usize| !k.is_multiple_of(3);
         let mut all = SegmentIndex::new(&segs, 1e-9);
         let mut only = SegmentIndex::new(&segs, 1e-9);
         for (k, &s) in segs.iter().enumerate() {
