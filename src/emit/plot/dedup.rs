@@ -26,15 +26,29 @@ pub struct DedupStats {
     pub length: f64,
 }
 
-/// The parts of `segs` (in priority order) not covered by an earlier segment's kept parts,
-/// each with the index of the segment it comes from, in input order.
-///
-/// The segments looked at go to `done`, once per chunk.
+/// [`dedup_indexed`] without its index (the tests').
+#[cfg(test)]
 pub(crate) fn dedup(
     segs: &[[Pt2; 2]],
     eps: f64,
     done: Count,
 ) -> (Vec<(usize, [Pt2; 2])>, DedupStats) {
+    let (kept, stats, _) = dedup_indexed(segs, eps, done);
+    (kept, stats)
+}
+
+/// The parts of `segs` (in priority order) not covered by an earlier segment's kept parts,
+/// each with the index of the segment it comes from, in input order; and the index it ends
+/// with: every kept part, in order, over `segs`' bounds (the index
+/// [`SegmentIndex::new`]`(segs, eps)` with the kept parts inserted would be, which the joins'
+/// bridges then ask).
+///
+/// The segments looked at go to `done`, once per chunk.
+pub(crate) fn dedup_indexed(
+    segs: &[[Pt2; 2]],
+    eps: f64,
+    done: Count,
+) -> (Vec<(usize, [Pt2; 2])>, DedupStats, SegmentIndex) {
     let mut index = SegmentIndex::new(segs, eps);
     let mut kept: Vec<(usize, [Pt2; 2])> = Vec::with_capacity(segs.len());
     let mut stats = DedupStats {
@@ -83,7 +97,7 @@ pub(crate) fn dedup(
         }
     }
     done.tick_rest(segs.len());
-    (kept, stats)
+    (kept, stats, index)
 }
 
 /// Segments in a grid, to ask which of them run along a new segment.
@@ -119,6 +133,44 @@ impl SegmentIndex {
             around: Vec::new(),
             cell_seen: vec![0; cells],
             eps,
+        }
+    }
+
+    /// A new index over the same cells holding only the segments `keep` accepts (by their
+    /// number, in the order inserted), answering every query as one they were inserted into
+    /// in order would: each cell lists them in that order.
+    pub(crate) fn filtered(&self, keep: impl Fn(usize) -> bool) -> SegmentIndex {
+        let mut renumber = vec![usize::MAX; self.segs.len()];
+        let mut segs = Vec::with_capacity(self.segs.len());
+        for (k, &s) in self.segs.iter().enumerate() {
+            if keep(k) {
+                renumber[k] = segs.len();
+                segs.push(s);
+            }
+        }
+        let cells = self
+            .grid
+            .cells
+            .iter()
+            .map(|c| {
+                c.iter()
+                    .filter_map(|&k| Some(renumber[k]).filter(|&r| r != usize::MAX))
+                    .collect()
+            })
+            .collect();
+        SegmentIndex {
+            grid: CellGrid {
+                frame: self.grid.frame,
+                cells,
+            },
+            seen: vec![0; segs.len()],
+            segs,
+            query: 0,
+            cells: Vec::new(),
+            cells_for: None,
+            around: Vec::new(),
+            cell_seen: vec![0; self.cell_seen.len()],
+            eps: self.eps,
         }
     }
 
@@ -457,5 +509,42 @@ mod tests {
             Count::NONE,
         );
         assert_eq!((again.len(), st.dropped, st.trimmed), (kept.len(), 0, 0));
+    }
+
+    #[test]
+    fn a_filtered_index_answers_as_one_built_of_what_it_keeps() {
+        // Pieces along a few lines (so that queries find covers), every third left out.
+        let mut rng = crate::geom::rng::XorShift::new(35);
+        let piece = |rng: &mut crate::geom::rng::XorShift| {
+            let line = rng.below(4) as f64;
+            let (t, u) = (rng.range(0.0, 100.0), rng.range(0.0, 100.0));
+            let at = |t: f64| [t, 0.5 * t + 7.0 * line];
+            [at(t), at(u)]
+        };
+        let segs: Vec<[Pt2; 2]> = (0..600).map(|_| piece(&mut rng)).collect();
+        let keep = |k: usize| !k.is_multiple_of(3);
+        let mut all = SegmentIndex::new(&segs, 1e-9);
+        let mut only = SegmentIndex::new(&segs, 1e-9);
+        for (k, &s) in segs.iter().enumerate() {
+            all.insert(s);
+            if keep(k) {
+                only.insert(s);
+            }
+        }
+        let mut filtered = all.filtered(keep);
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        let mut found = 0;
+        for _ in 0..300 {
+            let [p, q] = piece(&mut rng);
+            filtered.covers(p, q, &mut a);
+            only.covers(p, q, &mut b);
+            let key = |c: &Cover| (c.t0, c.p0, c.t1, c.p1);
+            assert_eq!(
+                a.iter().map(key).collect::<Vec<_>>(),
+                b.iter().map(key).collect::<Vec<_>>()
+            );
+            found += a.len();
+        }
+        assert!(found > 300, "{found} covers");
     }
 }

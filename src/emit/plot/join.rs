@@ -74,13 +74,28 @@ fn euler_trails(lines: &[Vec<Pt2>]) -> Vec<Vec<Pt2>> {
             });
         }
     }
-    let mut adj: Vec<Vec<usize>> = vec![Vec::new(); nodes + 1];
-    for (k, e) in edges.iter().enumerate() {
-        adj[e.ends[0]].push(k);
+    // Each node's edges in edge order, side by side (a counting sort: no list per node).
+    let mut at = vec![0usize; nodes + 2];
+    for e in &edges {
+        at[e.ends[0] + 1] += 1;
         if e.ends[1] != e.ends[0] {
-            adj[e.ends[1]].push(k);
+            at[e.ends[1] + 1] += 1;
         }
     }
+    for v in 0..=nodes {
+        at[v + 1] += at[v];
+    }
+    let mut fill = at.clone();
+    let mut list = vec![0usize; at[nodes + 1]];
+    for (k, e) in edges.iter().enumerate() {
+        for (i, &v) in e.ends.iter().enumerate() {
+            if i == 0 || v != e.ends[0] {
+                list[fill[v]] = k;
+                fill[v] += 1;
+            }
+        }
+    }
+    let adj = Adjacency { at, list };
     let mut used = vec![false; edges.len()];
     let mut next = vec![0usize; nodes + 1];
     let mut out = Vec::new();
@@ -88,28 +103,55 @@ fn euler_trails(lines: &[Vec<Pt2>]) -> Vec<Vec<Pt2>> {
     // at each remaining polyline's first end in input order.
     let starts =
         std::iter::once(virt).chain(edges.iter().filter_map(|e| e.line.map(|_| e.ends[0])));
+    let (mut stack, mut circuit) = (Vec::new(), Vec::new());
     for start in starts {
-        let circuit = hierholzer(start, &edges, &adj, &mut used, &mut next);
+        // Most starts are on lines drawn already: nothing to walk.
+        if next[start] == adj.of(start).len() {
+            continue;
+        }
+        hierholzer(
+            start,
+            &edges,
+            &adj,
+            (&mut used, &mut next),
+            (&mut stack, &mut circuit),
+        );
         out.extend(split_at_virtual(&circuit, &edges, lines));
     }
     out
 }
 
-/// One Euler circuit from `start` over unused edges: the edges in order, each with the node
-/// it is entered from.
+/// The edges at each node of the end-point graph, in edge order.
+struct Adjacency {
+    /// Node v's edges are `list[at[v]..at[v + 1]]`.
+    at: Vec<usize>,
+    list: Vec<usize>,
+}
+
+impl Adjacency {
+    fn of(&self, v: usize) -> &[usize] {
+        &self.list[self.at[v]..self.at[v + 1]]
+    }
+}
+
+/// One Euler circuit from `start` over unused edges, into `circuit`: the edges in order, each
+/// with the node it is entered from. `used` and `next` (each node's next edge to try) carry
+/// over from circuit to circuit; `stack` is a buffer.
 fn hierholzer(
     start: usize,
     edges: &[GraphEdge],
-    adj: &[Vec<usize>],
-    used: &mut [bool],
-    next: &mut [usize],
-) -> Vec<(usize, usize)> {
-    let mut stack: Vec<(usize, Option<(usize, usize)>)> = vec![(start, None)];
-    let mut circuit = Vec::new();
+    adj: &Adjacency,
+    (used, next): (&mut [bool], &mut [usize]),
+    (stack, circuit): (&mut Vec<Step>, &mut Vec<(usize, usize)>),
+) {
+    stack.clear();
+    stack.push((start, None));
+    circuit.clear();
     while let Some(&(v, _)) = stack.last() {
         let mut advanced = false;
-        while next[v] < adj[v].len() {
-            let k = adj[v][next[v]];
+        let around = adj.of(v);
+        while next[v] < around.len() {
+            let k = around[next[v]];
             next[v] += 1;
             if used[k] {
                 continue;
@@ -128,8 +170,10 @@ fn hierholzer(
         }
     }
     circuit.reverse();
-    circuit
 }
+
+/// A node on the walk, with the edge it was reached by and the node before.
+type Step = (usize, Option<(usize, usize)>);
 
 /// Cuts a circuit at its virtual edges into polylines of the real ones.
 fn split_at_virtual(
@@ -153,16 +197,12 @@ fn split_at_virtual(
             }
             Some(i) => {
                 let l = &lines[i];
-                let forward = edges[k].ends[0] == from;
-                let pts: Box<dyn Iterator<Item = &Pt2>> = if forward {
-                    Box::new(l.iter())
+                // The line's points in the direction walked, its first one only to start.
+                let skip = usize::from(!cur.is_empty());
+                if edges[k].ends[0] == from {
+                    cur.extend(l.iter().skip(skip));
                 } else {
-                    Box::new(l.iter().rev())
-                };
-                for (j, p) in pts.enumerate() {
-                    if j > 0 || cur.is_empty() {
-                        cur.push(*p);
-                    }
+                    cur.extend(l.iter().rev().skip(skip));
                 }
             }
         }
@@ -176,7 +216,7 @@ fn split_at_virtual(
 /// Joins stroke ends closer than `tol` where `bridge` allows, closest pairs first; a stroke
 /// is never joined to itself. Fills `span` as the pairs are tried.
 fn join_near(
-    lines: Vec<Vec<Pt2>>,
+    mut lines: Vec<Vec<Pt2>>,
     tol: f64,
     bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
     span: Span,
@@ -253,6 +293,12 @@ fn join_near(
         if !free_start && !free_end {
             continue; // inside a chain: reached from one of its ends
         }
+        if free_start && free_end {
+            // Joined to nothing (most dashes): the line itself.
+            done[i] = true;
+            out.push(std::mem::take(&mut lines[i]));
+            continue;
+        }
         // Enter line i at its free end.
         let mut slot = if free_start { 2 * i } else { 2 * i + 1 };
         let mut chain: Vec<Pt2> = Vec::new();
@@ -260,13 +306,16 @@ fn join_near(
             let li = slot / 2;
             done[li] = true;
             let l = &lines[li];
-            let pts: Vec<Pt2> = if slot % 2 == 0 {
-                l.clone()
+            // Its points in the direction walked, the first one only where the chain does
+            // not end there already.
+            let forward = slot % 2 == 0;
+            let first = if forward { l[0] } else { l[l.len() - 1] };
+            let skip = usize::from(chain.last() == Some(&first));
+            if forward {
+                chain.extend(l.iter().skip(skip));
             } else {
-                l.iter().rev().copied().collect()
-            };
-            let skip = usize::from(chain.last() == pts.first());
-            chain.extend_from_slice(&pts[skip..]);
+                chain.extend(l.iter().rev().skip(skip));
+            }
             let exit = slot ^ 1;
             match link[exit] {
                 usize::MAX => break,

@@ -38,7 +38,7 @@ use crate::visibility::Visibility;
 
 use self::clip_rect::clip_polyline;
 use self::dash::dashes;
-use self::dedup::{dedup, SegmentIndex};
+use self::dedup::{dedup_indexed, SegmentIndex};
 use self::hatch::{hatch, section_hatch, tone_outlines};
 use self::join::join;
 use self::page::Layout;
@@ -184,10 +184,10 @@ pub(crate) fn picture(
     lane.count().tick_rest(placed);
     let eps = DEDUP_EPS_MM;
     lane.enter_phase(Stage::Emit, Phase::Dedup, segs.len());
-    let (kept, dup) = dedup(&segs, eps, lane.count());
+    let (kept, dup, drawn) = dedup_indexed(&segs, eps, lane.count());
     stats.duplicates = dup;
     // Every line drawn, to keep the joins' gap bridges off them.
-    let mut bridges = Bridges::new(&segs, &kept, &owner, eps);
+    let mut bridges = Bridges::new(drawn, &kept, &owner);
 
     // Per layer and pen: join, simplify, dash. An object's style may send its lines (not its
     // hidden lines, nor hatching) to another pen's layer, and set their width.
@@ -482,16 +482,13 @@ struct Bridges {
 }
 
 impl Bridges {
-    fn new(segs: &[[Pt2; 2]], kept: &[(usize, [Pt2; 2])], owner: &[(Pen, u32)], eps: f64) -> Self {
-        let mut drawn = SegmentIndex::new(segs, eps);
-        let hidden = kept.iter().any(|&(src, _)| owner[src].0 == Pen::Hidden);
-        let mut solid = hidden.then(|| SegmentIndex::new(segs, eps));
-        for &(src, s) in kept {
-            drawn.insert(s);
-            if let (Some(solid), false) = (solid.as_mut(), owner[src].0 == Pen::Hidden) {
-                solid.insert(s);
-            }
-        }
+    /// The bridges of a picture whose lines drawn are `kept` (with their sources' `owner`),
+    /// `drawn` the index of them all, in order (dedup's).
+    fn new(drawn: SegmentIndex, kept: &[(usize, [Pt2; 2])], owner: &[(Pen, u32)]) -> Self {
+        let hidden = |k: usize| owner[kept[k].0].0 == Pen::Hidden;
+        let solid = (0..kept.len())
+            .any(hidden)
+            .then(|| drawn.filtered(|k| !hidden(k)));
         Bridges { drawn, solid }
     }
 
