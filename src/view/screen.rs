@@ -1,9 +1,12 @@
 //! Screen-space faces: every face of the scene (outside hidden subtrees) projected into the
 //! standard view as planar pieces, in global face order.
 
+use std::cmp::Ordering;
 use std::ops::Range;
 
 use crate::count::Count;
+use crate::geom::accurate::mat_point_dd;
+use crate::geom::construct::{near_crossing, near_side};
 use crate::geom::convexity::{is_convex_ccw, Strictness};
 use crate::geom::poly2::{ring_area, Pt2};
 use crate::geom::{newell, orient2d, orient3d_refs, Corners, Rect, P3};
@@ -12,7 +15,7 @@ use crate::scene::Scene;
 use crate::scene::{FaceId, Leaf};
 
 use super::backfaces::BackCull;
-use super::camera::{Camera, Projection};
+use super::camera::{project_dd, Camera, Projection};
 use super::cull::Cull;
 use super::piece_id::PieceId;
 use super::ring_index::{RingIndex, INDEXED_ABOVE};
@@ -307,10 +310,22 @@ impl ScreenFaces {
         let world_first = self.world.len() as u32;
         self.world.extend(leaf.world_vertices());
         let world = &self.world[world_first as usize..];
-        let clip: Vec<[f64; 4]> = world.iter().map(|p| camera.clip_coords(p)).collect();
-        self.points.extend(clip.iter().map(|h| project(h, camera)));
-        let all_in_front = camera.projection == Projection::Orthographic
-            || clip.iter().all(|h| h[3] >= camera.near);
+        let clip: Vec<[(f64, f64); 4]> = world
+            .iter()
+            .map(|p| mat_point_dd(&camera.matrix, p))
+            .collect();
+        self.points
+            .extend(clip.iter().map(|h| project_dd(h, camera.projection)));
+        // Each vertex's side of the near plane, exactly (only perspective clips).
+        let front: Vec<bool> = match camera.projection {
+            Projection::Orthographic => Vec::new(),
+            Projection::Perspective => world
+                .iter()
+                .zip(&clip)
+                .map(|(p, h)| near_side(&camera.matrix, p, h, camera.near) != Ordering::Less)
+                .collect(),
+        };
+        let all_in_front = front.iter().all(|&f| f);
         // Back faces hide nothing a front face does not, and are hidden themselves, only on a
         // proven solid (prepare) seen from outside its convex hull (every vertex in front of
         // the near plane), or on a capped open mesh so seen, away from its holes.
@@ -341,11 +356,12 @@ impl ScreenFaces {
                     .iter()
                     .map(|&v| {
                         let at = world_first + v;
-                        (clip[v as usize], self.world[at as usize], at)
+                        let f = front.get(v as usize).copied().unwrap_or(true);
+                        (f, self.world[at as usize], at, [0.0; 3])
                     })
                     .collect();
                 if !all_in_front {
-                    poly = clip_near(&poly, camera.near);
+                    poly = clip_near(&poly, camera);
                 }
                 self.add_piece(id, li, &poly, camera, &back_cull, &mut scratch);
             }
@@ -364,11 +380,11 @@ impl ScreenFaces {
         pts: &mut Vec<[f64; 3]>,
     ) {
         let start = self.corner_at.len() as u32;
-        for (h, w, at) in poly {
+        for (_, w, at, screen) in poly {
             // A point clipping made joins the tables.
             let at = if *at == NEW_POINT {
                 self.world.push(*w);
-                self.points.push(project(h, camera));
+                self.points.push(*screen);
                 self.world.len() as u32 - 1
             } else {
                 *at
@@ -433,36 +449,28 @@ fn exactly_planar(pts: &[P3]) -> bool {
     pts.iter().all(|p| orient3d_refs(&refs, p) == 0.0)
 }
 
-/// The screen point (x, y, depth) of clip coordinates `h`: divided by w in perspective.
-fn project(h: &[f64; 4], camera: &Camera) -> [f64; 3] {
-    match camera.projection {
-        Projection::Perspective => [h[0] / h[3], h[1] / h[3], h[2] / h[3]],
-        Projection::Orthographic => [h[0], h[1], h[2]],
-    }
-}
-
-/// A corner on its way into a piece: homogeneous clip coordinates, world point, and the
-/// world point's index in [`ScreenFaces::world`] ([`NEW_POINT`] for a point clipping made).
-type Corner = ([f64; 4], P3, u32);
+/// A corner on its way into a piece: in front of the near plane (exact), world point, the
+/// world point's index in [`ScreenFaces::world`] ([`NEW_POINT`] for a point clipping made) and,
+/// for such a point, its screen point.
+type Corner = (bool, P3, u32, [f64; 3]);
 
 /// [`Corner`]'s index of a world point not yet in the table.
 const NEW_POINT: u32 = u32::MAX;
 
-/// Sutherland–Hodgman clip of a homogeneous polygon (with its world points) to w >= near.
-fn clip_near(poly: &[Corner], near: f64) -> Vec<Corner> {
+/// Sutherland–Hodgman clip of a polygon (world points, exact sides) to w' >= near: each new
+/// point is the exact crossing, rounded once in screen and in world coordinates.
+fn clip_near(poly: &[Corner], camera: &Camera) -> Vec<Corner> {
     let n = poly.len();
     let mut out = Vec::with_capacity(n + 2);
     for i in 0..n {
-        let ((a, wa, at), (b, wb, _)) = (poly[i], poly[(i + 1) % n]);
-        let (da, db) = (a[3] - near, b[3] - near);
-        if da >= 0.0 {
-            out.push((a, wa, at));
+        let ((fa, wa, at, sa), (fb, wb, _, _)) = (poly[i], poly[(i + 1) % n]);
+        if fa {
+            out.push((fa, wa, at, sa));
         }
-        if (da >= 0.0) != (db >= 0.0) {
-            let t = da / (da - db);
-            let mut p: [f64; 4] = std::array::from_fn(|k| a[k] + t * (b[k] - a[k]));
-            p[3] = near;
-            out.push((p, wa + (wb - wa) * t, NEW_POINT));
+        if fa != fb {
+            let (front, back) = if fa { (&wa, &wb) } else { (&wb, &wa) };
+            let (screen, world) = near_crossing(front, back, &camera.matrix, camera.near);
+            out.push((true, world, NEW_POINT, screen));
         }
     }
     if out.len() < 3 {
@@ -556,27 +564,44 @@ mod tests {
 
     #[test]
     fn near_clip_cuts_polygon() {
-        let o = P3::origin();
+        // w' = −z, near 0.5: (0, 0, 1) is behind, the others in front.
+        #[rustfmt::skip]
+        let matrix = crate::geom::M4::new(
+            1., 0., 0., 0.,
+            0., 1., 0., 0.,
+            0., 0., 0., 1.,
+            0., 0., -1., 0.,
+        );
+        let cam = Camera {
+            matrix,
+            projection: Projection::Perspective,
+            near: 0.5,
+            eye: Some(P3::origin()),
+        };
+        let corner = |p: P3, at: u32| {
+            let h = mat_point_dd(&matrix, &p);
+            let f = near_side(&matrix, &p, &h, 0.5) != Ordering::Less;
+            (f, p, at, [0.0; 3])
+        };
         let poly = [
-            ([0., 0., 1., -1.], o, 0),
-            ([1., 0., 1., 1.], o, 1),
-            ([0., 1., 1., 1.], o, 2),
+            corner(P3::new(0., 0., 1.), 0),
+            corner(P3::new(1., 0., -1.), 1),
+            corner(P3::new(0., 1., -1.), 2),
         ];
-        let c = clip_near(&poly, 0.5);
+        let c = clip_near(&poly, &cam);
         assert_eq!(c.len(), 4);
-        assert!(c.iter().all(|(h, _, _)| h[3] >= 0.5));
-        // The corners kept keep their points' indices; the two cut points are new.
+        // The corners kept keep their points' indices; the two cut points are new, on the
+        // near plane (z = −0.5), exactly.
         let at: Vec<u32> = c.iter().map(|e| e.2).collect();
         assert_eq!(at, [NEW_POINT, 1, 2, NEW_POINT]);
-        assert!(clip_near(
-            &[
-                ([0., 0., 0., 0.1], o, 0),
-                ([1., 0., 0., 0.1], o, 1),
-                ([0., 1., 0., 0.2], o, 2)
-            ],
-            0.5
-        )
-        .is_empty());
+        assert_eq!(c[0].1, P3::new(0.75, 0., -0.5));
+        assert_eq!(c[0].3, [1.5, 0., 2.]);
+        let behind = [
+            corner(P3::new(0., 0., -0.1), 0),
+            corner(P3::new(1., 0., -0.1), 1),
+            corner(P3::new(0., 1., -0.2), 2),
+        ];
+        assert!(clip_near(&behind, &cam).is_empty());
     }
 
     #[test]
