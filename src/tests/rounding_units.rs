@@ -204,7 +204,10 @@ fn flush_solids(rot: &nalgebra::Rotation3<f64>, kind: usize) -> Scene {
     }
 }
 
+/// Slow (about a minute a case): the exact check meets the equal-depth lines of nearly
+/// coplanar planes in rationals of thousands of bits. Run with `--ignored`.
 #[test]
+#[ignore]
 fn rotated_flush_solids_are_within_output_rounding() {
     let mut rng = Rng::new(3131);
     let mut w = Worst::default();
