@@ -29,25 +29,65 @@ fn split(a: f64) -> (f64, f64) {
     (hi, a - hi)
 }
 
-/// a · b = p + e exactly (Dekker), for |a|, |b| below 2^996 and no underflow.
-#[inline]
-pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
+/// a · b = p + e exactly, for |a|, |b| below 2^996 and no underflow: by Dekker's splitting, or (`FMA`, only inside functions compiled with the
+/// fma feature) by one fused multiply-add: the same exact error term either way, so the
+/// same bits on every machine.
+#[inline(always)]
+fn two_prod_in<const FMA: bool>(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
+    if FMA {
+        return (p, a.mul_add(b, -p));
+    }
     let (ah, al) = split(a);
     let (bh, bl) = split(b);
     (p, al * bl - (((p - ah * bh) - al * bh) - ah * bl))
 }
 
-/// Σ x_i·y_i by Dot2: within u·|exact| + γ(n)²·Σ|x_i·y_i| of the exact value, as a
+/// True when this processor has fused multiply-add (checked once, then cached by std).
+#[inline]
+fn has_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// Defines `$name` dispatching to `$body` compiled with fma where the processor has it.
+macro_rules! with_fma {
+    ($(#[$m:meta])* $vis:vis fn $name:ident($($arg:ident: $ty:ty),*) -> $ret:ty => $imp:ident) => {
+        $(#[$m])*
+        $vis fn $name($($arg: $ty),*) -> $ret {
+            #[cfg(target_arch = "x86_64")]
+            {
+                #[target_feature(enable = "fma")]
+                fn fast($($arg: $ty),*) -> $ret {
+                    $imp::<true>($($arg),*)
+                }
+                if has_fma() {
+                    // SAFETY: the processor has the fma feature (checked just above).
+                    return unsafe { fast($($arg),*) };
+                }
+            }
+            $imp::<false>($($arg),*)
+        }
+    };
+}
+
+/// Σ x_i·y_i by Dot2 ([`dot2_fast`]): within u·|exact| + γ(n)²·Σ|x_i·y_i| of the exact value, as a
 /// double-double (hi, lo) whose sum carries it (hi alone: one more rounding, ½ ulp).
-pub(crate) fn dot2(x: &[f64], y: &[f64]) -> (f64, f64) {
+#[inline(always)]
+fn dot2_in<const FMA: bool>(x: &[f64], y: &[f64]) -> (f64, f64) {
     let big = x.iter().chain(y).any(|v| v.abs() > SPLIT_LIMIT);
     if big {
         return (x.iter().zip(y).map(|(a, b)| a * b).sum(), 0.0);
     }
     let (mut p, mut s) = (0.0, 0.0);
     for (a, b) in x.iter().zip(y) {
-        let (h, r) = two_prod(*a, *b);
+        let (h, r) = two_prod_in::<FMA>(*a, *b);
         let (q, t) = two_sum(p, h);
         p = q;
         s += t + r;
@@ -59,12 +99,24 @@ pub(crate) fn dot2(x: &[f64], y: &[f64]) -> (f64, f64) {
 /// within γ(4)² ≤ 16u² (1.8e-31) of Σ|m_ij·p_j| of the exact value, so a large translation in M
 /// no longer cancels the point's own digits.
 pub(crate) fn mat_point_dd(m: &super::M4, p: &super::P3) -> [(f64, f64); 4] {
+    mat_point_dd_fast(m, p)
+}
+
+with_fma!(fn mat_point_dd_fast(m: &super::M4, p: &super::P3) -> [(f64, f64); 4] => mat_point_dd_in);
+
+#[inline(always)]
+fn mat_point_dd_in<const FMA: bool>(m: &super::M4, p: &super::P3) -> [(f64, f64); 4] {
     let v = [p.x, p.y, p.z, 1.0];
     std::array::from_fn(|r| {
         let row = [m[(r, 0)], m[(r, 1)], m[(r, 2)], m[(r, 3)]];
-        dot2(&row, &v)
+        dot2_in::<FMA>(&row, &v)
     })
 }
+
+with_fma!(
+    /// [`dot2`], with fused multiply-adds where the processor has them (the same bits).
+    pub(crate) fn dot2_fast(x: &[f64], y: &[f64]) -> (f64, f64) => dot2_in
+);
 
 /// [`mat_point_dd`] rounded to doubles: within 1 ulp plus 1.8e-31·Σ|m_ij·p_j| of the exact value.
 pub(crate) fn mat_point(m: &super::M4, p: &super::P3) -> [f64; 4] {
@@ -78,7 +130,7 @@ pub(crate) fn div_dd(n: (f64, f64), d: (f64, f64)) -> f64 {
     if !q.is_finite() || n.0.abs() > SPLIT_LIMIT || d.0.abs() > SPLIT_LIMIT {
         return (n.0 + n.1) / (d.0 + d.1);
     }
-    let (p, e) = two_prod(q, d.0);
+    let (p, e) = two_prod_in::<false>(q, d.0);
     let r = (((n.0 - p) - e) + n.1 - q * d.1) / d.0;
     q + r
 }
@@ -95,6 +147,18 @@ pub(crate) fn div_dd(n: (f64, f64), d: (f64, f64)) -> f64 {
 /// γ(24)² ≤ 580u² of their magnitudes (at most (1 + 4u)·P). So |hi + lo − exact| ≤ 650u²·P;
 /// the bound allows 2048u²·P.
 pub(crate) fn orient3d_dd(a: &super::P3, b: &super::P3, c: &super::P3, d: &super::P3) -> Dd3 {
+    orient3d_dd_fast(a, b, c, d)
+}
+
+with_fma!(fn orient3d_dd_fast(a: &super::P3, b: &super::P3, c: &super::P3, d: &super::P3) -> Dd3 => orient3d_dd_in);
+
+#[inline(always)]
+fn orient3d_dd_in<const FMA: bool>(
+    a: &super::P3,
+    b: &super::P3,
+    c: &super::P3,
+    d: &super::P3,
+) -> Dd3 {
     let diff = |p: &super::P3, k: usize| two_sum(p[k], -d[k]);
     let (ad, bd, cd) = (
         [diff(a, 0), diff(a, 1), diff(a, 2)],
@@ -118,9 +182,9 @@ pub(crate) fn orient3d_dd(a: &super::P3, b: &super::P3, c: &super::P3, d: &super
     let mut perm = 0.0;
     let mut lows = 0.0;
     for (sign, [x, y, z]) in triples {
-        let (p, e) = two_prod(y.0, z.0);
-        let (q, f) = two_prod(x.0, p);
-        let (g, h) = two_prod(x.0, e);
+        let (p, e) = two_prod_in::<FMA>(y.0, z.0);
+        let (q, f) = two_prod_in::<FMA>(x.0, p);
+        let (g, h) = two_prod_in::<FMA>(x.0, e);
         for t in [q, f, g, h] {
             terms[n] = sign * t;
             n += 1;
@@ -165,7 +229,8 @@ mod tests {
         let (s, e) = two_sum(1.0, 1e-20);
         assert_eq!((s, e), (1.0, 1e-20));
         let x = 1.0 + f64::EPSILON;
-        let (p, e) = two_prod(x, x);
+        let (p, e) = two_prod_in::<false>(x, x);
+        assert_eq!(two_prod_in::<true>(x, x), (p, e));
         // (1 + ε)² = 1 + 2ε + ε²: the ε² is the error term.
         assert_eq!(p, 1.0 + 2.0 * f64::EPSILON);
         assert_eq!(e, f64::EPSILON * f64::EPSILON);
@@ -177,7 +242,7 @@ mod tests {
         let big = 4e9;
         let x = [big, -big, 1e-3];
         let y = [1.0 + 2f64.powi(-40), 1.0, 1.0];
-        let (hi, lo) = dot2(&x, &y);
+        let (hi, lo) = dot2_fast(&x, &y);
         let exact = big * 2f64.powi(-40) + 1e-3;
         assert!(
             ((hi + lo) - exact).abs() <= 2.0 * U * exact,
@@ -195,6 +260,9 @@ mod tests {
             let (s, t) = (rng.unit(), rng.unit());
             let d = a + (b - a) * s + (c - a) * t;
             let v = orient3d_dd(&a, &b, &c, &d);
+            // Dekker and fused multiply-add give the same bits.
+            assert_eq!(orient3d_dd_in::<false>(&a, &b, &c, &d), v);
+            assert_eq!(orient3d_dd_in::<true>(&a, &b, &c, &d), v);
             let exact = orient3d(&a, &b, &c, &d);
             if v.err < v.hi.abs() {
                 assert_eq!(v.hi.signum(), exact.signum());

@@ -10,7 +10,7 @@ use std::cmp::Ordering;
 
 use num_bigint::BigInt;
 
-use super::accurate::{div_dd, dot2, mat_point_dd, orient3d_dd, U};
+use super::accurate::{div_dd, dot2_fast, mat_point_dd, orient3d_dd, U};
 use super::plane_cut::{round_quotient, split, sum_terms};
 use super::{M4, P3};
 
@@ -48,7 +48,7 @@ fn filtered_crossing(refs: &[P3; 3], a: &P3, b: &P3, m: &M4) -> Option<[f64; 2]>
     }
     let (ca, cb) = ((db.hi, db.lo), (da.hi, da.lo)); // s = (A h_b − B h_a)/(A w_b − B w_a)
     let lin = |r: usize| -> Dd {
-        dot2(
+        dot2_fast(
             &[cb.0, cb.1, cb.0, -ca.0, -ca.1, -ca.0],
             &[hb[r].0, hb[r].0, hb[r].1, ha[r].0, ha[r].0, ha[r].1],
         )

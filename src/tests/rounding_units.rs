@@ -42,7 +42,11 @@ impl Worst {
         let t1 = t0.elapsed();
         let rep = check(&scene, &cam, &r.visibility, None);
         if std::env::var_os("KEPLER_ISSUE31_TIMES").is_some() {
-            eprintln!("{what}: render {t1:?}, check {:?}", t0.elapsed() - t1);
+            let worst = rep.worst_units();
+            eprintln!(
+                "{what}: render {t1:?}, check {:?}, worst {worst:.3} units",
+                t0.elapsed() - t1
+            );
         }
         for f in &rep.faces {
             if f.units > self.units {
