@@ -43,7 +43,8 @@ fn filtered_crossing(refs: &[P3; 3], a: &P3, b: &P3, m: &M4) -> Option<[f64; 2]>
     // Relative errors of A and B (their signs are exact and opposite).
     let (aa, ab) = (da.hi.abs(), db.hi.abs());
     let eta = da.err / aa + db.err / ab;
-    if !(eta < FILTER) {
+    // Written so that a NaN also fails.
+    if eta.is_nan() || eta >= FILTER {
         return None;
     }
     let (ca, cb) = ((db.hi, db.lo), (da.hi, da.lo)); // s = (A h_b − B h_a)/(A w_b − B w_a)
@@ -65,7 +66,7 @@ fn filtered_crossing(refs: &[P3; 3], a: &P3, b: &P3, m: &M4) -> Option<[f64; 2]>
     // s is a weighted mean of the endpoints' screen points (A, −B, w_a, w_b > 0), so
     // |s| ≤ size, and errors δN, δD ≤ err move it by at most err·(1 + size)/den.
     let d = den.0.abs();
-    if !(d > 0.0 && err * (1.0 + size) / d <= FILTER * size) || !size.is_finite() {
+    if !(d > 0.0 && err * (1.0 + size) / d <= FILTER * size && size.is_finite()) {
         return None;
     }
     Some([div_dd(nx, den), div_dd(ny, den)])
