@@ -216,6 +216,34 @@ mod tests {
     }
 
     #[test]
+    fn orient3d_dd_is_within_its_bound_of_the_exact_value() {
+        let mut rng = crate::geom::rng::XorShift::new(31);
+        let mut worst = 0.0f64;
+        for k in 0..3000 {
+            let s = [1.0, 1e3, 1e-3, 1e9][k % 4];
+            let p = |r: &mut crate::geom::rng::XorShift| {
+                P3::new(r.range(-s, s), r.range(-s, s), r.range(-s, s))
+            };
+            let refs = [p(&mut rng), p(&mut rng), p(&mut rng)];
+            // Points on the plane (rounded), near it, and anywhere.
+            let (u, v) = (rng.unit(), rng.unit());
+            let on = refs[0] + (refs[1] - refs[0]) * u + (refs[2] - refs[0]) * v;
+            for q in [on, on * (1.0 + 1e-12), p(&mut rng)] {
+                let dd = orient3d_dd(&refs[0], &refs[1], &refs[2], &q);
+                let (x, e) = exact_orient(&refs, &q);
+                let (mh, eh) = split(dd.hi);
+                let (ml, el) = split(dd.lo);
+                let (diff, ed) =
+                    sum_terms(&[(x, e), (-BigInt::from(mh), eh), (-BigInt::from(ml), el)]);
+                let off = round_quotient(&diff, &BigInt::from(1), ed).abs();
+                assert!(off <= dd.err, "{off:e} > {:e} at {k}", dd.err);
+                worst = worst.max(off / dd.err);
+            }
+        }
+        assert!(worst < 1.0, "{worst}");
+    }
+
+    #[test]
     fn tiny_angles_take_the_exact_path() {
         // A plane tilted by 1e-15 rad, crossed by a segment nearly in it.
         let refs = [
