@@ -24,7 +24,7 @@ mod compare;
 mod report;
 mod visible_set;
 
-pub use crate::exact::{check as exact, ExactReport, FaceCheck};
+pub use crate::exact::{check as exact, ExactReport, FaceCheck, ALLOWANCE_UNITS};
 pub use crate::geom::boolean::{union, xor_area};
 pub use crate::geom::poly2::{multipolygon_area, ring_area, MultiPolygon, Polygon, Pt2, Ring};
 pub use compare::{compare, diff, Change, ChangeKind, Comparison, FLOOR};

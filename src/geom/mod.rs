@@ -1,10 +1,12 @@
 //! Geometry shared by every stage, and the one home of its predicates: exact orientation
 //! tests, Newell normals, rectangles, polygons and the adapter to the 2D boolean engine.
 
+pub(crate) mod accurate;
 pub(crate) mod boolean;
 pub(crate) mod box3;
 pub(crate) mod box_pairs;
 pub(crate) mod box_tree;
+pub(crate) mod construct;
 pub(crate) mod convexity;
 pub(crate) mod corners;
 pub(crate) mod grid;

@@ -25,7 +25,7 @@ pub(crate) struct CutPlane {
 }
 
 /// An f64 as an integer times a power of two (exact).
-fn split(x: f64) -> (i64, i32) {
+pub(crate) fn split(x: f64) -> (i64, i32) {
     if x == 0.0 {
         return (0, 0);
     }
@@ -42,7 +42,7 @@ fn split(x: f64) -> (i64, i32) {
 }
 
 /// Σ of terms m·2^e, exactly, as an integer times 2^emin (emin the least exponent).
-fn sum_terms(terms: &[(BigInt, i32)]) -> (BigInt, i32) {
+pub(crate) fn sum_terms(terms: &[(BigInt, i32)]) -> (BigInt, i32) {
     let emin = terms
         .iter()
         .filter(|(m, _)| !m.is_zero())

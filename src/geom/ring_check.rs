@@ -92,6 +92,8 @@ pub(crate) fn repair(m: &mut MultiPolygon) -> usize {
                 remove_spikes(r);
                 if ring_defect(r, k == 0).is_some() && is_sliver(r) {
                     r.clear();
+                } else if ring_defect(r, k == 0).is_some() {
+                    nudge(r, k == 0);
                 }
             }
         }
@@ -157,9 +159,59 @@ fn remove_spikes(r: &mut Ring) {
     }
 }
 
+/// Most ulps a vertex is moved by [`nudge`].
+pub(crate) const NUDGE_ULPS: u32 = 4;
+
+/// Mends a ring that crosses itself only because a vertex was rounded onto the wrong side of
+/// an edge within an ulp or two of it (seen on the town: a vertex 4.9e-18 past an edge at
+/// coordinates near 0.32): tries moving one endpoint of a crossing pair of edges by 1 to
+/// [`NUDGE_ULPS`] ulps in each of eight directions, and keeps the first move that leaves the
+/// ring valid (exact [`ring_defect`]). The boundary moves by at most √2·NUDGE_ULPS ulps, within
+/// output rounding. A ring no such move mends is left as it was.
+fn nudge(r: &mut Ring, ccw: bool) {
+    let Some((i, j)) = crossing_pair(r) else {
+        return;
+    };
+    let n = r.len();
+    let step = |x: f64, k: i64| {
+        let mut y = x;
+        for _ in 0..k.unsigned_abs() {
+            y = if k > 0 { y.next_up() } else { y.next_down() };
+        }
+        y
+    };
+    for v in [i, (i + 1) % n, j, (j + 1) % n] {
+        let p = r[v];
+        for k in 1..=i64::from(NUDGE_ULPS) {
+            for (dx, dy) in [
+                (1, 0),
+                (-1, 0),
+                (0, 1),
+                (0, -1),
+                (1, 1),
+                (1, -1),
+                (-1, 1),
+                (-1, -1),
+            ] {
+                r[v] = [step(p[0], dx * k), step(p[1], dy * k)];
+                if ring_defect(r, ccw).is_none() {
+                    return;
+                }
+            }
+        }
+        r[v] = p;
+    }
+}
+
 /// True when two edges of the ring (distinct points) meet other than neighbours at their
 /// shared vertex. Edges are swept in order of their least x.
 fn crossing(r: &[Pt2]) -> bool {
+    crossing_pair(r).is_some()
+}
+
+/// The first two edges (by their first points' indices) of the ring that meet other than
+/// neighbours at their shared vertex, as [`crossing`] finds them.
+fn crossing_pair(r: &[Pt2]) -> Option<(usize, usize)> {
     let n = r.len();
     let edge = |i: usize| (r[i], r[(i + 1) % n]);
     let mut order: Vec<usize> = (0..n).collect();
@@ -182,17 +234,17 @@ fn crossing(r: &[Pt2]) -> bool {
                     (a, b, c)
                 };
                 if orient2d(p, shared, q) == 0.0 && same_direction(shared, p, q) {
-                    return true;
+                    return Some((i, j));
                 }
                 if n == 3 {
                     continue;
                 }
             } else if segments_meet(a, b, c, d) {
-                return true;
+                return Some((i, j));
             }
         }
     }
-    false
+    None
 }
 
 /// For collinear p, v, q (both distinct from v): p and q lie on the same side of v.
@@ -289,6 +341,20 @@ mod tests {
         ]]];
         assert_eq!(repair(&mut spiked), 0);
         assert!(multipolygon_defects(&spiked).is_empty(), "{spiked:?}");
+        // The town's ring (issue 31): a vertex 4.9e-18 past an edge, nudged back by an ulp.
+        let town = vec![
+            [0.32062538971937826, -0.09843046053439576],
+            [0.3207331199762499, -0.22242323366626976],
+            [0.3303339966859577, -0.22797442315996175],
+            [0.3302317460805324, -0.1137072104645252],
+            [0.3206363977018062, -0.1111001626910689],
+        ];
+        assert_eq!(ring_defect(&town, true), Some(RingDefect::SelfCrossing));
+        let mut m = vec![vec![town.clone()]];
+        assert_eq!(repair(&mut m), 0);
+        assert!(multipolygon_defects(&m).is_empty(), "{m:?}");
+        let moved: Vec<usize> = (0..5).filter(|&k| m[0][0][k] != town[k]).collect();
+        assert_eq!(moved.len(), 1);
         // A real bow tie is no sliver: kept, and still reported.
         let mut bow = vec![vec![vec![[0., 0.], [2., 2.], [2., 0.], [0., 1.]]]];
         assert_eq!(repair(&mut bow), 0);

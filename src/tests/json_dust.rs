@@ -120,11 +120,9 @@ fn the_rule_sees_dust() {
     assert_eq!(ulps(1.0, 1.0 + f64::EPSILON), 1);
 }
 
-/// A ring the visibility stage already emits self-crossing, before any dust is taken out:
-/// town's face 871 has a vertex 1.1e-17 on the wrong side of a non-adjacent edge (a pinch
-/// that rounding crossed; not a pair of close points, so outside the dust rule). Listed so
-/// that this test sees every other defect, and fails once it is fixed (then drop it here).
-const KNOWN: [&str; 1] = ["town.json: face 871: ring 0 SelfCrossing"];
+/// Defects this test knows of and tolerates: none. (Town's face 871, a vertex rounded an ulp
+/// past a non-adjacent edge, was listed until the ring repair's nudge mended it, issue 31.)
+const KNOWN: [&str; 0] = [];
 
 #[test]
 fn goldens_hold_no_rounding_dust() {

@@ -18,6 +18,7 @@ mod lines;
 mod load_mesh_files;
 mod long_faces;
 mod rng;
+mod rounding_units;
 mod scene_files;
 mod section;
 mod shared_meshes;

@@ -320,25 +320,31 @@ impl Camera {
         Camera::orthographic(r(dir), r(screen_up))
     }
 
-    /// Homogeneous image (x', y', z', w') of a world point.
+    /// Homogeneous image (x', y', z', w') of a world point: each coordinate within 1 ulp plus
+    /// 1.8e-31·Σ|m_ij·p_j| of the exact value (compensated, so a large translation in M does
+    /// not cancel the point's digits; docs/numerics.md).
     pub fn clip_coords(&self, p: &P3) -> [f64; 4] {
-        let h = self.matrix * p.to_homogeneous();
-        [h.x, h.y, h.z, h.w]
+        crate::geom::accurate::mat_point(&self.matrix, p)
     }
 
-    /// Screen point of a world point in front of the near plane.
+    /// Screen point of a world point in front of the near plane: each coordinate within 1 ulp
+    /// of the exact x'/w' (plus 1.8e-31·Σ|m_ij·p_j| / w').
     pub fn project(&self, p: &P3) -> [f64; 3] {
-        let [x, y, z, w] = self.clip_coords(p);
-        if self.projection == Projection::Orthographic {
-            [x, y, z]
-        } else {
-            [x / w, y / w, z / w]
-        }
+        project_dd(
+            &crate::geom::accurate::mat_point_dd(&self.matrix, p),
+            self.projection,
+        )
     }
 
     /// True when a world point lies in front of the near plane (always, for orthographic).
     pub fn in_front(&self, p: &P3) -> bool {
-        self.projection == Projection::Orthographic || self.clip_coords(p)[3] >= self.near
+        self.projection == Projection::Orthographic
+            || crate::geom::construct::near_side(
+                &self.matrix,
+                p,
+                &crate::geom::accurate::mat_point_dd(&self.matrix, p),
+                self.near,
+            ) != std::cmp::Ordering::Less
     }
 
     /// The world point whose screen image is (x, y, z) (inverse of [`Camera::project`]).
@@ -346,6 +352,17 @@ impl Camera {
         let inv = self.matrix.try_inverse().unwrap_or_else(M4::identity);
         let h = inv * nalgebra::Vector4::new(s[0], s[1], s[2], 1.0);
         P3::new(h.x / h.w, h.y / h.w, h.z / h.w)
+    }
+}
+
+/// The screen point (x, y, depth) of double-double clip coordinates: divided by w' in
+/// perspective (each within 1 ulp of the pairs' exact quotient), rounded once in orthographic.
+pub(crate) fn project_dd(h: &[(f64, f64); 4], projection: Projection) -> [f64; 3] {
+    match projection {
+        Projection::Perspective => {
+            std::array::from_fn(|k| crate::geom::accurate::div_dd(h[k], h[3]))
+        }
+        Projection::Orthographic => std::array::from_fn(|k| h[k].0 + h[k].1),
     }
 }
 

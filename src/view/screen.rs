@@ -1,11 +1,14 @@
 //! Screen-space faces: every face of the scene (outside hidden subtrees) projected into the
 //! standard view as planar pieces, in global face order.
 
+use std::cmp::Ordering;
 use std::ops::Range;
 
 use rayon::prelude::*;
 
 use crate::count::Count;
+use crate::geom::accurate::mat_point_dd;
+use crate::geom::construct::{near_crossing, near_side};
 use crate::geom::convexity::{is_convex_ccw, Strictness};
 use crate::geom::poly2::{ring_area, Pt2};
 use crate::geom::{newell, orient2d, orient3d_refs, Corners, Rect, P3};
@@ -14,7 +17,7 @@ use crate::scene::Scene;
 use crate::scene::{FaceId, Leaf};
 
 use super::backfaces::BackCull;
-use super::camera::{Camera, Projection};
+use super::camera::{project_dd, Camera, Projection};
 use super::cull::Cull;
 use super::piece_id::PieceId;
 use super::ring_index::{RingIndex, INDEXED_ABOVE};
@@ -315,14 +318,24 @@ impl ScreenFaces {
         // Held apart while the parts are appended (their new points after all the tasks).
         let world = std::mem::take(&mut self.world);
         let leaf_world = &world[world_first as usize..];
-        let clip: Vec<[f64; 4]> = leaf_world
+        let clip: Vec<[(f64, f64); 4]> = leaf_world
             .par_iter()
-            .map(|p| camera.clip_coords(p))
+            .map(|p| mat_point_dd(&camera.matrix, p))
             .collect();
         self.points
-            .par_extend(clip.par_iter().map(|h| project(h, camera)));
-        let all_in_front = camera.projection == Projection::Orthographic
-            || clip.iter().all(|h| h[3] >= camera.near);
+            .par_extend(clip.par_iter().map(|h| project_dd(h, camera.projection)));
+        // Each vertex's side of the near plane, exactly (only perspective clips).
+        let front: Vec<bool> = match camera.projection {
+            Projection::Orthographic => Vec::new(),
+            Projection::Perspective => leaf_world
+                .par_iter()
+                .zip(&clip)
+                .map(|(p, h)| near_side(&camera.matrix, p, h, camera.near) != Ordering::Less)
+                .collect(),
+        };
+        drop(clip);
+        let all_in_front = front.iter().all(|&f| f);
+        let points = std::mem::take(&mut self.points);
         // Back faces hide nothing a front face does not, and are hidden themselves, only on a
         // proven solid (prepare) seen from outside its convex hull (every vertex in front of
         // the near plane), or on a capped open mesh so seen, away from its holes.
@@ -338,8 +351,9 @@ impl ScreenFaces {
             li,
             leaf,
             camera,
-            clip: &clip,
+            front: &front,
             world: leaf_world,
+            points: &points[world_first as usize..],
             world_first,
             all_in_front,
             back_cull: &back_cull,
@@ -348,7 +362,7 @@ impl ScreenFaces {
         };
         let n = leaf.mesh.faces.len();
         let tasks: Vec<usize> = (0..n).step_by(TASK_FACES).collect();
-        let mut new_world = Vec::new();
+        let (mut new_world, mut new_points) = (Vec::new(), Vec::new());
         for batch in tasks.chunks(TASKS_AT_ONCE) {
             let parts: Vec<Part> = batch
                 .par_iter()
@@ -361,19 +375,21 @@ impl ScreenFaces {
             for part in parts {
                 let new_base = (world.len() + new_world.len()) as u32;
                 new_world.extend_from_slice(&part.new_world);
+                new_points.extend_from_slice(&part.new_points);
                 self.append(part, new_base);
             }
         }
         self.world = world;
         self.world.extend(new_world);
+        self.points = points;
+        self.points.extend(new_points);
     }
 
-    /// Appends a part's pieces, corners and projected points (its new world points, which
-    /// are to be numbered from `new_base`, are the caller's to append).
+    /// Appends a part's pieces and corners (its new world and screen points, which are to
+    /// be numbered from `new_base`, are the caller's to append).
     fn append(&mut self, part: Part, new_base: u32) {
         let corner_base = self.corner_at.len() as u32;
         let piece_base = self.pieces.len() as u32;
-        self.points.extend(part.new_points);
         self.corner_at
             .extend(part.corner_at.iter().map(|&c| match new_point(c) {
                 Some(k) => new_base + k,
@@ -419,10 +435,12 @@ struct LeafJob<'a> {
     li: u32,
     leaf: &'a Leaf<'a>,
     camera: &'a Camera,
-    /// Clip coordinates of the leaf's vertices.
-    clip: &'a [[f64; 4]],
+    /// Each vertex's side of the near plane (empty: all in front).
+    front: &'a [bool],
     /// World points of the leaf's vertices (from `world_first` in the table).
     world: &'a [P3],
+    /// Their screen points.
+    points: &'a [[f64; 3]],
     world_first: u32,
     all_in_front: bool,
     back_cull: &'a BackCull<'a>,
@@ -471,15 +489,13 @@ impl LeafJob<'_> {
             let mut poly: Vec<Corner> = piece
                 .iter()
                 .map(|&v| {
-                    (
-                        self.clip[v as usize],
-                        self.world[v as usize],
-                        self.world_first + v,
-                    )
+                    let f = self.front.get(v as usize).copied().unwrap_or(true);
+                    let q = self.points[v as usize];
+                    (f, self.world[v as usize], self.world_first + v, q)
                 })
                 .collect();
             if !self.all_in_front {
-                poly = clip_near(&poly, self.camera.near);
+                poly = clip_near(&poly, self.camera);
             }
             part.add_piece(id, self.li, &poly, self.camera, self.back_cull, scratch);
         }
@@ -498,15 +514,14 @@ impl Part {
     ) {
         let start = self.corner_at.len() as u32;
         pts.clear();
-        for (h, w, at) in poly {
-            let q = project(h, camera);
+        for &(_, w, at, q) in poly {
             // A point clipping made joins the part's new points.
-            let at = if *at == NEW_POINT {
-                self.new_world.push(*w);
+            let at = if at == NEW_POINT {
+                self.new_world.push(w);
                 self.new_points.push(q);
                 u32::MAX - (self.new_world.len() as u32 - 1)
             } else {
-                *at
+                at
             };
             self.corner_at.push(at);
             pts.push(q);
@@ -555,36 +570,28 @@ fn exactly_planar(pts: &[P3]) -> bool {
     pts.iter().all(|p| orient3d_refs(&refs, p) == 0.0)
 }
 
-/// The screen point (x, y, depth) of clip coordinates `h`: divided by w in perspective.
-fn project(h: &[f64; 4], camera: &Camera) -> [f64; 3] {
-    match camera.projection {
-        Projection::Perspective => [h[0] / h[3], h[1] / h[3], h[2] / h[3]],
-        Projection::Orthographic => [h[0], h[1], h[2]],
-    }
-}
-
-/// A corner on its way into a piece: homogeneous clip coordinates, world point, and the
-/// world point's index in [`ScreenFaces::world`] ([`NEW_POINT`] for a point clipping made).
-type Corner = ([f64; 4], P3, u32);
+/// A corner on its way into a piece: in front of the near plane (exact), world point, the
+/// world point's index in [`ScreenFaces::world`] ([`NEW_POINT`] for a point clipping made) and,
+/// for such a point, its screen point.
+type Corner = (bool, P3, u32, [f64; 3]);
 
 /// [`Corner`]'s index of a world point not yet in the table.
 const NEW_POINT: u32 = u32::MAX;
 
-/// Sutherland–Hodgman clip of a homogeneous polygon (with its world points) to w >= near.
-fn clip_near(poly: &[Corner], near: f64) -> Vec<Corner> {
+/// Sutherland–Hodgman clip of a polygon (world points, exact sides) to w' >= near: each new
+/// point is the exact crossing, rounded once in screen and in world coordinates.
+fn clip_near(poly: &[Corner], camera: &Camera) -> Vec<Corner> {
     let n = poly.len();
     let mut out = Vec::with_capacity(n + 2);
     for i in 0..n {
-        let ((a, wa, at), (b, wb, _)) = (poly[i], poly[(i + 1) % n]);
-        let (da, db) = (a[3] - near, b[3] - near);
-        if da >= 0.0 {
-            out.push((a, wa, at));
+        let ((fa, wa, at, sa), (fb, wb, _, _)) = (poly[i], poly[(i + 1) % n]);
+        if fa {
+            out.push((fa, wa, at, sa));
         }
-        if (da >= 0.0) != (db >= 0.0) {
-            let t = da / (da - db);
-            let mut p: [f64; 4] = std::array::from_fn(|k| a[k] + t * (b[k] - a[k]));
-            p[3] = near;
-            out.push((p, wa + (wb - wa) * t, NEW_POINT));
+        if fa != fb {
+            let (front, back) = if fa { (&wa, &wb) } else { (&wb, &wa) };
+            let (screen, world) = near_crossing(front, back, &camera.matrix, camera.near);
+            out.push((true, world, NEW_POINT, screen));
         }
     }
     if out.len() < 3 {
@@ -678,27 +685,44 @@ mod tests {
 
     #[test]
     fn near_clip_cuts_polygon() {
-        let o = P3::origin();
+        // w' = −z, near 0.5: (0, 0, 1) is behind, the others in front.
+        #[rustfmt::skip]
+        let matrix = crate::geom::M4::new(
+            1., 0., 0., 0.,
+            0., 1., 0., 0.,
+            0., 0., 0., 1.,
+            0., 0., -1., 0.,
+        );
+        let cam = Camera {
+            matrix,
+            projection: Projection::Perspective,
+            near: 0.5,
+            eye: Some(P3::origin()),
+        };
+        let corner = |p: P3, at: u32| {
+            let h = mat_point_dd(&matrix, &p);
+            let f = near_side(&matrix, &p, &h, 0.5) != Ordering::Less;
+            (f, p, at, [0.0; 3])
+        };
         let poly = [
-            ([0., 0., 1., -1.], o, 0),
-            ([1., 0., 1., 1.], o, 1),
-            ([0., 1., 1., 1.], o, 2),
+            corner(P3::new(0., 0., 1.), 0),
+            corner(P3::new(1., 0., -1.), 1),
+            corner(P3::new(0., 1., -1.), 2),
         ];
-        let c = clip_near(&poly, 0.5);
+        let c = clip_near(&poly, &cam);
         assert_eq!(c.len(), 4);
-        assert!(c.iter().all(|(h, _, _)| h[3] >= 0.5));
-        // The corners kept keep their points' indices; the two cut points are new.
+        // The corners kept keep their points' indices; the two cut points are new, on the
+        // near plane (z = −0.5), exactly.
         let at: Vec<u32> = c.iter().map(|e| e.2).collect();
         assert_eq!(at, [NEW_POINT, 1, 2, NEW_POINT]);
-        assert!(clip_near(
-            &[
-                ([0., 0., 0., 0.1], o, 0),
-                ([1., 0., 0., 0.1], o, 1),
-                ([0., 1., 0., 0.2], o, 2)
-            ],
-            0.5
-        )
-        .is_empty());
+        assert_eq!(c[0].1, P3::new(0.75, 0., -0.5));
+        assert_eq!(c[0].3, [1.5, 0., 2.]);
+        let behind = [
+            corner(P3::new(0., 0., -0.1), 0),
+            corner(P3::new(1., 0., -0.1), 1),
+            corner(P3::new(0., 1., -0.2), 2),
+        ];
+        assert!(clip_near(&behind, &cam).is_empty());
     }
 
     /// A grid of many tasks' faces seen in perspective from an eye just above it, so that
@@ -742,7 +766,7 @@ mod tests {
                     made += 1;
                     let h = camera.clip_coords(&sf.world[c as usize]);
                     assert!((h[3] - camera.near).abs() < 1e-12, "{h:?}");
-                    let r = project(&h, &camera);
+                    let r = camera.project(&sf.world[c as usize]);
                     assert!(
                         (r[0] - q[0]).abs() + (r[1] - q[1]).abs() < 1e-9,
                         "{r:?} {q:?}"

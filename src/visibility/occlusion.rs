@@ -2,11 +2,12 @@
 //! of F's plane. Sides are decided exactly (robust orient3d) on world coordinates, so
 //! coplanar faces, shared edges and shared vertices are recognised without tolerances.
 
+use crate::geom::construct::plane_crossing;
 use crate::geom::hull2::has_turn;
 use crate::geom::poly2::Pt2;
 use crate::geom::{orient2d, orient3d_refs, Corners, Rect, P3};
 use crate::scene::FaceId;
-use crate::view::{Facing, PieceId, Projection, ScreenFaces};
+use crate::view::{Facing, PieceId, ScreenFaces};
 
 /// The face being solved, prepared once for all its occluders.
 #[derive(Debug, Clone)]
@@ -91,7 +92,7 @@ pub(crate) fn occluder_region(
     } else if !any_behind {
         pts.iter().map(|p| [p[0], p[1]]).collect()
     } else {
-        front_part(sf, pts, world, sides)
+        front_part(sf, pts, world, sides, &t.refs)
     };
     // A region with no proper turn (all points equal or collinear) has no area: it hides nothing.
     if ring.len() < 3 || !has_turn(&ring) {
@@ -104,13 +105,17 @@ pub(crate) fn occluder_region(
 }
 
 /// The part of a piece's projection (screen points `pts`, world points `world`) on the
-/// non-negative side, cut where the side changes
-/// sign. The cut is placed on the world edge with the exact side values, then projected
-/// (orthographic views interpolate the screen points directly: the same point, cheaper).
-fn front_part(sf: &ScreenFaces, pts: Corners<[f64; 3]>, world: Corners, sides: &[f64]) -> Vec<Pt2> {
-    let perspective = sf
-        .camera
-        .filter(|c| c.projection == Projection::Perspective);
+/// non-negative side of the plane through `refs`, cut where the side changes sign. Each cut
+/// is the exact crossing of the world edge with the plane, seen through the camera matrix,
+/// rounded once or within the filter's bound ([`crate::geom::construct::plane_crossing`]):
+/// accurate whatever the angle between the edge and the plane.
+fn front_part(
+    sf: &ScreenFaces,
+    pts: Corners<[f64; 3]>,
+    world: Corners,
+    sides: &[f64],
+    refs: &[P3; 3],
+) -> Vec<Pt2> {
     let n = pts.len();
     let mut out = Vec::with_capacity(n + 2);
     for i in 0..n {
@@ -120,13 +125,10 @@ fn front_part(sf: &ScreenFaces, pts: Corners<[f64; 3]>, world: Corners, sides: &
             out.push([pts[i][0], pts[i][1]]);
         }
         if (sa > 0.0 && sb < 0.0) || (sa < 0.0 && sb > 0.0) {
-            let t = sa / (sa - sb);
-            let cut = match perspective {
-                Some(cam) => {
-                    let s = cam.project(&(world[i] + (world[j] - world[i]) * t));
-                    [s[0], s[1]]
-                }
+            let cut = match sf.camera {
+                Some(cam) => plane_crossing(refs, &world[i], &world[j], &cam.matrix),
                 None => {
+                    let t = sa / (sa - sb);
                     let (a, b) = (pts[i], pts[j]);
                     [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
                 }
