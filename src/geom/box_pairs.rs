@@ -52,11 +52,17 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
     f: impl Fn(u32, u32) -> Option<T> + Sync,
     span: Span,
 ) -> Vec<T> {
-    let ids: Vec<u32> = (0..n as u32)
-        .into_par_iter()
-        .with_min_len(CHUNK)
-        .filter(|&i| valid(&box_of(i)))
-        .collect();
+    // Few boxes stay off the thread pool (a solid's many small searches would each wait
+    // on it).
+    let ids: Vec<u32> = if n > PARALLEL_ABOVE {
+        (0..n as u32)
+            .into_par_iter()
+            .with_min_len(CHUNK)
+            .filter(|&i| valid(&box_of(i)))
+            .collect()
+    } else {
+        (0..n as u32).filter(|&i| valid(&box_of(i))).collect()
+    };
     let Some(grid) = Grid::fit(&box_of, n, &ids) else {
         return Vec::new();
     };
@@ -71,11 +77,12 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
     let entered = span.span(0.0, 0.1).steps(ids.len());
     // The boxes' cells found on all threads a chunk at a time, entered in order.
     for (c, chunk) in ids.chunks(CHUNK * 64).enumerate() {
-        let ranges: Vec<[[u64; 3]; 2]> = chunk
-            .par_iter()
-            .with_min_len(CHUNK)
-            .map(|&i| grid.cell_range(&box_of(i)))
-            .collect();
+        let range = |&i: &u32| grid.cell_range(&box_of(i));
+        let ranges: Vec<[[u64; 3]; 2]> = if chunk.len() > PARALLEL_ABOVE {
+            chunk.par_iter().with_min_len(CHUNK).map(range).collect()
+        } else {
+            chunk.iter().map(range).collect()
+        };
         for (&i, [lo, hi]) in chunk.iter().zip(ranges) {
             lo_cell[i as usize] = lo.map(|c| c as u16);
             for x in lo[0]..=hi[0] {
@@ -189,21 +196,23 @@ impl Grid {
         let first = box_of(*ids.first()?);
         // Bounds and the sum of box sizes by fixed chunks on all threads, the chunks'
         // sums added in order: the same grid for any thread count.
-        let parts: Vec<([f64; 3], [f64; 3], f64)> = ids
-            .par_chunks(CHUNK)
-            .map(|chunk| {
-                let (mut lo, mut hi, mut sum) = (first[0], first[1], 0.0);
-                for &i in chunk {
-                    let b = &box_of(i);
-                    for k in 0..3 {
-                        lo[k] = lo[k].min(b[0][k]);
-                        hi[k] = hi[k].max(b[1][k]);
-                    }
-                    sum += (0..3).map(|k| b[1][k] - b[0][k]).fold(0.0, f64::max);
+        let part = |chunk: &[u32]| {
+            let (mut lo, mut hi, mut sum) = (first[0], first[1], 0.0);
+            for &i in chunk {
+                let b = &box_of(i);
+                for k in 0..3 {
+                    lo[k] = lo[k].min(b[0][k]);
+                    hi[k] = hi[k].max(b[1][k]);
                 }
-                (lo, hi, sum)
-            })
-            .collect();
+                sum += (0..3).map(|k| b[1][k] - b[0][k]).fold(0.0, f64::max);
+            }
+            (lo, hi, sum)
+        };
+        let parts: Vec<([f64; 3], [f64; 3], f64)> = if ids.len() > PARALLEL_ABOVE {
+            ids.par_chunks(CHUNK).map(part).collect()
+        } else {
+            ids.chunks(CHUNK).map(part).collect()
+        };
         let (mut lo, mut hi, mut mean) = (first[0], first[1], 0.0);
         for (l, h, sum) in parts {
             for k in 0..3 {
@@ -235,16 +244,20 @@ impl Grid {
                 continue;
             }
             // Counted in integers: the same sum in any order.
-            let cells = ids
-                .par_iter()
-                .with_min_len(CHUNK)
-                .map(|&i| {
-                    let [a, b] = g.cell_range(&box_of(i));
-                    (0..3)
-                        .map(|k| u128::from(b[k] - a[k] + 1))
-                        .product::<u128>()
-                })
-                .sum::<u128>() as f64;
+            let cells_of = |&i: &u32| {
+                let [a, b] = g.cell_range(&box_of(i));
+                (0..3)
+                    .map(|k| u128::from(b[k] - a[k] + 1))
+                    .product::<u128>()
+            };
+            let cells = if ids.len() > PARALLEL_ABOVE {
+                ids.par_iter()
+                    .with_min_len(CHUNK)
+                    .map(cells_of)
+                    .sum::<u128>()
+            } else {
+                ids.iter().map(cells_of).sum::<u128>()
+            } as f64;
             if cells <= MAX_CELLS_PER_BOX * ids.len() as f64 || cell >= span {
                 return Some(g);
             }

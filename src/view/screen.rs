@@ -318,20 +318,28 @@ impl ScreenFaces {
         // Held apart while the parts are appended (their new points after all the tasks).
         let world = std::mem::take(&mut self.world);
         let leaf_world = &world[world_first as usize..];
-        let clip: Vec<[(f64, f64); 4]> = leaf_world
-            .par_iter()
-            .map(|p| mat_point_dd(&camera.matrix, p))
-            .collect();
-        self.points
-            .par_extend(clip.par_iter().map(|h| project_dd(h, camera.projection)));
+        // Small leaves stay off the thread pool (a town's thousands would each wait on it).
+        let alone = leaf_world.len() <= TASK_FACES;
+        let clip_of = |p: &P3| mat_point_dd(&camera.matrix, p);
+        let clip: Vec<[(f64, f64); 4]> = if alone {
+            leaf_world.iter().map(clip_of).collect()
+        } else {
+            leaf_world.par_iter().map(clip_of).collect()
+        };
+        let screen_of = |h: &[(f64, f64); 4]| project_dd(h, camera.projection);
+        if alone {
+            self.points.extend(clip.iter().map(screen_of));
+        } else {
+            self.points.par_extend(clip.par_iter().map(screen_of));
+        }
         // Each vertex's side of the near plane, exactly (only perspective clips).
+        let side = |(p, h): (&P3, &[(f64, f64); 4])| {
+            near_side(&camera.matrix, p, h, camera.near) != Ordering::Less
+        };
         let front: Vec<bool> = match camera.projection {
             Projection::Orthographic => Vec::new(),
-            Projection::Perspective => leaf_world
-                .par_iter()
-                .zip(&clip)
-                .map(|(p, h)| near_side(&camera.matrix, p, h, camera.near) != Ordering::Less)
-                .collect(),
+            Projection::Perspective if alone => leaf_world.iter().zip(&clip).map(side).collect(),
+            Projection::Perspective => leaf_world.par_iter().zip(&clip).map(side).collect(),
         };
         drop(clip);
         let all_in_front = front.iter().all(|&f| f);
@@ -363,15 +371,17 @@ impl ScreenFaces {
         let n = leaf.mesh.faces.len();
         let tasks: Vec<usize> = (0..n).step_by(TASK_FACES).collect();
         let (mut new_world, mut new_points) = (Vec::new(), Vec::new());
+        let task = |&lo: &usize| {
+            let faces = lo..(lo + TASK_FACES).min(n);
+            done.add(faces.len());
+            job.part(faces)
+        };
         for batch in tasks.chunks(TASKS_AT_ONCE) {
-            let parts: Vec<Part> = batch
-                .par_iter()
-                .map(|&lo| {
-                    let faces = lo..(lo + TASK_FACES).min(n);
-                    done.add(faces.len());
-                    job.part(faces)
-                })
-                .collect();
+            let parts: Vec<Part> = if batch.len() == 1 {
+                batch.iter().map(task).collect()
+            } else {
+                batch.par_iter().map(task).collect()
+            };
             for part in parts {
                 let new_base = (world.len() + new_world.len()) as u32;
                 new_world.extend_from_slice(&part.new_world);
