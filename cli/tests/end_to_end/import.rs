@@ -66,8 +66,10 @@ fn site() -> Gltf {
     }
 }
 
-fn write_site() -> PathBuf {
-    let d = temp_dir("e2e-import", "site");
+/// The site as a GLB in a folder of its own for test `name` (tests run side by side, and
+/// each clears its folder first).
+fn write_site(name: &str) -> PathBuf {
+    let d = temp_dir("e2e-import", name);
     let f = d.join("site.glb");
     std::fs::write(&f, site().glb()).unwrap();
     f
@@ -75,7 +77,7 @@ fn write_site() -> PathBuf {
 
 #[test]
 fn info_shows_the_gltf_node_tree() {
-    let f = write_site();
+    let f = write_site("site-info");
     let out = kepler(&["info", s(&f)]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
@@ -123,7 +125,7 @@ fn info_shows_the_gltf_node_tree() {
 
 #[test]
 fn render_takes_the_gltf_camera_and_3mf_renders_like_gltf() {
-    let f = write_site();
+    let f = write_site("site-render");
     let json = f.with_extension("json");
     let out = kepler(&["render", s(&f), "--json", s(&json)]);
     assert!(
