@@ -22,8 +22,10 @@ use super::cull::HiddenObject;
 use super::piece_id::PieceId;
 use super::screen::{Piece, ScreenFaces};
 
-/// Pieces per BVH leaf inside a large mesh.
-const LEAF_PIECES: usize = 4;
+/// Pieces per BVH leaf inside a large mesh. A leaf's pieces are tested from one flat array
+/// of bounds, a node is a dependent load: 16 a leaf visits a fifth fewer nodes than 4 and
+/// costs 1.3-3% less one-thread CPU (ogre, nefertiti, the 1M terrain).
+const LEAF_PIECES: usize = 16;
 /// Most children of a group's node before the group gets a hierarchy of its own.
 const MAX_CHILDREN: usize = 8;
 
