@@ -6,6 +6,7 @@ pub(crate) mod boolean;
 pub(crate) mod box3;
 pub(crate) mod box_pairs;
 pub(crate) mod box_tree;
+pub(crate) mod coarse;
 pub(crate) mod construct;
 pub(crate) mod convexity;
 pub(crate) mod corners;

@@ -11,6 +11,7 @@
 use std::ops::Range;
 
 use crate::count::Count;
+use crate::geom::coarse;
 use crate::geom::hull2::convex_hull;
 use crate::geom::poly2::Pt2;
 use crate::geom::{Box3, Rect, M4};
@@ -38,24 +39,62 @@ pub(crate) enum NodeKind {
     Leaf(Range<u32>),
 }
 
-/// What the walk tests first of a candidate occluder piece: its screen rectangle, nearest
-/// depth and face.
+/// What the walk tests first of a candidate occluder piece: its screen rectangle and
+/// nearest depth rounded outward to f32 (24 bytes a piece instead of 48: one a face), and
+/// its face. A piece the coarse test passes is tested again on its exact bounds.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct PieceBound {
-    /// Screen rectangle.
-    pub rect: Rect,
-    /// Greatest screen depth.
-    pub zmax: f64,
+    /// Least x and y, rounded down.
+    pub lo: [f32; 2],
+    /// Greatest x and y, rounded up.
+    pub hi: [f32; 2],
+    /// Greatest screen depth, rounded up.
+    pub zmax: f32,
     /// The face the piece belongs to.
     pub face: FaceId,
 }
 
 impl PieceBound {
     fn of(p: &Piece) -> PieceBound {
+        let r = &p.rect;
         PieceBound {
-            rect: p.rect,
-            zmax: p.zmax,
+            lo: [coarse::down(r.xmin), coarse::down(r.ymin)],
+            hi: [coarse::up(r.xmax), coarse::up(r.ymax)],
+            zmax: coarse::up(p.zmax),
             face: p.face,
+        }
+    }
+
+    /// False only when the piece's exact rectangle cannot overlap `probe`'s (open
+    /// rectangles, as [`Rect::overlaps`]) or the piece lies wholly behind its least depth:
+    /// true wherever the exact test is, and sometimes where it is not.
+    #[inline]
+    // Not `>=`: the exact test skips only a depth below, so a NaN depth passes both.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    pub(crate) fn may_meet(&self, probe: &BoundProbe) -> bool {
+        self.lo[0] < probe.hi[0]
+            && probe.lo[0] < self.hi[0]
+            && self.lo[1] < probe.hi[1]
+            && probe.lo[1] < self.hi[1]
+            && !(self.zmax < probe.zmin)
+    }
+}
+
+/// A target's rectangle and least depth rounded outward to f32, for [`PieceBound::may_meet`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BoundProbe {
+    lo: [f32; 2],
+    hi: [f32; 2],
+    zmin: f32,
+}
+
+impl BoundProbe {
+    /// The probe of a rectangle and least depth.
+    pub(crate) fn new(rect: &Rect, zmin: f64) -> BoundProbe {
+        BoundProbe {
+            lo: [coarse::down(rect.xmin), coarse::down(rect.ymin)],
+            hi: [coarse::up(rect.xmax), coarse::up(rect.ymax)],
+            zmin: coarse::down(zmin),
         }
     }
 }
@@ -609,7 +648,10 @@ mod tests {
         // The leaf lists hold pieces; their bounds name the pieces' faces.
         for (p, b) in tree.pieces.iter().zip(&tree.piece_bounds) {
             assert_eq!(b.face, sf.piece(*p).face);
-            assert_eq!(b.rect, sf.piece(*p).rect);
+            let (r, z) = (sf.piece(*p).rect, sf.piece(*p).zmax);
+            assert!(f64::from(b.lo[0]) <= r.xmin && f64::from(b.lo[1]) <= r.ymin);
+            assert!(f64::from(b.hi[0]) >= r.xmax && f64::from(b.hi[1]) >= r.ymax);
+            assert!(f64::from(b.zmax) >= z);
         }
         // Objects hold face ranges of the global order, not piece ranges.
         let ranges: Vec<(&str, u32, u32)> = tree
@@ -638,5 +680,38 @@ mod tests {
         // Both pieces of the bent quad are occluders of the warped object's node.
         let warped = tree.object("warped").unwrap();
         assert_eq!(pieces_below(&tree, warped.node), [PieceId(0), PieceId(1)]);
+    }
+
+    #[test]
+    fn coarse_bounds_pass_wherever_the_exact_ones_do() {
+        let mut rng = crate::geom::rng::XorShift::new(35);
+        // Coordinates on a fine grid and near each other, so that many exact tests are
+        // decided by less than an f32's spacing.
+        let v = |rng: &mut crate::geom::rng::XorShift| 0.3 + rng.below(64) as f64 * 1e-9;
+        let (mut exact, mut coarse) = (0, 0);
+        for _ in 0..20_000 {
+            let mut rect = || {
+                let (a, b, c, d) = (v(&mut rng), v(&mut rng), v(&mut rng), v(&mut rng));
+                Rect::new(a.min(b), c.min(d), a.max(b), c.max(d))
+            };
+            let (r, q) = (rect(), rect());
+            let (zmax, zmin) = (v(&mut rng), v(&mut rng));
+            let piece = PieceBound {
+                lo: [coarse::down(r.xmin), coarse::down(r.ymin)],
+                hi: [coarse::up(r.xmax), coarse::up(r.ymax)],
+                zmax: coarse::up(zmax),
+                face: FaceId(0),
+            };
+            let meets = r.overlaps(&q) && zmax >= zmin;
+            let may = piece.may_meet(&BoundProbe::new(&q, zmin));
+            assert!(may || !meets, "{r:?} {q:?} {zmax} {zmin}");
+            exact += usize::from(meets);
+            coarse += usize::from(may);
+        }
+        // The test is not empty: both kinds of answer happen, and the coarse one is wider.
+        assert!(
+            exact > 1000 && coarse > exact && coarse < 20_000,
+            "{exact} {coarse}"
+        );
     }
 }

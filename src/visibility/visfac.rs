@@ -12,7 +12,7 @@ use crate::geom::hull2::covers_convex;
 use crate::geom::poly2::{MultiPolygon, Pt2, Ring};
 use crate::geom::{Corners, Rect};
 use crate::view::ring_index::INDEXED_ABOVE;
-use crate::view::tree::{NodeKind, ScreenInbox};
+use crate::view::tree::{BoundProbe, NodeKind, ScreenInbox};
 use crate::view::{Facing, PieceId, View};
 
 use super::cover::{regions_cover, CoverScratch};
@@ -128,6 +128,7 @@ pub(crate) fn visfac(
 /// VISFAC2(A, F): walks A's tree, collecting occluder regions into `scratch.occluders`.
 fn visfac2(view: &View, a: u32, t: &Target, scratch: &mut Scratch, stats: &mut Counters) -> Walk {
     let tree = &view.tree;
+    let probe = BoundProbe::new(&t.rect, t.zmin);
     scratch.stack.clear();
     scratch.stack.push(a);
     while let Some(n) = scratch.stack.pop() {
@@ -156,7 +157,12 @@ fn visfac2(view: &View, a: u32, t: &Target, scratch: &mut Scratch, stats: &mut C
                     .iter()
                     .zip(&tree.piece_bounds[range])
                 {
-                    if b.face == t.face || !b.rect.overlaps(&t.rect) || b.zmax < t.zmin {
+                    if b.face == t.face || !b.may_meet(&probe) {
+                        continue;
+                    }
+                    // The coarse bounds passed: the exact ones decide.
+                    let pc = view.screen.piece(g);
+                    if !pc.rect.overlaps(&t.rect) || pc.zmax < t.zmin {
                         continue;
                     }
                     if let Walk::Emptied = examine(view, g, t, scratch, stats) {

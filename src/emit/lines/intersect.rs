@@ -8,7 +8,8 @@
 use rayon::prelude::*;
 
 use crate::count::{Count, Share};
-use crate::geom::box_pairs::{filter_map_pairs, filter_map_pairs_of, overlap, Bounds3};
+use crate::geom::box_pairs::{filter_map_pairs_of, overlap, Bounds3};
+use crate::geom::coarse;
 #[cfg(test)]
 use crate::geom::newell;
 use crate::geom::{orient3d_refs, Corners, P3, V3};
@@ -34,28 +35,24 @@ pub(crate) fn intersection_edges(
         .with_min_len(1 << 12)
         .filter(|&f| keep(FaceId(f)) && faces[f as usize].len >= 3)
         .collect();
-    // Per face, once: its plane's reference corners, and whether it is flat (exactly: every
-    // corner on the plane of the reference points).
-    let (cand_refs, cand_flat): (Vec<[u32; 3]>, Vec<bool>) = cand
+    // Per face, once: whether it is flat (exactly: every corner on the plane of its
+    // reference points). The reference points are not kept: made again for the few pairs
+    // that reach the crossing test (12 bytes a face less at the drawing's peak).
+    let cand_flat: Vec<bool> = cand
         .par_iter()
         .map(|&f| {
             let p = world.points_of(f as usize);
-            let r = plane_refs(p);
-            let rp = r.map(|k| p[k as usize]);
-            (
-                r,
-                p.len() == 3 || p.iter().all(|q| orient3d_refs(&rp, q) == 0.0),
-            )
+            let rp = plane_refs(p).map(|k| p[k as usize]);
+            p.len() == 3 || p.iter().all(|q| orient3d_refs(&rp, q) == 0.0)
         })
-        .unzip();
+        .collect();
     // Faces that can cross nothing are not paired at all.
     let alone = alone(world, &cand, &cand_flat);
     let left: Vec<usize> = (0..cand.len()).filter(|&k| !alone[k]).collect();
     drop(alone);
     let ids: Vec<u32> = left.iter().map(|&k| cand[k]).collect();
-    let refs: Vec<[u32; 3]> = left.iter().map(|&k| cand_refs[k]).collect();
     let flat: Vec<bool> = left.iter().map(|&k| cand_flat[k]).collect();
-    drop((left, cand, cand_refs, cand_flat));
+    drop((left, cand, cand_flat));
     // The faces of many corners, by position, with their corners sorted (so that a pair's
     // adjacency costs what the smaller face has, not the product).
     let sorted: Vec<(u32, Vec<u32>)> = (0..ids.len() as u32)
@@ -72,16 +69,26 @@ pub(crate) fn intersection_edges(
     };
     let side = |i: usize| {
         let f = ids[i] as usize;
-        let pts = world.points_of(f);
-        Side {
-            pts,
-            normal: &faces[f].normal,
-            refs: refs[i].map(|k| pts[k as usize]),
-        }
+        Side::new(world.points_of(f), &faces[f].normal)
     };
     // Results come in ascending (position, position) pair order, so in (face, face) order:
     // fixed whatever the thread count.
     share.reach(0.2);
+    // The boxes of the pair search: held rounded outward to f32 (24 bytes a face instead
+    // of 48), up to HELD_BOXES faces and where every bound is a finite f32; else remade from
+    // the corners whenever the grid asks. Rounded, the grid finds every pair whose exact
+    // boxes overlap and a few more, told apart on the exact boxes before the crossing test.
+    let box_of = |i: u32| world.bbox_of(ids[i as usize] as usize);
+    let coarse: Option<Vec<CoarseBox>> = (ids.len() <= HELD_BOXES)
+        .then(|| {
+            (0..ids.len() as u32)
+                .into_par_iter()
+                .with_min_len(1 << 12)
+                .map(|i| coarse_box(&box_of(i)))
+                .collect::<Vec<_>>()
+        })
+        .filter(|c| c.iter().flatten().flatten().all(|x| !x.is_infinite()));
+    let rounded = coarse.is_some();
     // The pair test of the grid below, by positions in `ids`.
     let pair = |i: u32, j: u32| {
         let (i, j) = (i as usize, j as usize);
@@ -91,7 +98,9 @@ pub(crate) fn intersection_edges(
         // shared vertices and edges: no curve to find. (The proof is on the faces'
         // triangles; a face off its plane is not the union of its triangles.)
         let clean = piece != NO_PIECE && piece == world.clean_piece[hi] && flat[i] && flat[j];
-        let segs = if clean || adjacent(world, lo, hi, sorted_of(i), sorted_of(j)) {
+        // Boxes that meet only rounded: no crossing.
+        let apart = || rounded && !overlap(&box_of(i as u32), &box_of(j as u32));
+        let segs = if clean || adjacent(world, lo, hi, sorted_of(i), sorted_of(j)) || apart() {
             Vec::new()
         } else {
             cross_with(&side(i), &side(j))
@@ -107,26 +116,34 @@ pub(crate) fn intersection_edges(
                 .collect::<Vec<_>>()
         })
     };
-    // The boxes are held (48 bytes a face) up to HELD_BOXES faces; beyond, they are remade
-    // from the corners whenever the grid asks, as often as a face meets a candidate. Held at
-    // 10M faces (the terrain) they raise the peak 4.32 -> 4.67 GB and save 4% of the time.
-    let box_of = |i: u32| world.bbox_of(ids[i as usize] as usize);
-    let found = if ids.len() <= HELD_BOXES {
-        let boxes: Vec<Bounds3> = (0..ids.len() as u32)
-            .into_par_iter()
-            .with_min_len(1 << 12)
-            .map(box_of)
-            .collect();
-        filter_map_pairs(&boxes, pair, share.span(0.2, 1.0))
-    } else {
-        filter_map_pairs_of(ids.len(), box_of, pair, share.span(0.2, 1.0))
+    let found = match &coarse {
+        Some(boxes) => filter_map_pairs_of(
+            ids.len(),
+            |i| widen(&boxes[i as usize]),
+            pair,
+            share.span(0.2, 1.0),
+        ),
+        None => filter_map_pairs_of(ids.len(), box_of, pair, share.span(0.2, 1.0)),
     };
     share.finish();
     found.into_iter().flatten().collect()
 }
 
-/// Most candidate faces whose boxes are held for the pair search (768 MiB of boxes).
+/// Most candidate faces whose boxes are held for the pair search (384 MiB of boxes).
 const HELD_BOXES: usize = 1 << 24;
+
+/// A box rounded outward to f32: [min, max].
+type CoarseBox = [[f32; 3]; 2];
+
+/// `b` rounded outward to f32.
+fn coarse_box(b: &Bounds3) -> CoarseBox {
+    [b[0].map(coarse::down), b[1].map(coarse::up)]
+}
+
+/// A coarse box as the pair search takes it (the same values, in f64).
+fn widen(b: &CoarseBox) -> Bounds3 {
+    b.map(|c| c.map(f64::from))
+}
 
 /// Most clean pieces compared pairwise by [`alone`] (beyond, no face is left out).
 const MAX_PIECES: usize = 4096;
@@ -251,7 +268,6 @@ struct Side<'a> {
 }
 
 impl<'a> Side<'a> {
-    #[cfg(test)]
     fn new(pts: Corners<'a>, normal: &'a V3) -> Self {
         let refs = plane_refs(pts).map(|k| pts[k as usize]);
         Side { pts, normal, refs }
