@@ -827,6 +827,38 @@ mod tests {
     }
 
     #[test]
+    fn a_layer_of_dashes_is_planned_by_chains() {
+        // Five parallel dashed lines 5 apart (dash 2, gap 1), the dashes shuffled and some
+        // turned: each line's dashes are tied into a chain and drawn in a row, so the travel
+        // is the gaps plus four hops between lines, as the untied plan finds it too.
+        let mut ends: Vec<[Pt2; 2]> = Vec::new();
+        for line in 0..5 {
+            let y = 5.0 * f64::from(line);
+            for k in 0..20 {
+                let x = 3.0 * f64::from(k);
+                ends.push([[x, y], [x + 2.0, y]]);
+            }
+        }
+        let mut rng = crate::geom::rng::XorShift::new(3);
+        for i in (1..ends.len()).rev() {
+            ends.swap(i, rng.below(i + 1));
+            if rng.below(2) == 1 {
+                ends[i].reverse();
+            }
+        }
+        let tied = plan_tied(&ends, &vec![true; ends.len()], Span::NONE);
+        let mut seen: Vec<usize> = tied.iter().map(|o| o.0).collect();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..100).collect::<Vec<_>>());
+        let t = travel(&apply(&ends, &tied));
+        assert!((t - (5.0 * 19.0 + 4.0 * 5.0)).abs() < 1e-9, "{t}");
+        assert!(t <= travel(&apply(&ends, &plan(&ends, Span::NONE))) + 1e-9);
+        // Each line's dashes follow each other.
+        let lines: Vec<u64> = tied.iter().map(|o| ends[o.0][0][1] as u64).collect();
+        assert_eq!(lines.windows(2).filter(|w| w[0] != w[1]).count(), 4);
+    }
+
+    #[test]
     fn reversals_and_moves_keep_positions_consistent() {
         let ends = random_strokes(12, 9);
         let order: Vec<(usize, bool)> = (0..12).map(|i| (i, i % 3 == 0)).collect();
