@@ -69,15 +69,15 @@ const KICK_RUN: usize = 30;
 /// Kicks between two adds to a progress count (a kick with its local search is long).
 const KICK_CHUNK: usize = 16;
 
-/// How far into [`plan`]'s span the greedy order ends. This and the two below are
+/// How far into [`plan_tied`]'s span the greedy order ends. This and the two below are
 /// estimates, the passes' shares of the planning time on the dashed hidden layers of ogre,
 /// bunny and nefertiti; the kicks fill the rest.
 const SPAN_GREEDY: f64 = 0.05;
 
-/// How far into [`plan`]'s span the neighbour lists end.
+/// How far into [`plan_tied`]'s span the neighbour lists end.
 const SPAN_NEIGHBOURS: f64 = 0.5;
 
-/// How far into [`plan`]'s span the first local search ends.
+/// How far into [`plan_tied`]'s span the first local search ends.
 const SPAN_SEARCH: f64 = 0.7;
 
 /// Pen-up travel of strokes drawn in order: Σ |end(i) − start(i+1)| (0 for one stroke or
@@ -98,14 +98,16 @@ pub(crate) fn travel<L: AsRef<[Pt2]>>(lines: &[L]) -> f64 {
 /// The work goes to `span` as it is done: by the passes' estimated shares
 /// ([`SPAN_NEIGHBOURS`] and the others), and within them by the end slots searched, the
 /// strokes the first local search starts from and the kicks made, in chunks (none:
-/// [`Span::NONE`]).
+/// [`Span::NONE`]). Nothing is tied (the tests' plan; pictures call [`plan_tied`]).
 #[cfg(test)]
 pub(crate) fn plan(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> {
     plan_tied(ends, &vec![false; ends.len()], span)
 }
 
-/// [`plan`], with strokes that are `tieable` and whose ends are clearly each other's nearest
-/// drawn in a row ([`super::pairs`]): the search plans the chains they make.
+/// The drawing order of strokes given by their (start, end) points: (stroke, reversed).
+/// Strokes that are `tieable` and whose ends are clearly each other's nearest are drawn in a
+/// row ([`super::pairs`]): the search plans the chains they make, with fewer kicks when every
+/// stroke is tieable (a layer of hidden dashes). The work goes to `span` as `plan` says.
 pub(crate) fn plan_tied(ends: &[[Pt2; 2]], tieable: &[bool], span: Span) -> Vec<(usize, bool)> {
     let chains = chains(ends, tieable);
     // A layer of dashes only: fewer kicks a stroke.
@@ -124,7 +126,7 @@ pub(crate) fn plan_tied(ends: &[[Pt2; 2]], tieable: &[bool], span: Span) -> Vec<
     order
 }
 
-/// The passes of [`plan`], with `kicks` kicks a stroke.
+/// The passes of [`plan_tied`], with `kicks` kicks a stroke.
 fn plan_steps(ends: &[[Pt2; 2]], kicks: usize, span: Span) -> Vec<(usize, bool)> {
     let n = ends.len();
     if n < 3 || 2 * n > u32::MAX as usize {
