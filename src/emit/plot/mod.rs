@@ -18,6 +18,7 @@ pub(crate) mod dedup;
 pub(crate) mod hatch;
 pub(crate) mod join;
 pub(crate) mod page;
+pub(crate) mod pairs;
 pub(crate) mod picture;
 pub(crate) mod shade;
 pub(crate) mod tour;
@@ -44,7 +45,7 @@ use self::join::join;
 use self::page::Layout;
 use self::picture::{Fill, Layer, LayerMode, Pen, Picture, PictureOptions, PlotStats, Run};
 use self::shade::{face_shade, light_direction};
-use self::tour::plan;
+use self::tour::plan_tied;
 use crate::emit::lines::{Drawing, Stroke};
 
 /// Coincidence tolerance of [`dedup::dedup`] on the page: lines closer than 0.1 µm are one line
@@ -403,9 +404,11 @@ fn ordered_runs(strokes: Vec<(Pen, u64, Vec<Pt2>)>, span: Span) -> Vec<Run> {
         .iter()
         .map(|(_, _, l)| [l[0], l[l.len() - 1]])
         .collect();
+    // Hidden dashes along a line with nothing else near are drawn in a row.
+    let dashed: Vec<bool> = strokes.iter().map(|s| s.0 == Pen::Hidden).collect();
     let mut strokes: Vec<Option<(Pen, u64, Vec<Pt2>)>> = strokes.into_iter().map(Some).collect();
     let mut runs: Vec<Run> = Vec::new();
-    for (i, rev) in plan(&ends, span) {
+    for (i, rev) in plan_tied(&ends, &dashed, span) {
         let Some((pen, weight, mut l)) = strokes[i].take() else {
             continue;
         };
