@@ -332,13 +332,18 @@ fn triangulate(mesh: &Mesh, span: Span) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
         .enumerate()
         .map(chunk)
         .collect();
-    let mut out = (Vec::new(), Vec::new(), Vec::new());
+    // Joined on all threads.
+    let (mut tris, mut face_of, mut flat) = (Vec::new(), Vec::new(), Vec::new());
     for (t, f, b) in parts {
-        out.0.extend(t);
-        out.1.extend(f);
-        out.2.extend(b);
+        tris.push(t);
+        face_of.push(f);
+        flat.push(b);
     }
-    out
+    let (tris, (face_of, flat)) = rayon::join(
+        || crate::chunked::concat(&tris),
+        || rayon::join(|| crate::chunked::concat(&face_of), || flat.concat()),
+    );
+    (tris, face_of, flat)
 }
 
 /// Faces per chunk of [`triangulate`].
@@ -407,15 +412,21 @@ fn crossing_pairs(
     groups: Option<&Groups>,
     span: Span,
 ) -> Vec<(u32, u32)> {
+    // Per triangle on all threads (in order: an indexed collect).
     let boxes: Vec<Bounds3> = tris
-        .iter()
+        .par_iter()
+        .with_min_len(crate::chunked::CHUNK)
         .map(|t| {
             let lo = std::array::from_fn(|k| t.p[0][k].min(t.p[1][k]).min(t.p[2][k]));
             let hi = std::array::from_fn(|k| t.p[0][k].max(t.p[1][k]).max(t.p[2][k]));
             [lo, hi]
         })
         .collect();
-    let is: Vec<bool> = (0..tris.len() as u32).map(&suspect).collect();
+    let is: Vec<bool> = (0..tris.len() as u32)
+        .into_par_iter()
+        .with_min_len(crate::chunked::CHUNK)
+        .map(&suspect)
+        .collect();
     let crosses = |i: u32, j: u32| {
         let (f, g) = (face_of[i as usize], face_of[j as usize]);
         f != g
@@ -452,6 +463,8 @@ fn grid_pairs(
     span: Span,
 ) -> Vec<(u32, u32)> {
     let few: Vec<u32> = (0..boxes.len() as u32)
+        .into_par_iter()
+        .with_min_len(crate::chunked::CHUNK)
         .filter(|&i| is[i as usize])
         .collect();
     if few.len() * 10 > boxes.len() {
