@@ -40,6 +40,16 @@ where
     concat(&parts)
 }
 
+/// `f(i)` for every `i` in `0..n`, in order: on all threads (an indexed collect) where `n` is
+/// more than a chunk, else in one pass off the thread pool (a small mesh's lists would each
+/// wait on it).
+pub(crate) fn map<T: Send, F: Fn(usize) -> T + Sync + Send>(n: usize, f: F) -> Vec<T> {
+    if n <= CHUNK || rayon::current_num_threads() == 1 {
+        return (0..n).map(f).collect();
+    }
+    (0..n).into_par_iter().with_min_len(CHUNK).map(f).collect()
+}
+
 /// The parts one after another, copied on all threads (on one thread, one after another).
 pub(crate) fn concat<T: Clone + Send + Sync>(parts: &[Vec<T>]) -> Vec<T> {
     // starts[k]: where part k begins in the result; starts[parts.len()]: its length.
@@ -121,6 +131,18 @@ mod tests {
                 let got = pool.install(|| flat_map(n, chunk, each));
                 assert_eq!(got, one, "n {n}, chunk {chunk}");
             }
+        }
+    }
+
+    #[test]
+    fn map_on_all_threads_is_the_one_pass() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .unwrap();
+        for n in [0, 5, CHUNK + 1, 4 * CHUNK + 7] {
+            let one: Vec<usize> = (0..n).map(|i| i * i % 1009).collect();
+            assert_eq!(pool.install(|| map(n, |i| i * i % 1009)), one);
         }
     }
 

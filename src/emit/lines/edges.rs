@@ -292,11 +292,9 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
             r.filter(|&i| i == 0 || (half[i].a, half[i].b) != (half[i - 1].a, half[i - 1].b)),
         )
     });
-    let mut groups: Vec<Range<u32>> = (0..starts.len())
-        .into_par_iter()
-        .with_min_len(CHUNK)
-        .map(|k| starts[k] as u32..starts.get(k + 1).map_or(n, |&e| e) as u32)
-        .collect();
+    let mut groups: Vec<Range<u32>> = crate::chunked::map(starts.len(), |k| {
+        starts[k] as u32..starts.get(k + 1).map_or(n, |&e| e) as u32
+    });
     sort_by_key(&mut groups, |g| half[g.start as usize].seq);
     groups
 }

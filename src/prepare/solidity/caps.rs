@@ -178,14 +178,12 @@ pub(crate) fn capping_open(mesh: &Mesh, span: Span) -> Result<Caps, Refused> {
         part.reach(0.1);
         // A hole's cap is settled by its first crossing: the retry needs only which holes
         // cross (a height field's fan crosses it along O(sqrt F) triangles each).
-        let hole_of: Vec<u32> = (0..capped.faces.len() as u32)
-            .into_par_iter()
-            .with_min_len(crate::chunked::CHUNK)
-            .map(|f| match f.checked_sub(n).map(|k| loop_of[k as usize]) {
+        let hole_of: Vec<u32> = crate::chunked::map(capped.faces.len(), |f| {
+            match (f as u32).checked_sub(n).map(|k| loop_of[k as usize]) {
                 Some(l) if suspect[l] => l as u32,
                 _ => NO_GROUP,
-            })
-            .collect();
+            }
+        });
         let e = examine_until(
             &capped,
             |f| f >= n && suspect[loop_of[(f - n) as usize]],
