@@ -36,6 +36,7 @@
 //! ARCHITECTURE.md maps the modules behind them.
 
 pub mod check;
+mod chunked;
 mod count;
 mod describe;
 mod emit;

@@ -69,31 +69,62 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
     // Entries (cell key, box) packed in one word, key above box: sorting the words sorts
     // by key then box, as sorting the pairs would, in half the memory.
     let shift = grid.id_bits;
-    let mut entries: Vec<u64> = Vec::with_capacity(ids.len() * 2);
+    // On several threads, each sub-chunk's ranges and entries are made on all threads and
+    // the entries joined in order at the end: the same list as one pass.
+    let split = ids.len() > PARALLEL_ABOVE && rayon::current_num_threads() > 1;
+    let mut entries: Vec<u64> = if split {
+        Vec::new()
+    } else {
+        Vec::with_capacity(ids.len() * 2)
+    };
     // The cell of each box's least corner: the cell of the least corner of two boxes'
     // intersection is their componentwise max (cells are monotone in the coordinates), so
     // no pair needs a float-to-cell conversion.
     let mut lo_cell = vec![[0u16; 3]; n];
     let entered = span.span(0.0, 0.1).steps(ids.len());
-    // The boxes' cells found on all threads a chunk at a time, entered in order.
-    for (c, chunk) in ids.chunks(CHUNK * 64).enumerate() {
-        let range = |&i: &u32| grid.cell_range(&box_of(i));
-        let ranges: Vec<[[u64; 3]; 2]> = if chunk.len() > PARALLEL_ABOVE {
-            chunk.par_iter().with_min_len(CHUNK).map(range).collect()
-        } else {
-            chunk.iter().map(range).collect()
-        };
-        for (&i, [lo, hi]) in chunk.iter().zip(ranges) {
-            lo_cell[i as usize] = lo.map(|c| c as u16);
-            for x in lo[0]..=hi[0] {
-                for y in lo[1]..=hi[1] {
-                    for z in lo[2]..=hi[2] {
-                        entries.push(grid.key([x, y, z]) << shift | u64::from(i));
-                    }
+    // A box's entries, in cell order.
+    let enter = |i: u32, [lo, hi]: [[u64; 3]; 2], entries: &mut Vec<u64>| {
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    entries.push(grid.key([x, y, z]) << shift | u64::from(i));
                 }
             }
         }
+    };
+    let mut parts: Vec<Vec<u64>> = Vec::new();
+    for (c, chunk) in ids.chunks(CHUNK * 64).enumerate() {
+        let range = |&i: &u32| grid.cell_range(&box_of(i));
+        if split {
+            let made: Vec<_> = chunk
+                .par_chunks(CHUNK)
+                .map(|sub| {
+                    let ranges: Vec<[[u64; 3]; 2]> = sub.iter().map(range).collect();
+                    let mut part = Vec::with_capacity(sub.len() * 2);
+                    for (&i, &r) in sub.iter().zip(&ranges) {
+                        enter(i, r, &mut part);
+                    }
+                    (ranges, part)
+                })
+                .collect();
+            for (sub, (ranges, part)) in chunk.chunks(CHUNK).zip(made) {
+                for (&i, [lo, _]) in sub.iter().zip(ranges) {
+                    lo_cell[i as usize] = lo.map(|c| c as u16);
+                }
+                parts.push(part);
+            }
+        } else {
+            for &i in chunk {
+                let r = range(&i);
+                lo_cell[i as usize] = r[0].map(|c| c as u16);
+                enter(i, r, &mut entries);
+            }
+        }
         entered.tick_in(c, 1);
+    }
+    if split {
+        entries = crate::chunked::concat(&parts);
+        drop(parts);
     }
     let parallel = ids.len() > PARALLEL_ABOVE;
     if parallel {
@@ -324,6 +355,37 @@ mod tests {
                 "n={n} size={size}"
             );
         }
+    }
+
+    #[test]
+    fn entries_made_on_several_threads_give_the_one_thread_pairs() {
+        // Enough boxes for several sub-chunks of CHUNK boxes, entered on three threads and on
+        // one; and a few thousand, on three threads, against brute force.
+        let mut s = 0x9e37_79b9_u64;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let boxes: Vec<Bounds3> = (0..5 * CHUNK + 123)
+            .map(|k| {
+                let p = [next(), next(), next() * 0.1];
+                let s = if k % 997 == 0 { 0.3 } else { 0.004 * next() };
+                [p, [p[0] + s, p[1] + s, p[2] + s]]
+            })
+            .collect();
+        let pool = |n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+        };
+        let three = pool(3).install(|| overlapping_pairs(&boxes));
+        assert!(three.len() > boxes.len() / 10, "the test finds pairs");
+        assert_eq!(three, pool(1).install(|| overlapping_pairs(&boxes)));
+        let few = &boxes[..3 * PARALLEL_ABOVE];
+        assert_eq!(pool(3).install(|| overlapping_pairs(few)), brute(few));
     }
 
     #[test]

@@ -54,19 +54,22 @@ impl Traversals {
     /// The traversals of `faces`' edges, sorted by edge (within an edge, in an order nothing
     /// reads: the topology counts directions, the pieces join faces).
     pub(crate) fn of(faces: &[Face]) -> Traversals {
-        let corners: usize = faces.iter().map(|f| f.vertices.len()).sum();
-        let mut items = Vec::with_capacity(corners);
-        for (k, f) in faces.iter().enumerate() {
-            let n = f.vertices.len();
-            for i in 0..n {
-                let (a, b) = (f.vertices[i], f.vertices[(i + 1) % n]);
-                items.push(Traversal {
-                    edge: (a.min(b) as u64) << 32 | a.max(b) as u64,
-                    face: k as u32,
-                    forward: a < b,
-                });
+        // In fixed chunks of faces on all threads, joined in face order.
+        let mut items = crate::chunked::flat_map(faces.len(), CHUNK, |r, items| {
+            items.reserve(faces[r.clone()].iter().map(|f| f.vertices.len()).sum());
+            for k in r {
+                let v = &faces[k].vertices;
+                let n = v.len();
+                for i in 0..n {
+                    let (a, b) = (v[i], v[(i + 1) % n]);
+                    items.push(Traversal {
+                        edge: (a.min(b) as u64) << 32 | a.max(b) as u64,
+                        face: k as u32,
+                        forward: a < b,
+                    });
+                }
             }
-        }
+        });
         let pair = |t: &Traversal| ((t.edge >> 32) as u32, t.edge as u32);
         sort_by_pair(&mut items, pair, |t| (t.edge, t.face));
         Traversals {
@@ -135,6 +138,9 @@ impl Traversals {
         Pieces { of_face, count }
     }
 }
+
+/// Faces per chunk of [`Traversals::of`].
+const CHUNK: usize = crate::chunked::CHUNK;
 
 /// Sorts on all threads when the list is long; short lists stay off the thread pool (200k
 /// one-box objects would each wait on it).
@@ -240,6 +246,38 @@ pub(crate) fn edge_pieces(faces: &[Face]) -> Pieces {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn traversals_made_on_several_threads_are_the_one_thread_list() {
+        // A strip of quads and triangles, many chunks of faces long.
+        let faces: Vec<Face> = (0..3 * CHUNK as u32 + 77)
+            .map(|k| {
+                if k % 3 == 0 {
+                    Face::new(vec![k, k + 1, k + 2])
+                } else {
+                    Face::new(vec![k, k + 1, k + 3, k + 2])
+                }
+            })
+            .collect();
+        let pool = |n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+        };
+        let key = |t: &Traversals| -> Vec<(u64, u32, bool)> {
+            t.items
+                .iter()
+                .map(|x| (x.edge, x.face, x.forward))
+                .collect()
+        };
+        let one = pool(1).install(|| key(&Traversals::of(&faces)));
+        assert_eq!(
+            one.len(),
+            faces.iter().map(|f| f.vertices.len()).sum::<usize>()
+        );
+        assert_eq!(pool(3).install(|| key(&Traversals::of(&faces))), one);
+    }
 
     fn tet(flip_one: bool) -> Vec<Face> {
         let mut f = vec![vec![0, 2, 1], vec![0, 1, 3], vec![1, 2, 3], vec![2, 0, 3]];

@@ -237,26 +237,37 @@ const FACING_SHARE: f64 = 0.1;
 /// outweigh the work of a small leaf).
 const PARALLEL_ABOVE: usize = 4096;
 
+/// Faces (or half-edges) per chunk of [`half_edges`] (and [`edge_groups`]).
+const CHUNK: usize = crate::chunked::CHUNK;
+
 /// Every traversal of an edge by the faces `start..end` (one leaf), grouped by edge, each
 /// group in face order; `base` is the leaf's first corner in [`WorldFaces::vertices`].
 fn half_edges(world: &WorldFaces, start: usize, end: usize, base: usize) -> Vec<HalfEdge> {
-    let corners = world.faces[start..end].iter().map(|f| f.len as usize).sum();
-    let mut half = Vec::with_capacity(corners);
-    for f in start..end {
-        let first = world.faces[f].first - base;
-        let v = world.vertices_of(f);
-        for i in 0..v.len() {
-            let (p, q) = (v[i], v[(i + 1) % v.len()]);
-            if p != q {
-                half.push(HalfEdge {
-                    a: p.min(q),
-                    b: p.max(q),
-                    seq: (first + i) as u32,
-                    face: f as u32,
-                });
+    // In fixed chunks of faces on all threads, joined in face order.
+    let mut half = crate::chunked::flat_map(end - start, CHUNK, |r, half| {
+        let faces = start + r.start..start + r.end;
+        half.reserve(
+            world.faces[faces.clone()]
+                .iter()
+                .map(|f| f.len as usize)
+                .sum(),
+        );
+        for f in faces {
+            let first = world.faces[f].first - base;
+            let v = world.vertices_of(f);
+            for i in 0..v.len() {
+                let (p, q) = (v[i], v[(i + 1) % v.len()]);
+                if p != q {
+                    half.push(HalfEdge {
+                        a: p.min(q),
+                        b: p.max(q),
+                        seq: (first + i) as u32,
+                        face: f as u32,
+                    });
+                }
             }
         }
-    }
+    });
     // seq is unique and counts up: the order is the same however the sort runs.
     sort_by_pair(&mut half, |h| (h.a, h.b), |h| (h.a, h.b, h.seq));
     half
@@ -274,14 +285,16 @@ fn faces_beside(adj: &[HalfEdge]) -> Vec<FaceId> {
 
 /// The index ranges of the edges in grouped half-edges, in order of first appearance.
 fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
-    let mut groups = Vec::new();
-    let mut s = 0;
-    for i in 1..=half.len() {
-        if i == half.len() || (half[i].a, half[i].b) != (half[s].a, half[s].b) {
-            groups.push(s as u32..i as u32);
-            s = i;
-        }
-    }
+    // Where each edge's group starts, found in fixed chunks on all threads.
+    let n = half.len();
+    let starts = crate::chunked::flat_map(n, CHUNK, |r, starts| {
+        starts.extend(
+            r.filter(|&i| i == 0 || (half[i].a, half[i].b) != (half[i - 1].a, half[i - 1].b)),
+        )
+    });
+    let mut groups: Vec<Range<u32>> = crate::chunked::map(starts.len(), |k| {
+        starts[k] as u32..starts.get(k + 1).map_or(n, |&e| e) as u32
+    });
     sort_by_key(&mut groups, |g| half[g.start as usize].seq);
     groups
 }
@@ -357,6 +370,54 @@ mod tests {
     use super::*;
     use crate::scene::testing::unit_cube_scene;
     use crate::view::Camera;
+    /// A height field of `n` by `n` cells, two triangles each: an open mesh of one hole.
+    fn height_field(n: u32) -> crate::scene::Mesh {
+        let h = |x: u32, y: u32| ((x * 7 + y * 13) % 5) as f64 * 0.1 + (x as f64 * 0.3).sin();
+        let vertices = (0..=n)
+            .flat_map(|y| (0..=n).map(move |x| crate::geom::P3::new(x as f64, y as f64, h(x, y))))
+            .collect();
+        let at = |x: u32, y: u32| y * (n + 1) + x;
+        let faces = (0..n)
+            .flat_map(|y| (0..n).map(move |x| (x, y)))
+            .flat_map(|(x, y)| {
+                [
+                    [at(x, y), at(x + 1, y), at(x + 1, y + 1)],
+                    [at(x, y), at(x + 1, y + 1), at(x, y + 1)],
+                ]
+            })
+            .map(|t| crate::scene::Face::new(t.to_vec()))
+            .collect();
+        crate::scene::Mesh {
+            vertices,
+            faces,
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn edges_found_on_several_threads_are_the_one_thread_edges() {
+        // Half-edges and their groups made in many chunks on three threads.
+        let mesh = height_field(70);
+        let faces = mesh.faces.len();
+        let obj = crate::scene::Object::from_mesh("field", mesh);
+        let scene = Scene::new(crate::scene::Object::group("", vec![obj]), "t".into());
+        let view = View::new(&scene, Camera::three_quarter());
+        let world = WorldFaces::build(&scene, None, crate::count::Count::NONE);
+        let opts = EdgeOptions {
+            set: EdgeSet::All,
+            crease_deg: 30.0,
+        };
+        let pool = |n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+        };
+        let edges = || mesh_edges(&world, &view, &opts, crate::count::Count::NONE);
+        let one = pool(1).install(edges);
+        assert!(faces > CHUNK && one.len() > faces, "{} edges", one.len());
+        assert_eq!(pool(3).install(edges), one);
+    }
 
     fn count(edges: &[Edge], kind: EdgeKind) -> usize {
         edges.iter().filter(|e| e.kind == kind).count()

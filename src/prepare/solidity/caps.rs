@@ -178,12 +178,12 @@ pub(crate) fn capping_open(mesh: &Mesh, span: Span) -> Result<Caps, Refused> {
         part.reach(0.1);
         // A hole's cap is settled by its first crossing: the retry needs only which holes
         // cross (a height field's fan crosses it along O(sqrt F) triangles each).
-        let hole_of: Vec<u32> = (0..capped.faces.len() as u32)
-            .map(|f| match f.checked_sub(n).map(|k| loop_of[k as usize]) {
+        let hole_of: Vec<u32> = crate::chunked::map(capped.faces.len(), |f| {
+            match (f as u32).checked_sub(n).map(|k| loop_of[k as usize]) {
                 Some(l) if suspect[l] => l as u32,
                 _ => NO_GROUP,
-            })
-            .collect();
+            }
+        });
         let e = examine_until(
             &capped,
             |f| f >= n && suspect[loop_of[(f - n) as usize]],
@@ -232,6 +232,8 @@ pub(crate) fn capping_open(mesh: &Mesh, span: Span) -> Result<Caps, Refused> {
             };
             return Err((why, failed(capped, e.surface, e.crossing)));
         }
+        // Its million corner lists freed on all threads.
+        crate::chunked::drop_all(capped.faces);
         if reached_crossings {
             suspect.iter_mut().for_each(|s| *s = false);
         }
@@ -267,14 +269,13 @@ fn whole(
         };
         return Err((why, Some(Box::new(failed))));
     }
-    Ok(Caps {
-        loops,
-        triangles: capped.faces[n as usize..]
-            .iter()
-            .map(|f| f.vertices.iter().map(|&v| capped.vertices[v as usize]))
-            .map(|mut t| [(); 3].map(|_| t.next().expect("a triangle")))
-            .collect(),
-    })
+    let triangles = capped.faces[n as usize..]
+        .iter()
+        .map(|f| f.vertices.iter().map(|&v| capped.vertices[v as usize]))
+        .map(|mut t| [(); 3].map(|_| t.next().expect("a triangle")))
+        .collect();
+    crate::chunked::drop_all(capped.faces);
+    Ok(Caps { loops, triangles })
 }
 
 /// How many capped surfaces [`cap_holes`] decides at most.
@@ -315,7 +316,7 @@ fn slit(mesh: &Mesh, lp: &[u32]) -> bool {
 fn with_caps(mesh: &Mesh, loops: &[Vec<u32>], ways: &[Way]) -> (Mesh, Vec<usize>) {
     let mut capped = Mesh {
         vertices: mesh.vertices.clone(),
-        faces: mesh.faces.clone(),
+        faces: crate::chunked::clone_all(&mesh.faces),
         ..Mesh::default()
     };
     let mut loop_of = Vec::new();
@@ -362,13 +363,12 @@ fn centroid<'a>(pts: impl ExactSizeIterator<Item = &'a P3>) -> P3 {
 /// their least edge in the faces' order.
 pub(crate) fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
     // Directed edges as packed integers, sorted: a reverse is found by binary search.
-    let mut directed: Vec<u64> = faces
-        .iter()
-        .flat_map(|f| {
+    let mut directed: Vec<u64> = crate::chunked::flat_map(faces.len(), CHUNK, |r, out| {
+        out.extend(faces[r].iter().flat_map(|f| {
             let n = f.vertices.len();
             (0..n).map(move |i| (f.vertices[i] as u64) << 32 | f.vertices[(i + 1) % n] as u64)
-        })
-        .collect();
+        }))
+    });
     sort_edges(&mut directed, |&e| e);
     // Loop steps b→a for each boundary edge a→b, in face order (on all threads, in order).
     let steps: Vec<(u32, u32)> = faces
@@ -426,9 +426,65 @@ pub(crate) fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
     loops
 }
 
+/// Faces per chunk of [`boundary_loops`]' edges.
+const CHUNK: usize = crate::chunked::CHUNK;
+
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    /// A dome over `n` by `n` cells, two triangles each, its rim flat at height 0: an open
+    /// mesh of one hole that caps into a solid (the two corner triangles lying flat in the
+    /// rim, which the cap would cover, left out).
+    fn height_field(n: u32) -> Mesh {
+        let f = |k: u32| (std::f64::consts::PI * k as f64 / n as f64).sin();
+        let rim = move |(x, y): (u32, u32)| x == 0 || x == n || y == 0 || y == n;
+        let h = move |x: u32, y: u32| {
+            if rim((x, y)) {
+                0.0
+            } else {
+                10.0 * f(x) * f(y) + ((x * 7 + y * 13) % 5) as f64 * 0.01
+            }
+        };
+        let vertices = (0..=n)
+            .flat_map(|y| (0..=n).map(move |x| P3::new(x as f64, y as f64, h(x, y))))
+            .collect();
+        let at = |(x, y): (u32, u32)| y * (n + 1) + x;
+        let faces = (0..n)
+            .flat_map(|y| (0..n).map(move |x| (x, y)))
+            .flat_map(|(x, y)| {
+                [
+                    [(x, y), (x + 1, y), (x + 1, y + 1)],
+                    [(x, y), (x + 1, y + 1), (x, y + 1)],
+                ]
+            })
+            .filter(|t| !t.iter().all(|&p| rim(p)))
+            .map(|t| Face::new(t.map(at).to_vec()))
+            .collect();
+        Mesh {
+            vertices,
+            faces,
+            ..Mesh::default()
+        }
+    }
+
+    #[test]
+    fn capping_on_several_threads_is_the_one_thread_capping() {
+        // Many chunks of faces: the edges, the faces copied and the triangles are made in
+        // chunks on three threads.
+        let mesh = height_field(100);
+        assert!(mesh.faces.len() > 2 * crate::chunked::CHUNK);
+        let pool = |n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+        };
+        let one = pool(1).install(|| cap_holes(&mesh));
+        assert!(matches!(one, Ok(Caps { loops: 1, .. })), "{one:?}");
+        assert_eq!(pool(3).install(|| cap_holes(&mesh)), one);
+        let loops = pool(1).install(|| boundary_loops(&mesh.faces));
+        assert_eq!(pool(3).install(|| boundary_loops(&mesh.faces)), loops);
+    }
 
     /// The unit cube's faces, outward, and its corners; `skip` faces left out.
     pub(crate) fn cube_without(skip: &[usize]) -> Mesh {

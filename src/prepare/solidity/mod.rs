@@ -332,13 +332,18 @@ fn triangulate(mesh: &Mesh, span: Span) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
         .enumerate()
         .map(chunk)
         .collect();
-    let mut out = (Vec::new(), Vec::new(), Vec::new());
+    // Joined on all threads.
+    let (mut tris, mut face_of, mut flat) = (Vec::new(), Vec::new(), Vec::new());
     for (t, f, b) in parts {
-        out.0.extend(t);
-        out.1.extend(f);
-        out.2.extend(b);
+        tris.push(t);
+        face_of.push(f);
+        flat.push(b);
     }
-    out
+    let (tris, (face_of, flat)) = rayon::join(
+        || crate::chunked::concat(&tris),
+        || rayon::join(|| crate::chunked::concat(&face_of), || flat.concat()),
+    );
+    (tris, face_of, flat)
 }
 
 /// Faces per chunk of [`triangulate`].
@@ -407,15 +412,14 @@ fn crossing_pairs(
     groups: Option<&Groups>,
     span: Span,
 ) -> Vec<(u32, u32)> {
-    let boxes: Vec<Bounds3> = tris
-        .iter()
-        .map(|t| {
-            let lo = std::array::from_fn(|k| t.p[0][k].min(t.p[1][k]).min(t.p[2][k]));
-            let hi = std::array::from_fn(|k| t.p[0][k].max(t.p[1][k]).max(t.p[2][k]));
-            [lo, hi]
-        })
-        .collect();
-    let is: Vec<bool> = (0..tris.len() as u32).map(&suspect).collect();
+    // Per triangle on all threads (in order: an indexed collect; a small mesh off the pool).
+    let boxes: Vec<Bounds3> = crate::chunked::map(tris.len(), |t| {
+        let t = &tris[t];
+        let lo = std::array::from_fn(|k| t.p[0][k].min(t.p[1][k]).min(t.p[2][k]));
+        let hi = std::array::from_fn(|k| t.p[0][k].max(t.p[1][k]).max(t.p[2][k]));
+        [lo, hi]
+    });
+    let is: Vec<bool> = crate::chunked::map(tris.len(), |t| suspect(t as u32));
     let crosses = |i: u32, j: u32| {
         let (f, g) = (face_of[i as usize], face_of[j as usize]);
         f != g
@@ -451,9 +455,9 @@ fn grid_pairs(
     groups: Option<&Groups>,
     span: Span,
 ) -> Vec<(u32, u32)> {
-    let few: Vec<u32> = (0..boxes.len() as u32)
-        .filter(|&i| is[i as usize])
-        .collect();
+    let few: Vec<u32> = crate::chunked::flat_map(boxes.len(), crate::chunked::CHUNK, |r, few| {
+        few.extend(r.filter(|&i| is[i]).map(|i| i as u32))
+    });
     if few.len() * 10 > boxes.len() {
         return filter_map_pairs(
             boxes,

@@ -1,0 +1,189 @@
+//! Lists built on all threads in fixed chunks and joined in order: the same list, item for
+//! item, as one pass on one thread, for any number of threads.
+//!
+//! The chunks depend only on the list's length and the chunk size, never on the thread
+//! count, and the chunks' parts are joined in chunk order; on one thread (or for a list of
+//! one chunk) the one pass runs as it is, off the thread pool. The join itself runs on all
+//! threads: each item is copied to its place by whichever thread takes its range of places.
+
+use std::ops::Range;
+
+use rayon::prelude::*;
+
+/// Items per chunk where a caller has no better size: large enough that the pool's overhead
+/// per chunk is lost in the work, small enough that a million-item list gives hundreds.
+pub(crate) const CHUNK: usize = 8192;
+
+/// What `each` appends for every range of `0..n`, in order: `each` is called once per
+/// chunk of `chunk` indices (the last one shorter) and must append for a range exactly what
+/// it appends for its indices one by one, so that the chunks' parts joined are one pass's
+/// list. On one thread, or where `n` is at most one chunk, that one pass runs.
+pub(crate) fn flat_map<T, F>(n: usize, chunk: usize, each: F) -> Vec<T>
+where
+    T: Clone + Send + Sync,
+    F: Fn(Range<usize>, &mut Vec<T>) + Sync,
+{
+    let chunk = chunk.max(1);
+    if n <= chunk || rayon::current_num_threads() == 1 {
+        let mut out = Vec::new();
+        each(0..n, &mut out);
+        return out;
+    }
+    let parts: Vec<Vec<T>> = (0..n.div_ceil(chunk))
+        .into_par_iter()
+        .map(|c| {
+            let mut part = Vec::new();
+            each(c * chunk..((c + 1) * chunk).min(n), &mut part);
+            part
+        })
+        .collect();
+    concat(&parts)
+}
+
+/// `f(i)` for every `i` in `0..n`, in order: on all threads (an indexed collect) where `n` is
+/// more than a chunk, else in one pass off the thread pool (a small mesh's lists would each
+/// wait on it).
+pub(crate) fn map<T: Send, F: Fn(usize) -> T + Sync + Send>(n: usize, f: F) -> Vec<T> {
+    if n <= CHUNK || rayon::current_num_threads() == 1 {
+        return (0..n).map(f).collect();
+    }
+    (0..n).into_par_iter().with_min_len(CHUNK).map(f).collect()
+}
+
+/// The parts one after another, copied on all threads (on one thread, one after another).
+pub(crate) fn concat<T: Clone + Send + Sync>(parts: &[Vec<T>]) -> Vec<T> {
+    // starts[k]: where part k begins in the result; starts[parts.len()]: its length.
+    let mut starts = Vec::with_capacity(parts.len() + 1);
+    let mut total = 0;
+    for p in parts {
+        starts.push(total);
+        total += p.len();
+    }
+    starts.push(total);
+    if total <= CHUNK || rayon::current_num_threads() == 1 {
+        return parts.concat();
+    }
+    let mut out = Vec::with_capacity(total);
+    // Each run of places walks its parts with a cursor: a search only where a run starts.
+    (0..total)
+        .into_par_iter()
+        .with_min_len(CHUNK)
+        .map_init(
+            || 0usize,
+            |k, i| {
+                if !(starts[*k] <= i && i < starts[*k + 1]) {
+                    // The last part beginning at or before i (an empty part begins where
+                    // the next does, so this one holds i).
+                    *k = starts.partition_point(|&s| s <= i) - 1;
+                }
+                parts[*k][i - starts[*k]].clone()
+            },
+        )
+        .collect_into_vec(&mut out);
+    out
+}
+
+/// A copy of `v`, its items cloned on all threads (each a heap allocation of its own, say).
+pub(crate) fn clone_all<T: Clone + Send + Sync>(v: &[T]) -> Vec<T> {
+    if v.len() <= CHUNK || rayon::current_num_threads() == 1 {
+        return v.to_vec();
+    }
+    let mut out = Vec::with_capacity(v.len());
+    v.par_iter()
+        .with_min_len(CHUNK)
+        .cloned()
+        .collect_into_vec(&mut out);
+    out
+}
+
+/// Drops the items of `v` on all threads (each a heap allocation of its own, say: a
+/// million faces' corner lists take as long to free as to make).
+pub(crate) fn drop_all<T: Send>(v: Vec<T>) {
+    if v.len() <= CHUNK || rayon::current_num_threads() == 1 {
+        return;
+    }
+    v.into_par_iter().with_min_len(CHUNK).for_each(drop);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A list whose items vary in number by index: 0 to 3 items each.
+    fn each(r: Range<usize>, out: &mut Vec<(usize, u32)>) {
+        for i in r {
+            for j in 0..(i * 7 + 3) % 4 {
+                out.push((i, j as u32));
+            }
+        }
+    }
+
+    #[test]
+    fn chunks_joined_are_the_one_pass_for_every_chunk_size() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .unwrap();
+        for n in [0, 1, 2, 5, 97, 20_000, 70_001] {
+            let mut one = Vec::new();
+            each(0..n, &mut one);
+            for chunk in [1, 2, 3, 7, 64, 1000, CHUNK, n.max(1)] {
+                let got = pool.install(|| flat_map(n, chunk, each));
+                assert_eq!(got, one, "n {n}, chunk {chunk}");
+            }
+        }
+    }
+
+    #[test]
+    fn map_on_all_threads_is_the_one_pass() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .unwrap();
+        for n in [0, 5, CHUNK + 1, 4 * CHUNK + 7] {
+            let one: Vec<usize> = (0..n).map(|i| i * i % 1009).collect();
+            assert_eq!(pool.install(|| map(n, |i| i * i % 1009)), one);
+        }
+    }
+
+    #[test]
+    fn concat_on_all_threads_is_the_parts_in_order() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(4)
+            .build()
+            .unwrap();
+        // Parts of every length, empty ones among them, many more items than CHUNK.
+        let parts: Vec<Vec<u64>> = (0..400u64)
+            .map(|k| (0..(k * 37 % 211)).map(|i| k << 32 | i).collect())
+            .collect();
+        assert!(parts.iter().map(Vec::len).sum::<usize>() > 4 * CHUNK);
+        assert!(parts.iter().any(Vec::is_empty));
+        let got = pool.install(|| concat(&parts));
+        assert_eq!(got, parts.concat());
+    }
+
+    #[test]
+    fn cloning_on_all_threads_copies_in_order() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .unwrap();
+        let v: Vec<Vec<u32>> = (0..5 * CHUNK as u32)
+            .map(|i| vec![i; i as usize % 4])
+            .collect();
+        assert_eq!(pool.install(|| clone_all(&v)), v);
+    }
+
+    #[test]
+    fn dropping_on_all_threads_frees_every_item() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let live = std::sync::Arc::new(());
+        let v = vec![live.clone(); 3 * CHUNK];
+        assert_eq!(std::sync::Arc::strong_count(&live), 3 * CHUNK + 1);
+        pool.install(|| drop_all(v));
+        assert_eq!(std::sync::Arc::strong_count(&live), 1);
+    }
+}
