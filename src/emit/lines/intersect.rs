@@ -35,24 +35,28 @@ pub(crate) fn intersection_edges(
         .with_min_len(1 << 12)
         .filter(|&f| keep(FaceId(f)) && faces[f as usize].len >= 3)
         .collect();
-    // Per face, once: whether it is flat (exactly: every corner on the plane of its
-    // reference points). The reference points are not kept: made again for the few pairs
-    // that reach the crossing test (12 bytes a face less at the drawing's peak).
-    let cand_flat: Vec<bool> = cand
+    // Per face, once: its plane's reference corners, and whether it is flat (exactly: every
+    // corner on the plane of the reference points).
+    let (cand_refs, cand_flat): (Vec<[u32; 3]>, Vec<bool>) = cand
         .par_iter()
         .map(|&f| {
             let p = world.points_of(f as usize);
-            let rp = plane_refs(p).map(|k| p[k as usize]);
-            p.len() == 3 || p.iter().all(|q| orient3d_refs(&rp, q) == 0.0)
+            let r = plane_refs(p);
+            let rp = r.map(|k| p[k as usize]);
+            (
+                r,
+                p.len() == 3 || p.iter().all(|q| orient3d_refs(&rp, q) == 0.0),
+            )
         })
-        .collect();
+        .unzip();
     // Faces that can cross nothing are not paired at all.
     let alone = alone(world, &cand, &cand_flat);
     let left: Vec<usize> = (0..cand.len()).filter(|&k| !alone[k]).collect();
     drop(alone);
     let ids: Vec<u32> = left.iter().map(|&k| cand[k]).collect();
+    let refs: Vec<[u32; 3]> = left.iter().map(|&k| cand_refs[k]).collect();
     let flat: Vec<bool> = left.iter().map(|&k| cand_flat[k]).collect();
-    drop((left, cand, cand_flat));
+    drop((left, cand, cand_refs, cand_flat));
     // The faces of many corners, by position, with their corners sorted (so that a pair's
     // adjacency costs what the smaller face has, not the product).
     let sorted: Vec<(u32, Vec<u32>)> = (0..ids.len() as u32)
@@ -69,7 +73,12 @@ pub(crate) fn intersection_edges(
     };
     let side = |i: usize| {
         let f = ids[i] as usize;
-        Side::new(world.points_of(f), &faces[f].normal)
+        let pts = world.points_of(f);
+        Side {
+            pts,
+            normal: &faces[f].normal,
+            refs: refs[i].map(|k| pts[k as usize]),
+        }
     };
     // Results come in ascending (position, position) pair order, so in (face, face) order:
     // fixed whatever the thread count.
@@ -268,6 +277,7 @@ struct Side<'a> {
 }
 
 impl<'a> Side<'a> {
+    #[cfg(test)]
     fn new(pts: Corners<'a>, normal: &'a V3) -> Self {
         let refs = plane_refs(pts).map(|k| pts[k as usize]);
         Side { pts, normal, refs }
