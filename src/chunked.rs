@@ -105,6 +105,15 @@ pub(crate) fn drop_all<T: Send>(v: Vec<T>) {
     v.into_par_iter().with_min_len(CHUNK).for_each(drop);
 }
 
+/// A pool of `threads` threads, for tests that compare one thread with several.
+#[cfg(test)]
+pub(crate) fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a test's thread pool starts")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -120,10 +129,7 @@ mod tests {
 
     #[test]
     fn chunks_joined_are_the_one_pass_for_every_chunk_size() {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(3)
-            .build()
-            .unwrap();
+        let pool = pool(3);
         for n in [0, 1, 2, 5, 97, 20_000, 70_001] {
             let mut one = Vec::new();
             each(0..n, &mut one);
@@ -136,10 +142,7 @@ mod tests {
 
     #[test]
     fn map_on_all_threads_is_the_one_pass() {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(3)
-            .build()
-            .unwrap();
+        let pool = pool(3);
         for n in [0, 5, CHUNK + 1, 4 * CHUNK + 7] {
             let one: Vec<usize> = (0..n).map(|i| i * i % 1009).collect();
             assert_eq!(pool.install(|| map(n, |i| i * i % 1009)), one);
@@ -148,10 +151,7 @@ mod tests {
 
     #[test]
     fn concat_on_all_threads_is_the_parts_in_order() {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(4)
-            .build()
-            .unwrap();
+        let pool = pool(4);
         // Parts of every length, empty ones among them, many more items than CHUNK.
         let parts: Vec<Vec<u64>> = (0..400u64)
             .map(|k| (0..(k * 37 % 211)).map(|i| k << 32 | i).collect())
@@ -164,10 +164,7 @@ mod tests {
 
     #[test]
     fn cloning_on_all_threads_copies_in_order() {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(3)
-            .build()
-            .unwrap();
+        let pool = pool(3);
         let v: Vec<Vec<u32>> = (0..5 * CHUNK as u32)
             .map(|i| vec![i; i as usize % 4])
             .collect();
@@ -176,10 +173,7 @@ mod tests {
 
     #[test]
     fn dropping_on_all_threads_frees_every_item() {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(2)
-            .build()
-            .unwrap();
+        let pool = pool(2);
         let live = std::sync::Arc::new(());
         let v = vec![live.clone(); 3 * CHUNK];
         assert_eq!(std::sync::Arc::strong_count(&live), 3 * CHUNK + 1);

@@ -375,12 +375,7 @@ mod tests {
                 [p, [p[0] + s, p[1] + s, p[2] + s]]
             })
             .collect();
-        let pool = |n| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .unwrap()
-        };
+        let pool = crate::chunked::pool;
         let three = pool(3).install(|| overlapping_pairs(&boxes));
         assert!(three.len() > boxes.len() / 10, "the test finds pairs");
         assert_eq!(three, pool(1).install(|| overlapping_pairs(&boxes)));

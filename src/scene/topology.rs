@@ -259,12 +259,7 @@ mod tests {
                 }
             })
             .collect();
-        let pool = |n| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .unwrap()
-        };
+        let pool = crate::chunked::pool;
         let key = |t: &Traversals| -> Vec<(u64, u32, bool)> {
             t.items
                 .iter()

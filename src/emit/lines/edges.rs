@@ -407,12 +407,7 @@ mod tests {
             set: EdgeSet::All,
             crease_deg: 30.0,
         };
-        let pool = |n| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .unwrap()
-        };
+        let pool = crate::chunked::pool;
         let edges = || mesh_edges(&world, &view, &opts, crate::count::Count::NONE);
         let one = pool(1).install(edges);
         assert!(faces > CHUNK && one.len() > faces, "{} edges", one.len());

@@ -473,12 +473,7 @@ pub(crate) mod tests {
         // chunks on three threads.
         let mesh = height_field(100);
         assert!(mesh.faces.len() > 2 * crate::chunked::CHUNK);
-        let pool = |n| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .unwrap()
-        };
+        let pool = crate::chunked::pool;
         let one = pool(1).install(|| cap_holes(&mesh));
         assert!(matches!(one, Ok(Caps { loops: 1, .. })), "{one:?}");
         assert_eq!(pool(3).install(|| cap_holes(&mesh)), one);
