@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 /// A fresh, empty folder `kepler-{suite}-{pid}-{name}` under the system's temporary folder.
 ///
-/// The folders of test processes that have ended are removed first ([`sweep`]): a test's
+/// The folders of test processes that have ended are removed first: a test's
 /// folder stays for looking at until the next run, and runs do not pile up.
 pub fn temp_dir(suite: &str, name: &str) -> PathBuf {
     let tmp = std::env::temp_dir();
