@@ -54,6 +54,15 @@ impl Traversals {
     /// The traversals of `faces`' edges, sorted by edge (within an edge, in an order nothing
     /// reads: the topology counts directions, the pieces join faces).
     pub(crate) fn of(faces: &[Face]) -> Traversals {
+        Traversals {
+            items: Traversals::numbered(faces, 0),
+            faces: faces.len(),
+        }
+    }
+
+    /// The traversals of `faces` numbered from `first`, sorted by edge and, within an
+    /// edge, by face.
+    fn numbered(faces: &[Face], first: u32) -> Vec<Traversal> {
         // In fixed chunks of faces on all threads, joined in face order.
         let mut items = crate::chunked::flat_map(faces.len(), CHUNK, |r, items| {
             items.reserve(faces[r.clone()].iter().map(|f| f.vertices.len()).sum());
@@ -64,7 +73,7 @@ impl Traversals {
                     let (a, b) = (v[i], v[(i + 1) % n]);
                     items.push(Traversal {
                         edge: (a.min(b) as u64) << 32 | a.max(b) as u64,
-                        face: k as u32,
+                        face: first + k as u32,
                         forward: a < b,
                     });
                 }
@@ -72,10 +81,69 @@ impl Traversals {
         });
         let pair = |t: &Traversal| ((t.edge >> 32) as u32, t.edge as u32);
         sort_by_pair(&mut items, pair, |t| (t.edge, t.face));
+        items
+    }
+
+    /// The traversals of these faces and of `more` after them (numbered from this set's
+    /// face count on): [`Traversals::of`] the faces joined, made by sorting only `more`'s
+    /// and merging them in (a mesh and its few caps: a merge is linear where a sort of the
+    /// whole is not). Both lists are sorted by edge, then face, and `more`'s faces number
+    /// after all of these, so the merge is that order; on all threads, in fixed chunks of
+    /// this list, each taking the items of `more` that fall between its first item and the
+    /// next chunk's.
+    pub(crate) fn with_faces(&self, more: &[Face]) -> Traversals {
+        let added = Traversals::numbered(more, self.faces as u32);
+        let key = |t: &Traversal| (t.edge, t.face);
+        let (a, b) = (&self.items, &added);
+        // Where the items of `b` that go before a[i] end (all of them past the end).
+        let cut = |i: usize| match a.get(i) {
+            Some(x) => b.partition_point(|t| key(t) < key(x)),
+            None => b.len(),
+        };
+        let items = crate::chunked::flat_map(a.len(), MERGED_CHUNK, |r, out| {
+            // The first chunk takes the items of `b` before all of `a` too.
+            let from = if r.start == 0 { 0 } else { cut(r.start) };
+            let (mut i, mut j, end) = (r.start, from, cut(r.end));
+            out.reserve(r.len() + end - from);
+            while i < r.end || j < end {
+                if j == end || (i < r.end && key(&a[i]) <= key(&b[j])) {
+                    out.push(a[i]);
+                    i += 1;
+                } else {
+                    out.push(b[j]);
+                    j += 1;
+                }
+            }
+        });
         Traversals {
             items,
-            faces: faces.len(),
+            faces: self.faces + more.len(),
         }
+    }
+
+    /// The edges one face alone traverses, each as that face's step `a → b` (an edge from a
+    /// vertex to itself left out: it is its own reverse), in face order and, within a face,
+    /// in corner order. Of an open, consistent mesh ([`Topology::Open`]), exactly its
+    /// directed edges whose reverse no face has: the holes' boundaries. `faces` are the
+    /// faces these traversals are of.
+    pub(crate) fn once(&self, faces: &[Face]) -> Vec<(u32, u32)> {
+        let mut steps: Vec<(u32, usize, u32, u32)> = self
+            .by_edge()
+            .filter(|t| t.len() == 1 && t[0].edge >> 32 != t[0].edge & 0xffff_ffff)
+            .map(|t| {
+                let t = t[0];
+                let (lo, hi) = ((t.edge >> 32) as u32, t.edge as u32);
+                let (a, b) = if t.forward { (lo, hi) } else { (hi, lo) };
+                let v = &faces[t.face as usize].vertices;
+                let n = v.len();
+                let corner = (0..n)
+                    .find(|&i| v[i] == a && v[(i + 1) % n] == b)
+                    .expect("a traversal is a step of its face");
+                (t.face, corner, a, b)
+            })
+            .collect();
+        steps.sort_unstable();
+        steps.into_iter().map(|(_, _, a, b)| (a, b)).collect()
     }
 
     /// The traversals, an edge at a time.
@@ -141,6 +209,9 @@ impl Traversals {
 
 /// Faces per chunk of [`Traversals::of`].
 const CHUNK: usize = crate::chunked::CHUNK;
+
+/// Traversals per chunk of [`Traversals::with_faces`]' merge (a few faces' worth each).
+const MERGED_CHUNK: usize = 4 * crate::chunked::CHUNK;
 
 /// Sorts on all threads when the list is long; short lists stay off the thread pool (200k
 /// one-box objects would each wait on it).
@@ -223,12 +294,6 @@ const DENSE_BUCKETS: usize = 4;
 /// Longest list [`sort_by_pair`] counts (beyond, it compares on all threads).
 const BUCKETED_UP_TO: usize = 1 << 20;
 
-/// [`sort_by_pair`] of packed edges `a << 32 | b` (or such an edge with a number counting
-/// up in the list), by the edge.
-pub(crate) fn sort_edges<T: Ord + Copy + Send>(v: &mut [T], edge: impl Fn(&T) -> u64) {
-    sort_by_pair(v, |x| ((edge(x) >> 32) as u32, edge(x) as u32), |x| *x);
-}
-
 /// Connected pieces of a mesh's faces through shared edges.
 #[derive(Debug)]
 pub(crate) struct Pieces {
@@ -272,6 +337,89 @@ mod tests {
             faces.iter().map(|f| f.vertices.len()).sum::<usize>()
         );
         assert_eq!(pool(3).install(|| key(&Traversals::of(&faces))), one);
+    }
+
+    /// Each traversal as (edge, face, direction), in the list's order.
+    fn listed(t: &Traversals) -> Vec<(u64, u32, bool)> {
+        t.items
+            .iter()
+            .map(|x| (x.edge, x.face, x.forward))
+            .collect()
+    }
+
+    /// A grid of `m` by `m` cells, consistently oriented: quads, some as two triangles and
+    /// some with a corner repeated (an edge from a vertex to itself), every 7th cell left
+    /// out (holes, some meeting at a corner).
+    fn holed_grid(m: u32) -> Vec<Face> {
+        let v = |i: u32, j: u32| j * (m + 1) + i;
+        (0..m * m)
+            .filter(|c| c % 7 != 3)
+            .flat_map(|c| {
+                let (i, j) = (c % m, c / m);
+                let (a, b, d, e) = (v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1));
+                match c % 3 {
+                    0 => vec![Face::new(vec![a, b, d, e])],
+                    1 => vec![Face::new(vec![a, b, d]), Face::new(vec![a, d, e])],
+                    _ => vec![Face::new(vec![a, b, b, d, e])],
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn merged_traversals_are_those_of_the_faces_joined() {
+        let pool = crate::chunked::pool;
+        let faces = holed_grid(300);
+        assert!(faces.len() > 10 * CHUNK);
+        for split in [0, 1, 5, faces.len() / 2, faces.len() - 3, faces.len()] {
+            let whole = listed(&Traversals::of(&faces));
+            for threads in [1, 3] {
+                let merged = pool(threads)
+                    .install(|| Traversals::of(&faces[..split]).with_faces(&faces[split..]));
+                assert_eq!(merged.faces, faces.len());
+                let got = listed(&merged);
+                // Sorted by edge, then face, as `of` sorts: the same list; within one
+                // face's traversals of one edge (a degenerate face's) in any order.
+                let key = |l: &[(u64, u32, bool)]| l.iter().map(|x| (x.0, x.1)).collect::<Vec<_>>();
+                assert_eq!(key(&got), key(&whole), "split {split}, {threads} threads");
+                let (mut g, mut w) = (got.clone(), whole.clone());
+                g.sort_unstable();
+                w.sort_unstable();
+                assert_eq!(g, w);
+            }
+        }
+    }
+
+    /// The directed edges whose reverse no face has, face by face, corner by corner: the
+    /// holes' boundary as first written (one sorted list of directed edges searched).
+    fn reverse_missing(faces: &[Face]) -> Vec<(u32, u32)> {
+        let step = |f: &Face, i: usize| (f.vertices[i], f.vertices[(i + 1) % f.vertices.len()]);
+        let mut directed: Vec<(u32, u32)> = faces
+            .iter()
+            .flat_map(|f| (0..f.vertices.len()).map(move |i| step(f, i)))
+            .collect();
+        directed.sort_unstable();
+        faces
+            .iter()
+            .flat_map(|f| (0..f.vertices.len()).map(move |i| step(f, i)))
+            .filter(|&(a, b)| directed.binary_search(&(b, a)).is_err())
+            .collect()
+    }
+
+    #[test]
+    fn edges_traversed_once_are_the_boundary_steps_in_face_order() {
+        let strip = holed_grid(150);
+        assert_eq!(edge_topology(&strip), Topology::Open);
+        let once = Traversals::of(&strip).once(&strip);
+        assert_eq!(once, reverse_missing(&strip));
+        assert!(once.len() > strip.len() / 7, "{}", once.len());
+        for skip in 0..4 {
+            let mut open = tet(false);
+            open.remove(skip);
+            assert_eq!(Traversals::of(&open).once(&open), reverse_missing(&open));
+        }
+        let closed = tet(false);
+        assert!(Traversals::of(&closed).once(&closed).is_empty());
     }
 
     fn tet(flip_one: bool) -> Vec<Face> {
@@ -374,6 +522,12 @@ mod tests {
             .into_iter()
             .map(Face::new)
             .collect()
+    }
+
+    /// [`sort_by_pair`] of packed edges `a << 32 | b` (or such an edge with a number
+    /// counting up in the list), by the edge.
+    fn sort_edges<T: Ord + Copy + Send>(v: &mut [T], edge: impl Fn(&T) -> u64) {
+        sort_by_pair(v, |x| ((edge(x) >> 32) as u32, edge(x) as u32), |x| *x);
     }
 
     #[test]

@@ -44,13 +44,11 @@
 
 use std::collections::HashMap;
 
-use rayon::prelude::*;
-
 use crate::count::Span;
 use crate::geom::{newell, orient3d, P3};
-use crate::scene::topology::sort_edges;
+use crate::scene::topology::Traversals;
 #[cfg(test)]
-use crate::scene::topology::{edge_topology, Topology};
+use crate::scene::topology::Topology;
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Face, Mesh, Solidity};
 
@@ -126,15 +124,21 @@ pub(crate) type Refused = (CapFailure, Option<Box<Failed>>);
 /// [`cap_holes`], saying on failure which capped surface failed, filling `span` as it goes
 /// (each attempt less of it than the last: most meshes cap at the first).
 pub(crate) fn capping(mesh: &Mesh, span: Span) -> Result<Caps, Refused> {
-    if edge_topology(&mesh.faces) != Topology::Open {
+    let traversals = Traversals::of(&mesh.faces);
+    if traversals.topology() != Topology::Open {
         return Err((CapFailure::Inconsistent, None));
     }
-    capping_open(mesh, span)
+    capping_open(mesh, &traversals, span)
 }
 
-/// [`capping`] of a mesh whose edge topology the caller has found [`Topology::Open`] (it is
-/// not found again: that sorts every edge twice).
-pub(crate) fn capping_open(mesh: &Mesh, span: Span) -> Result<Caps, Refused> {
+/// [`capping`] of a mesh whose edge topology the caller has found [`Topology::Open`] in
+/// `traversals` (its faces'): the holes are read from them, and each capped mesh's
+/// traversals are these with the caps' merged in (no edge of the mesh sorted again).
+pub(crate) fn capping_open(
+    mesh: &Mesh,
+    traversals: &Traversals,
+    span: Span,
+) -> Result<Caps, Refused> {
     let refuse = |why| (why, None);
     let failed = |mesh, surface: Option<Surface>, crossing| {
         surface.map(|surface| {
@@ -150,12 +154,14 @@ pub(crate) fn capping_open(mesh: &Mesh, span: Span) -> Result<Caps, Refused> {
         // A sheet in one plane: whatever caps it, nothing is enclosed.
         return Err(refuse(CapFailure::InsideOut));
     }
-    let (slits, loops): (Vec<Vec<u32>>, Vec<Vec<u32>>) = boundary_loops(&mesh.faces)
-        .into_iter()
-        .partition(|l| slit(mesh, l));
+    let (slits, loops): (Vec<Vec<u32>>, Vec<Vec<u32>>) =
+        loops_of_steps(&traversals.once(&mesh.faces))
+            .into_iter()
+            .partition(|l| slit(mesh, l));
     let closed;
-    let mesh = if slits.is_empty() {
-        mesh
+    let closed_traversals;
+    let (mesh, traversals) = if slits.is_empty() {
+        (mesh, traversals)
     } else {
         // T-junction cracks are closed by splitting the edges across them, not capped.
         closed = Mesh {
@@ -163,7 +169,8 @@ pub(crate) fn capping_open(mesh: &Mesh, span: Span) -> Result<Caps, Refused> {
             faces: close_slits(mesh, &slits).ok_or(refuse(CapFailure::Slit))?,
             ..Mesh::default()
         };
-        &closed
+        closed_traversals = Traversals::of(&closed.faces);
+        (&closed, &closed_traversals)
     };
     let holes = (loops.len() + slits.len()) as u32;
     let n = mesh.faces.len() as u32;
@@ -186,6 +193,7 @@ pub(crate) fn capping_open(mesh: &Mesh, span: Span) -> Result<Caps, Refused> {
         });
         let e = examine_until(
             &capped,
+            traversals.with_faces(&capped.faces[n as usize..]),
             |f| f >= n && suspect[loop_of[(f - n) as usize]],
             Some(&hole_of),
             part.span(0.1, 1.0),
@@ -361,28 +369,16 @@ fn centroid<'a>(pts: impl ExactSizeIterator<Item = &'a P3>) -> P3 {
 /// on one) splits the walk into simple loops; in-degree equals out-degree at every vertex
 /// of a consistent surface's boundary, so every walk closes. Deterministic: loops start at
 /// their least edge in the faces' order.
+#[cfg(test)]
 pub(crate) fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
-    // Directed edges as packed integers, sorted: a reverse is found by binary search.
-    let mut directed: Vec<u64> = crate::chunked::flat_map(faces.len(), CHUNK, |r, out| {
-        out.extend(faces[r].iter().flat_map(|f| {
-            let n = f.vertices.len();
-            (0..n).map(move |i| (f.vertices[i] as u64) << 32 | f.vertices[(i + 1) % n] as u64)
-        }))
-    });
-    sort_edges(&mut directed, |&e| e);
-    // Loop steps b→a for each boundary edge a→b, in face order (on all threads, in order).
-    let steps: Vec<(u32, u32)> = faces
-        .par_iter()
-        .flat_map_iter(|f| {
-            let n = f.vertices.len();
-            let directed = &directed;
-            (0..n).filter_map(move |i| {
-                let (a, b) = (f.vertices[i], f.vertices[(i + 1) % n]);
-                let reverse = (b as u64) << 32 | a as u64;
-                directed.binary_search(&reverse).is_err().then_some((b, a))
-            })
-        })
-        .collect();
+    loops_of_steps(&Traversals::of(faces).once(faces))
+}
+
+/// [`boundary_loops`] of the boundary edges `once` ([`Traversals::once`]: each `a → b` of
+/// its face, in face order).
+fn loops_of_steps(once: &[(u32, u32)]) -> Vec<Vec<u32>> {
+    // Loop steps b→a for each boundary edge a→b, in face order.
+    let steps: Vec<(u32, u32)> = once.iter().map(|&(a, b)| (b, a)).collect();
     let mut out_of: HashMap<u32, Vec<usize>> = HashMap::new();
     for (k, &(from, _)) in steps.iter().enumerate().rev() {
         out_of.entry(from).or_default().push(k);
@@ -425,9 +421,6 @@ pub(crate) fn boundary_loops(faces: &[Face]) -> Vec<Vec<u32>> {
     }
     loops
 }
-
-/// Faces per chunk of [`boundary_loops`]' edges.
-const CHUNK: usize = crate::chunked::CHUNK;
 
 #[cfg(test)]
 pub(crate) mod tests {

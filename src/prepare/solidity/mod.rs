@@ -150,6 +150,9 @@ pub(crate) struct Examined {
     pub(crate) crossing: Vec<[u32; 2]>,
     /// The surface tested, where the mesh is closed and consistent.
     pub(crate) surface: Option<Surface>,
+    /// Where the mesh is open ([`Solidity::Open`]): the traversals of its edges, for
+    /// [`caps::capping_open`] to find the holes and make the capped mesh's by a merge.
+    pub(crate) open: Option<Traversals>,
 }
 
 #[cfg(test)]
@@ -162,7 +165,8 @@ pub(crate) fn examine(mesh: &Mesh) -> Examined {
 /// [`examine`], testing for crossings only the pairs of triangles where one's face passes
 /// `suspect` (the others known not to cross).
 pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -> Examined {
-    examine_until(mesh, suspect, None, Span::NONE)
+    let traversals = Traversals::of(&mesh.faces);
+    examine_until(mesh, traversals, suspect, None, Span::NONE)
 }
 
 /// [`examine_where`], where the suspect faces fall in `groups` (by face, [`NO_GROUP`] for
@@ -171,9 +175,12 @@ pub(crate) fn examine_where(mesh: &Mesh, suspect: impl Fn(u32) -> bool + Sync) -
 /// but not every pair, and the count in [`Solidity::SelfIntersecting`] is of the pairs found.
 /// The tests fill `span` in the shares of time they take on large meshes: the edges matched,
 /// the triangles made, then the pairs searched (most of it, unless the search is only of a
-/// few suspects in `groups`, which is quick).
+/// few suspects in `groups`, which is quick). `traversals` are those of `mesh`'s faces
+/// ([`Traversals::of`], or made by a merge): one sort of the edges for both the topology
+/// and, of a closed mesh, its pieces.
 pub(crate) fn examine_until(
     mesh: &Mesh,
+    traversals: Traversals,
     suspect: impl Fn(u32) -> bool + Sync,
     groups: Option<&[u32]>,
     span: Span,
@@ -183,6 +190,7 @@ pub(crate) fn examine_until(
         degenerate: Vec::new(),
         crossing: Vec::new(),
         surface: None,
+        open: None,
     };
     // Where the edges matched and the triangles made end, as fractions of the span.
     let (matched, made) = if groups.is_some() {
@@ -190,11 +198,12 @@ pub(crate) fn examine_until(
     } else {
         (0.12, 0.3)
     };
-    // One sort of the edges for both the topology and, of a closed mesh, its pieces.
-    let traversals = Traversals::of(&mesh.faces);
     span.reach(matched);
     match traversals.topology() {
-        Topology::Open => e.solidity = Solidity::Open(CapFailure::NotTried),
+        Topology::Open => {
+            e.solidity = Solidity::Open(CapFailure::NotTried);
+            e.open = Some(traversals);
+        }
         Topology::Inconsistent => e.solidity = Solidity::Inconsistent,
         Topology::Closed => {
             // Freed before the triangles are made.
@@ -231,11 +240,16 @@ pub(crate) fn decide(mesh: &mut Mesh, done: Count) {
     let n = mesh.faces.len();
     let share = Share::new(done, n);
     let test = if mesh.closed { 0.97 } else { 0.1 };
-    let whole = examine_until(mesh, |_| true, None, share.span(0.0, test));
+    let traversals = Traversals::of(&mesh.faces);
+    let whole = examine_until(mesh, traversals, |_| true, None, share.span(0.0, test));
     let pieces = share.span(0.97, 1.0);
     let (s, proven) = match whole.solidity {
-        // `examine` found the edges open (only that makes the whole `Open`).
-        Solidity::Open(_) => match self::caps::capping_open(mesh, share.span(test, 0.97)) {
+        // `examine` found the edges open (only that makes the whole `Open`), and kept them.
+        Solidity::Open(_) => match self::caps::capping_open(
+            mesh,
+            &whole.open.unwrap_or_else(|| Traversals::of(&mesh.faces)),
+            share.span(test, 0.97),
+        ) {
             Ok(caps) => {
                 mesh.caps = caps.triangles;
                 (Solidity::Capped(caps.loops), None)
