@@ -376,19 +376,33 @@ impl ScreenFaces {
             done.add(faces.len());
             job.part(faces)
         };
-        for batch in tasks.chunks(TASKS_AT_ONCE) {
-            let parts: Vec<Part> = if batch.len() == 1 {
+        let made = |batch: &[usize]| -> Vec<Part> {
+            if batch.len() == 1 {
                 batch.iter().map(task).collect()
             } else {
                 batch.par_iter().map(task).collect()
-            };
+            }
+        };
+        let mut appended = |parts: Vec<Part>, this: &mut ScreenFaces| {
             for part in parts {
                 let new_base = (world.len() + new_world.len()) as u32;
                 new_world.extend_from_slice(&part.new_world);
                 new_points.extend_from_slice(&part.new_points);
-                self.append(part, new_base);
+                this.append(part, new_base);
             }
+        };
+        // Each batch's parts are appended (in order, on one thread) while the next batch is
+        // made on the others; a leaf of one batch never reaches the thread pool.
+        let mut ready: Vec<Part> = Vec::new();
+        for batch in tasks.chunks(TASKS_AT_ONCE) {
+            ready = if ready.is_empty() {
+                made(batch)
+            } else {
+                let last = std::mem::take(&mut ready);
+                rayon::join(|| appended(last, self), || made(batch)).1
+            };
         }
+        appended(ready, self);
         self.world = world;
         self.world.extend(new_world);
         self.points = points;

@@ -46,9 +46,9 @@ use std::collections::HashMap;
 
 use crate::count::Span;
 use crate::geom::{newell, orient3d, P3};
-use crate::scene::topology::Traversals;
 #[cfg(test)]
 use crate::scene::topology::Topology;
+use crate::scene::topology::Traversals;
 use crate::scene::triangulate::ear_clip_simple;
 use crate::scene::{CapFailure, Face, Mesh, Solidity};
 
