@@ -426,16 +426,123 @@ impl Builder<'_> {
         self.bvh_over(&ids)
     }
 
-    /// The nodes of the median-split hierarchy over `ids`, already in [`median_order`].
+    /// The nodes of the median-split hierarchy over `ids`, already in [`median_order`]:
+    /// what [`Builder::leaf`] and [`Builder::inner`] make, walking the halves depth first
+    /// (the left half's nodes, the right's, then theirs), made on all threads. Where each
+    /// half's nodes and child lists go depends only on its length ([`Shape`]), so each half
+    /// fills its own slices of the lists, and the piece bounds are made side by side.
     fn bvh_over(&mut self, ids: &[PieceId]) -> u32 {
-        if ids.len() <= LEAF_PIECES {
-            return self.leaf(ids.to_vec());
-        }
-        let (left, right) = ids.split_at(ids.len() / 2);
-        let l = self.bvh_over(left);
-        let r = self.bvh_over(right);
-        self.inner(vec![l, r])
+        let sf = self.sf;
+        let shape = Shape::of(ids.len());
+        let tree = &mut self.tree;
+        let at = At {
+            node: tree.nodes.len() as u32,
+            child: tree.children.len() as u32,
+            piece: tree.pieces.len() as u32,
+        };
+        let bounds = crate::chunked::map(ids.len(), |k| PieceBound::of(sf.piece(ids[k])));
+        tree.piece_bounds.extend(bounds);
+        tree.pieces.extend_from_slice(ids);
+        let (nodes, children) = (at.node as usize, at.child as usize);
+        tree.nodes.resize(nodes + shape.nodes, empty_node());
+        tree.children.resize(children + shape.children, 0);
+        fill(
+            sf,
+            ids,
+            &mut tree.nodes[nodes..],
+            &mut tree.children[children..],
+            at,
+        );
+        tree.nodes.len() as u32 - 1
     }
+}
+
+/// How many nodes and child-list entries the median split of a run of pieces makes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Shape {
+    nodes: usize,
+    children: usize,
+}
+
+impl Shape {
+    /// The shape over `n` pieces: one leaf up to [`LEAF_PIECES`], else the halves' shapes
+    /// and an inner node over the two.
+    fn of(n: usize) -> Shape {
+        if n <= LEAF_PIECES {
+            return Shape {
+                nodes: 1,
+                children: 0,
+            };
+        }
+        let (l, r) = (Shape::of(n / 2), Shape::of(n - n / 2));
+        Shape {
+            nodes: l.nodes + r.nodes + 1,
+            children: l.children + r.children + 2,
+        }
+    }
+}
+
+/// Where a run's first node, child-list entry and piece sit in the tree's lists.
+#[derive(Debug, Clone, Copy)]
+struct At {
+    node: u32,
+    child: u32,
+    piece: u32,
+}
+
+/// Fills `nodes` and `children` (exactly the run's [`Shape`], at `at`) with the median
+/// split's nodes over `ids` (the pieces at `at.piece`), the root last; returns the root.
+fn fill(
+    sf: &ScreenFaces,
+    ids: &[PieceId],
+    nodes: &mut [Node],
+    children: &mut [u32],
+    at: At,
+) -> Node {
+    let mut n = empty_node();
+    if ids.len() <= LEAF_PIECES {
+        // As [`Builder::leaf`].
+        for &p in ids {
+            let pc = sf.piece(p);
+            n.grow(&pc.rect, pc.zmin, pc.zmax);
+        }
+        n.kind = NodeKind::Leaf(at.piece..at.piece + ids.len() as u32);
+        nodes[0] = n.clone();
+        return n;
+    }
+    let (left, right) = ids.split_at(ids.len() / 2);
+    let (ls, rs) = (Shape::of(left.len()), Shape::of(right.len()));
+    let (lnodes, rest) = nodes.split_at_mut(ls.nodes);
+    let (rnodes, root) = rest.split_at_mut(rs.nodes);
+    let (lkids, rest) = children.split_at_mut(ls.children);
+    let (rkids, own) = rest.split_at_mut(rs.children);
+    let r_at = At {
+        node: at.node + ls.nodes as u32,
+        child: at.child + ls.children as u32,
+        piece: at.piece + left.len() as u32,
+    };
+    let (l, r) = if ids.len() < SPLIT_ALONE_BELOW {
+        (
+            fill(sf, left, lnodes, lkids, at),
+            fill(sf, right, rnodes, rkids, r_at),
+        )
+    } else {
+        rayon::join(
+            || fill(sf, left, lnodes, lkids, at),
+            || fill(sf, right, rnodes, rkids, r_at),
+        )
+    };
+    // As [`Builder::inner`]: the two roots, nearest first (a stable sort), bound together.
+    let mut kids = [(r_at.node - 1, &l), (r_at.node + rs.nodes as u32 - 1, &r)];
+    kids.sort_by(|a, b| b.1.zmax.total_cmp(&a.1.zmax));
+    for (slot, (k, c)) in own.iter_mut().zip(kids) {
+        n.grow(&c.rect, c.zmin, c.zmax);
+        *slot = k;
+    }
+    let first = at.child + (ls.children + rs.children) as u32;
+    n.kind = NodeKind::Inner(first..first + 2);
+    root[0] = n.clone();
+    n
 }
 
 /// Below this many pieces a median split is made on the calling thread.
@@ -623,6 +730,77 @@ mod tests {
         median_order_by_pieces(&sf, &mut want);
         median_order(&sf, &mut ids);
         assert_eq!(ids, want);
+    }
+
+    /// [`Builder::bvh_over`] as first written: leaves and inner nodes pushed one by one,
+    /// depth first.
+    fn bvh_one_by_one(b: &mut Builder, ids: &[PieceId]) -> u32 {
+        if ids.len() <= LEAF_PIECES {
+            return b.leaf(ids.to_vec());
+        }
+        let (left, right) = ids.split_at(ids.len() / 2);
+        let l = bvh_one_by_one(b, left);
+        let r = bvh_one_by_one(b, right);
+        b.inner(vec![l, r])
+    }
+
+    /// A tree's lists as comparable values (nodes by their bounds' bits and kind).
+    fn listed(t: &ViewTree) -> (Vec<String>, Vec<u32>, Vec<PieceId>, Vec<String>) {
+        let nodes = t.nodes.iter().map(|n| format!("{n:?}")).collect();
+        let bounds = t.piece_bounds.iter().map(|b| format!("{b:?}")).collect();
+        (nodes, t.children.clone(), t.pieces.clone(), bounds)
+    }
+
+    /// The hierarchy filled in place on several threads is the one built node by node, for
+    /// runs of every shape (one leaf, a leaf and one more, odd halves, runs long enough to be
+    /// split on several threads), after a first run already in the lists.
+    #[test]
+    fn filled_hierarchy_is_the_one_built_node_by_node() {
+        use crate::geom::rng::XorShift;
+        use crate::geom::{PolyMesh, P3};
+        let mut rng = XorShift::new(36);
+        let n = 2 * SPLIT_ALONE_BELOW as u32 + 77;
+        let (mut pts, mut faces) = (Vec::new(), Vec::new());
+        for f in 0..n {
+            for _ in 0..3 {
+                let c = [0; 3].map(|_| rng.below(50) as f64);
+                pts.push(P3::new(c[0], c[1], c[2]));
+            }
+            faces.push(vec![3 * f, 3 * f + 1, 3 * f + 2]);
+        }
+        let mesh = crate::scene::testing::leaf("tris", &PolyMesh::new(pts, faces));
+        let scene = Scene::new(Object::group("", vec![mesh]), "t".into());
+        let camera = Camera::orthographic(V3::new(-1., -2., -3.), V3::y()).unwrap();
+        let sf = ScreenFaces::build(&scene, &camera);
+        let all: Vec<PieceId> = sf.piece_ids().collect();
+        assert!(all.len() > 2 * SPLIT_ALONE_BELOW);
+        let builder = || Builder {
+            tree: ViewTree::default(),
+            sf: &sf,
+            camera: &camera,
+            next_face: FaceId(0),
+            hidden: &[],
+            done: Count::NONE,
+        };
+        for len in [
+            1,
+            LEAF_PIECES,
+            LEAF_PIECES + 1,
+            3 * LEAF_PIECES + 5,
+            1001,
+            all.len(),
+        ] {
+            let mut ids = all[all.len() - len..].to_vec();
+            median_order(&sf, &mut ids);
+            let mut one = builder();
+            bvh_one_by_one(&mut one, &all[..40]);
+            let root = bvh_one_by_one(&mut one, &ids);
+            let mut filled = builder();
+            bvh_one_by_one(&mut filled, &all[..40]);
+            let got = crate::chunked::pool(3).install(|| filled.bvh_over(&ids));
+            assert_eq!(got, root, "{len} pieces");
+            assert_eq!(listed(&filled.tree), listed(&one.tree), "{len} pieces");
+        }
     }
 
     #[test]
