@@ -63,9 +63,9 @@ const DASHES: Effort = Effort {
 };
 
 /// Nearest neighbours kept per end in a layer of hidden dashes: their nearest ends are
-/// mostly dashes of the same or the next line, and ten found tours within 0.9% of sixteen's
-/// on the shared meshes' hidden layers (beetle 3.7% shorter), the neighbour lists and the
-/// local search that reads them a third cheaper. Eight left twocubes' 3.9% longer.
+/// mostly dashes of the same or the next line, and ten found tours at most 2.0% longer than
+/// sixteen's on the shared meshes' hidden layers (cow; beetle's 3.7% shorter), for 4% less
+/// CPU in rocker-arm's whole render. Eight left twocubes' 3.9% longer.
 const DASH_NEIGHBOURS: usize = 10;
 
 /// Chains counted for the kicks in a layer of hidden dashes: 250 kicks at most (with
