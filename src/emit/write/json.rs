@@ -183,30 +183,42 @@ fn json_into(
         .collect();
     let delta = dust_delta(extent(vis.iter().map(|(_, f)| &f.visible)));
     let (ids, faces) = vis.solved();
-    let mut first = true;
+    let (batch_faces, task_faces) = (out.batch_faces, out.task_faces);
     // Formatted on all threads a task of faces at a time, a batch of tasks between writes
-    // (the text held is a batch's), joined in face order: the bytes of one thread.
-    for batch in (0..ids.len()).step_by(out.batch_faces) {
-        let end = (batch + out.batch_faces).min(ids.len());
-        let tasks: Vec<usize> = (batch..end).step_by(out.task_faces).collect();
-        let texts: Vec<String> = tasks
+    // (the text held is two batches'), joined in face order: the bytes of one thread.
+    let format = |lo: usize, hi: usize| -> Vec<String> {
+        let tasks: Vec<usize> = (lo..hi).step_by(task_faces).collect();
+        tasks
             .par_iter()
-            .map(|&lo| {
-                let hi = (lo + out.task_faces).min(end);
+            .map(|&a| {
+                let b = (a + task_faces).min(hi);
                 let mut s = String::new();
-                for k in lo..hi {
+                for k in a..b {
                     face_entry(&mut s, view, &paths, delta, ids[k], &faces[k]);
                 }
                 s
             })
-            .collect();
-        for t in texts.iter().filter(|t| !t.is_empty()) {
-            // Every entry starts ",\n"; the document's first starts "\n".
-            out.s.push_str(if first { &t[1..] } else { t });
-            first = false;
-            out.spill()?;
-        }
-        done.add(end - batch);
+            .collect()
+    };
+    let batches: Vec<usize> = (0..ids.len()).step_by(batch_faces).collect();
+    let end_of = |b: usize| (b + batch_faces).min(ids.len());
+    let mut first = true;
+    let mut texts = batches
+        .first()
+        .map_or_else(Vec::new, |&b| format(b, end_of(b)));
+    for (k, &b) in batches.iter().enumerate() {
+        // The next batch is formatted on the pool while this one is written here.
+        let mut next = Vec::new();
+        let wrote = rayon::in_place_scope(|s| {
+            if let Some(&nb) = batches.get(k + 1) {
+                let (next, format) = (&mut next, &format);
+                s.spawn(move |_| *next = format(nb, end_of(nb)));
+            }
+            put(out, &texts, &mut first)
+        });
+        wrote?;
+        done.add(end_of(b) - b);
+        texts = next;
     }
     out.s.push_str("\n]");
     if let Some(l) = lines {
@@ -217,6 +229,18 @@ fn json_into(
         out.s.push('}');
     }
     out.s.push_str("}\n");
+    Ok(())
+}
+
+/// Appends face entries `texts` to `out` (the document's first without its ",", which
+/// `first` tells), writing as it goes.
+fn put(out: &mut Sink, texts: &[String], first: &mut bool) -> io::Result<()> {
+    for t in texts.iter().filter(|t| !t.is_empty()) {
+        // Every entry starts ",\n"; the document's first starts "\n".
+        out.s.push_str(if *first { &t[1..] } else { t });
+        *first = false;
+        out.spill()?;
+    }
     Ok(())
 }
 

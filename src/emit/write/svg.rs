@@ -4,8 +4,7 @@
 //! background unless one is asked for. The `svg` crate builds the document; path data is
 //! written here with shortest round-trip f64 numbers (the crate's own path data rounds to f32).
 
-use std::fmt::Write as _;
-
+use rayon::prelude::*;
 use svg::node::element::{Group, Path, Rectangle};
 use svg::Document;
 
@@ -16,6 +15,7 @@ use super::json::num;
 #[cfg(test)]
 use crate::emit::plot::picture::Pen;
 use crate::emit::plot::picture::{LayerMode, Picture, Run};
+use crate::scene::flatten::write_num;
 
 /// The Inkscape namespace (layers).
 const INKSCAPE: &str = "http://www.inkscape.org/namespaces/inkscape";
@@ -117,25 +117,35 @@ fn pen_style<T: svg::Node>(mut e: T, run: &Run, pic: &Picture) -> T {
     e
 }
 
-/// "Mx,y Lx,y ..." of every polyline.
+/// Polylines a task of [`path_data`] writes.
+const PATH_TASK: usize = 2048;
+
+/// "Mx,y Lx,y ..." of every polyline: [`PATH_TASK`] polylines a task, in parallel, joined in
+/// order (the same text for any number of threads).
 fn path_data(lines: &[Vec<Pt2>]) -> String {
-    let mut d = String::new();
-    for l in lines {
-        polyline(&mut d, l, false);
+    let part = |lines: &[Vec<Pt2>]| {
+        let mut d = String::new();
+        for l in lines {
+            polyline(&mut d, l, false);
+        }
+        d
+    };
+    if lines.len() <= PATH_TASK {
+        return part(lines);
     }
+    let parts: Vec<String> = lines.par_chunks(PATH_TASK).map(part).collect();
+    let mut d = String::with_capacity(parts.iter().map(String::len).sum());
+    parts.iter().for_each(|p| d.push_str(p));
     d
 }
 
 /// Appends "Mx,y Lx,y ...", closed with Z when `close`.
 fn polyline(d: &mut String, pts: &[Pt2], close: bool) {
     for (i, p) in pts.iter().enumerate() {
-        let _ = write!(
-            d,
-            "{}{},{}",
-            if i == 0 { "M" } else { "L" },
-            num(p[0]),
-            num(p[1])
-        );
+        d.push(if i == 0 { 'M' } else { 'L' });
+        write_num(d, p[0]);
+        d.push(',');
+        write_num(d, p[1]);
     }
     if close && !pts.is_empty() {
         d.push('Z');
@@ -210,5 +220,23 @@ mod tests {
         assert!(s.contains(r#"inkscape:label="7 fill""#), "{s}");
         assert!(s.contains(r##"fill="#c8c8c8""##));
         assert!(s.contains(r#"id="drawing""#));
+    }
+
+    #[test]
+    fn many_polylines_are_written_in_order_in_parallel() {
+        // More polylines than a task takes, on a pool of two threads: the same text as one
+        // after the other, every polyline in place.
+        let lines: Vec<Vec<Pt2>> = (0..2 * PATH_TASK + 7)
+            .map(|k| {
+                let x = k as f64 / 3.0;
+                vec![[x, 1.0], [x + 0.5, -2.25], [x, 1e-9]]
+            })
+            .collect();
+        let mut want = String::new();
+        lines.iter().for_each(|l| polyline(&mut want, l, false));
+        let pool = crate::chunked::pool(2);
+        assert_eq!(pool.install(|| path_data(&lines)), want);
+        assert_eq!(path_data(&lines[..3]), want[..want.find("M1,").unwrap()]);
+        assert_eq!(want.matches('M').count(), lines.len());
     }
 }
