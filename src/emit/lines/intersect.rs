@@ -5,8 +5,11 @@
 //! decisions use the exact `robust::orient3d`. A vertex exactly on the other plane counts as
 //! on its positive side (symbolic perturbation), so crossings always pair up.
 
+use std::ops::Range;
+
 use rayon::prelude::*;
 
+use crate::chunked::flat_map;
 use crate::count::{Count, Share};
 use crate::geom::box_pairs::{filter_map_pairs_of, overlap, Bounds3};
 use crate::geom::coarse;
@@ -51,22 +54,30 @@ pub(crate) fn intersection_edges(
         .unzip();
     // Faces that can cross nothing are not paired at all.
     let alone = alone(world, &cand, &cand_flat);
-    let left: Vec<usize> = (0..cand.len()).filter(|&k| !alone[k]).collect();
-    drop(alone);
-    let ids: Vec<u32> = left.iter().map(|&k| cand[k]).collect();
-    let refs: Vec<[u32; 3]> = left.iter().map(|&k| cand_refs[k]).collect();
-    let flat: Vec<bool> = left.iter().map(|&k| cand_flat[k]).collect();
-    drop((left, cand, cand_refs, cand_flat));
+    // The candidates left, in order (each list in chunks on all threads).
+    let left = |r: Range<usize>| r.filter(|&k| !alone[k]);
+    let ids: Vec<u32> = flat_map(cand.len(), CHUNK, |r, out| {
+        out.extend(left(r).map(|k| cand[k]))
+    });
+    let refs: Vec<[u32; 3]> = flat_map(cand.len(), CHUNK, |r, out| {
+        out.extend(left(r).map(|k| cand_refs[k]))
+    });
+    let flat: Vec<bool> = flat_map(cand.len(), CHUNK, |r, out| {
+        out.extend(left(r).map(|k| cand_flat[k]))
+    });
+    drop((alone, cand, cand_refs, cand_flat));
     // The faces of many corners, by position, with their corners sorted (so that a pair's
     // adjacency costs what the smaller face has, not the product).
-    let sorted: Vec<(u32, Vec<u32>)> = (0..ids.len() as u32)
-        .filter(|&i| faces[ids[i as usize] as usize].len as usize > SORT_ABOVE)
-        .map(|i| {
-            let mut s = world.vertices_of(ids[i as usize] as usize).to_vec();
-            s.sort_unstable();
-            (i, s)
-        })
-        .collect();
+    let sorted: Vec<(u32, Vec<u32>)> = flat_map(ids.len(), CHUNK, |r, out| {
+        out.extend(
+            r.filter(|&i| faces[ids[i] as usize].len as usize > SORT_ABOVE)
+                .map(|i| {
+                    let mut s = world.vertices_of(ids[i] as usize).to_vec();
+                    s.sort_unstable();
+                    (i as u32, s)
+                }),
+        )
+    });
     let sorted_of = |i: usize| -> Option<&[u32]> {
         let k = sorted.binary_search_by_key(&(i as u32), |e| e.0).ok()?;
         Some(sorted[k].1.as_slice())
@@ -162,8 +173,6 @@ const MAX_PIECES: usize = 4096;
 /// of no face outside that piece's flat faces. Such a face meets only faces of its own
 /// piece, and those only in shared vertices and edges: it crosses nothing.
 fn alone(world: &WorldFaces, cand: &[u32], flat: &[bool]) -> Vec<bool> {
-    let mut pieces: Vec<(u32, Bounds3)> = Vec::new();
-    let mut loose: Option<Bounds3> = None;
     let join = |a: Option<Bounds3>, b: &Bounds3| match a {
         None => *b,
         Some(a) => [
@@ -171,19 +180,40 @@ fn alone(world: &WorldFaces, cand: &[u32], flat: &[bool]) -> Vec<bool> {
             std::array::from_fn(|k| a[1][k].max(b[1][k])),
         ],
     };
-    for (k, &f) in cand.iter().enumerate() {
-        let (p, b) = (world.clean_piece[f as usize], &world.bbox_of(f as usize));
-        if p == NO_PIECE || !flat[k] {
-            loose = Some(join(loose, b));
-            continue;
+    // Each chunk of candidates: its runs of one clean piece's flat faces, each with their
+    // box, and the box of its other faces (on all threads; boxes joined by least and
+    // greatest, in any order the same).
+    let chunk = |c: &[u32], k0: usize| {
+        let (mut pieces, mut loose) = (Vec::new(), None);
+        for (k, &f) in c.iter().enumerate() {
+            let (p, b) = (world.clean_piece[f as usize], &world.bbox_of(f as usize));
+            if p == NO_PIECE || !flat[k0 + k] {
+                loose = Some(join(loose, b));
+                continue;
+            }
+            match pieces.last_mut() {
+                Some((q, qb)) if *q == p => *qb = join(Some(*qb), b),
+                _ => pieces.push((p, *b)),
+            }
         }
-        match pieces.last_mut() {
-            Some((q, qb)) if *q == p => *qb = join(Some(*qb), b),
-            _ => pieces.push((p, *b)),
-        }
+        (pieces, loose)
+    };
+    let parts: Vec<(Vec<(u32, Bounds3)>, Option<Bounds3>)> = if cand.len() <= CHUNK {
+        vec![chunk(cand, 0)]
+    } else {
+        cand.par_chunks(CHUNK)
+            .enumerate()
+            .map(|(c, part)| chunk(part, c * CHUNK))
+            .collect()
+    };
+    let mut pieces: Vec<(u32, Bounds3)> = Vec::new();
+    let mut loose: Option<Bounds3> = None;
+    for (p, l) in parts {
+        pieces.extend(p);
+        loose = l.map_or(loose, |l| Some(join(loose, &l)));
     }
     // A piece's faces are consecutive (numbered leaf by leaf), so each piece appears once
-    // unless its faces interleave with another's: then merge the entries.
+    // unless its faces interleave with another's (or span chunks): then merge the entries.
     pieces.sort_by_key(|e| e.0);
     pieces.dedup_by(|b, a| {
         let same = a.0 == b.0;
@@ -207,16 +237,16 @@ fn alone(world: &WorldFaces, cand: &[u32], flat: &[bool]) -> Vec<bool> {
         .filter(|&i| apart(i))
         .map(|i| pieces[i].0)
         .collect();
-    cand.iter()
-        .enumerate()
-        .map(|(k, &f)| {
-            flat[k]
-                && isolated
-                    .binary_search(&world.clean_piece[f as usize])
-                    .is_ok()
-        })
-        .collect()
+    crate::chunked::map(cand.len(), |k| {
+        flat[k]
+            && isolated
+                .binary_search(&world.clean_piece[cand[k] as usize])
+                .is_ok()
+    })
 }
+
+/// Candidate faces per chunk of the lists made on all threads.
+const CHUNK: usize = crate::chunked::CHUNK;
 
 /// Faces with more corners than this are searched through a sorted copy.
 const SORT_ABOVE: usize = 16;
@@ -495,6 +525,65 @@ mod tests {
         // Only the candidates count.
         w.clean_piece = vec![0, 0, 1, NO_PIECE];
         assert_eq!(alone(&w, &[0, 2], &[true, true]), [true, true]);
+    }
+
+    /// Many chunks of candidates: clean pieces running across chunks and interleaved,
+    /// loose faces and crossing pairs among them; the faces set aside and the curves found
+    /// are those of one thread.
+    #[test]
+    fn lists_made_in_chunks_are_those_of_one_thread() {
+        let n = 3 * CHUNK + 101;
+        let corners: Vec<Vec<[f64; 3]>> = (0..n)
+            .map(|k| {
+                let x = (k / 2) as f64 * 3.0;
+                if k % 2 == 0 {
+                    vec![[x, 0., 0.], [x + 2., 0., 0.], [x + 2., 2., 0.], [x, 2., 0.]]
+                } else {
+                    // Upright across the last square where k % 6 == 1, beside it otherwise.
+                    let y = if k % 6 == 1 { 1.0 } else { 2.5 };
+                    vec![[x + 1., y, -1.], [x + 1., y, 1.], [x + 1.5, y, 1.]]
+                }
+            })
+            .collect();
+        let faces: Vec<(u32, u32, &[[f64; 3]])> = corners
+            .iter()
+            .enumerate()
+            .map(|(k, c)| (0, 4 * k as u32, c.as_slice()))
+            .collect();
+        let mut w = world(&faces);
+        // Pieces of 5,000 faces (across chunk ends), one piece's faces among another's, and
+        // every 7th face loose.
+        w.clean_piece = (0..n as u32)
+            .map(|k| match k {
+                _ if k % 7 == 0 => NO_PIECE,
+                _ if k % 11 == 0 => 1,
+                _ => k / 5000 + 2,
+            })
+            .collect();
+        let cand: Vec<u32> = (0..n as u32).collect();
+        let flat: Vec<bool> = (0..n).map(|k| k % 13 != 0).collect();
+        let pool = crate::chunked::pool;
+        let one = pool(1).install(|| alone(&w, &cand, &flat));
+        assert_eq!(pool(3).install(|| alone(&w, &cand, &flat)), one);
+        let curves = |w: &WorldFaces| -> Vec<String> {
+            intersection_edges(w, |_| true, Count::NONE)
+                .iter()
+                .map(|e| format!("{e:?}"))
+                .collect()
+        };
+        let found = pool(1).install(|| curves(&w));
+        assert!(!found.is_empty());
+        assert_eq!(pool(3).install(|| curves(&w)), found);
+        // Pieces of 5,000 faces along x, apart, every face flat but one in the third chunk:
+        // that face is loose, so only its piece's faces are paired.
+        w.clean_piece = (0..n as u32).map(|k| k / 5000).collect();
+        let odd = 2 * CHUNK + 5;
+        let flat: Vec<bool> = (0..n).map(|k| k != odd).collect();
+        let want: Vec<bool> = (0..n).map(|k| k / 5000 != odd / 5000).collect();
+        assert!(want.iter().any(|&a| a) && !want.iter().all(|&a| a));
+        for threads in [1, 3] {
+            assert_eq!(pool(threads).install(|| alone(&w, &cand, &flat)), want);
+        }
     }
 
     #[test]
