@@ -191,6 +191,14 @@ impl ObjChunk {
         c
     }
 
+    /// Frees what the chunk holds once joined.
+    fn free(&mut self) {
+        self.vertices = Vec::new();
+        self.faces = Vec::new();
+        self.face_defined = Vec::new();
+        self.face_pos = Vec::new();
+    }
+
     /// Rewrites the references of this chunk, parsed without its place, to global indices,
     /// `before` vertices being defined before it, and moves its faces' lines down by
     /// `shift`; false (the chunk left half rewritten) when a reference does not name a
@@ -460,11 +468,23 @@ impl<'p> ObjJoin<'p> {
             }
             steps.push(Step::Faces(k, start..c.faces.len()));
         }
+        // On one thread, each chunk is joined and freed in turn (the same numbers: a
+        // group's round goes on over runs), so that the chunks and the groups are not all
+        // live at once.
+        let one_thread = rayon::current_num_threads() == 1;
         let mut run = Vec::new();
         for step in steps {
             match step {
-                Step::Faces(k, r) if !r.is_empty() => run.push((k, r)),
-                Step::Faces(..) => {}
+                Step::Faces(k, r) => {
+                    let last = r.end == chunks[k].faces.len();
+                    if !r.is_empty() {
+                        run.push((k, r));
+                    }
+                    if one_thread && last {
+                        self.add_run(&mut chunks, &std::mem::take(&mut run));
+                        chunks[k].free();
+                    }
+                }
                 Step::Group(name) => {
                     self.add_run(&mut chunks, &std::mem::take(&mut run));
                     self.start_group(name);

@@ -85,15 +85,24 @@ pub(crate) fn cleanup(
     } else {
         vec![clean_chunk((0, &raw.faces[..]))]
     };
-    let (mut faces, mut cleaned) = (Vec::new(), Vec::with_capacity(parts.len()));
-    for (f, w) in parts {
-        cleaned.push(f);
-        warnings.extend(w);
+    // Moved to their places on all threads (the list's pages first touched there), a few
+    // parts a thread at a time, each freed once moved: the parts and the list are not all
+    // live at once (on one thread, a part at a time, as before).
+    let mut faces = Vec::with_capacity(parts.iter().map(|p| p.0.len()).sum());
+    let mut parts = parts.into_iter();
+    let wave = 2 * rayon::current_num_threads();
+    loop {
+        let mut moved: Vec<Vec<Face>> = Vec::with_capacity(wave);
+        for (f, w) in parts.by_ref().take(wave) {
+            moved.push(f);
+            warnings.extend(w);
+        }
+        if moved.is_empty() {
+            break;
+        }
+        let slices = moved.iter_mut().map(|f| &mut f[..]).collect();
+        crate::chunked::extend_taken(&mut faces, slices);
     }
-    // Moved to their places on all threads (the list's pages first touched there).
-    let slices = cleaned.iter_mut().map(|f| &mut f[..]).collect();
-    crate::chunked::extend_taken(&mut faces, slices);
-    crate::chunked::drop_all(cleaned);
     let (vertices, faces) = drop_unused_vertices(vertices, faces);
     let closed = is_closed_oriented(&faces);
     Ok(Mesh {
