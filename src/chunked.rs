@@ -50,6 +50,35 @@ pub(crate) fn map<T: Send, F: Fn(usize) -> T + Sync + Send>(n: usize, f: F) -> V
     (0..n).into_par_iter().with_min_len(CHUNK).map(f).collect()
 }
 
+/// `out` with `f(i)` appended for every `i` in `0..n`, in order: as [`map`], on all threads
+/// where `n` is more than a chunk.
+pub(crate) fn extend_map<T: Send, F: Fn(usize) -> T + Sync + Send>(
+    out: &mut Vec<T>,
+    n: usize,
+    f: F,
+) {
+    if n <= CHUNK || rayon::current_num_threads() == 1 {
+        out.extend((0..n).map(f));
+        return;
+    }
+    out.par_extend((0..n).into_par_iter().with_min_len(CHUNK).map(f));
+}
+
+/// The least `i` in `0..n` for which `bad(i)` holds: on all threads where `n` is more than a
+/// chunk (the first found in index order, whichever thread finds it), else in one pass.
+pub(crate) fn position_first<F: Fn(usize) -> bool + Sync + Send>(
+    n: usize,
+    bad: F,
+) -> Option<usize> {
+    if n <= CHUNK || rayon::current_num_threads() == 1 {
+        return (0..n).position(bad);
+    }
+    (0..n)
+        .into_par_iter()
+        .with_min_len(CHUNK)
+        .position_first(bad)
+}
+
 /// The parts one after another, copied on all threads (on one thread, one after another).
 pub(crate) fn concat<T: Clone + Send + Sync>(parts: &[Vec<T>]) -> Vec<T> {
     // starts[k]: where part k begins in the result; starts[parts.len()]: its length.
@@ -81,6 +110,69 @@ pub(crate) fn concat<T: Clone + Send + Sync>(parts: &[Vec<T>]) -> Vec<T> {
         )
         .collect_into_vec(&mut out);
     out
+}
+
+/// `out` with the parts appended one after another, copied on all threads (on one thread,
+/// or for a few items, one after another): [`concat`] into a list that already has items.
+pub(crate) fn extend_concat<T: Clone + Send + Sync>(out: &mut Vec<T>, parts: &[&[T]]) {
+    let mut starts = Vec::with_capacity(parts.len() + 1);
+    let mut total = 0;
+    for p in parts {
+        starts.push(total);
+        total += p.len();
+    }
+    starts.push(total);
+    out.reserve(total);
+    if total <= CHUNK || rayon::current_num_threads() == 1 {
+        for p in parts {
+            out.extend_from_slice(p);
+        }
+        return;
+    }
+    out.par_extend((0..total).into_par_iter().with_min_len(CHUNK).map_init(
+        || 0usize,
+        |k, i| {
+            if !(starts[*k] <= i && i < starts[*k + 1]) {
+                *k = starts.partition_point(|&s| s <= i) - 1;
+            }
+            parts[*k][i - starts[*k]].clone()
+        },
+    ));
+}
+
+/// `out` with the parts' items moved to its end one after another (each part left holding
+/// defaults), on all threads: for items owning heap memory (a face's corner list), which a
+/// copy would allocate anew. On one thread, or for a few items, one after another.
+pub(crate) fn extend_taken<T: Default + Send>(out: &mut Vec<T>, parts: Vec<&mut [T]>) {
+    let total: usize = parts.iter().map(|p| p.len()).sum();
+    out.reserve(total);
+    if total <= CHUNK || rayon::current_num_threads() == 1 {
+        for p in parts {
+            out.extend(p.iter_mut().map(std::mem::take));
+        }
+        return;
+    }
+    // Places made on all threads (their pages first touched there), then filled part by part.
+    let old = out.len();
+    out.par_extend(
+        (0..total)
+            .into_par_iter()
+            .with_min_len(CHUNK)
+            .map(|_| T::default()),
+    );
+    let mut places = Vec::with_capacity(parts.len());
+    let mut rest = &mut out[old..];
+    for p in &parts {
+        let (here, after) = rest.split_at_mut(p.len());
+        places.push(here);
+        rest = after;
+    }
+    places.into_par_iter().zip(parts).for_each(|(to, from)| {
+        to.par_iter_mut()
+            .with_min_len(CHUNK)
+            .zip(from.par_iter_mut())
+            .for_each(|(t, f)| *t = std::mem::take(f));
+    });
 }
 
 /// A copy of `v`, its items cloned on all threads (each a heap allocation of its own, say).
@@ -160,6 +252,45 @@ mod tests {
         assert!(parts.iter().any(Vec::is_empty));
         let got = pool.install(|| concat(&parts));
         assert_eq!(got, parts.concat());
+    }
+
+    #[test]
+    fn extending_on_all_threads_appends_the_parts_in_order() {
+        let pool = pool(3);
+        let parts: Vec<Vec<u64>> = (0..300u64)
+            .map(|k| (0..(k * 41 % 223)).map(|i| k << 32 | i).collect())
+            .collect();
+        assert!(parts.iter().map(Vec::len).sum::<usize>() > 3 * CHUNK);
+        for head in [0, 5] {
+            let mut want: Vec<u64> = (0..head).collect();
+            want.extend(parts.concat());
+            let mut copied: Vec<u64> = (0..head).collect();
+            let slices: Vec<&[u64]> = parts.iter().map(|p| &p[..]).collect();
+            pool.install(|| extend_concat(&mut copied, &slices));
+            assert_eq!(copied, want);
+            // Moved: heap-owning items, each part left holding empty lists.
+            let mut owned: Vec<Vec<Vec<u64>>> = parts
+                .iter()
+                .map(|p| p.iter().map(|&x| vec![x; (x % 3) as usize]).collect())
+                .collect();
+            let wanted: Vec<Vec<u64>> = (0..head).map(|x| vec![x]).chain(owned.concat()).collect();
+            let mut moved: Vec<Vec<u64>> = (0..head).map(|x| vec![x]).collect();
+            let from: Vec<&mut [Vec<u64>]> = owned.iter_mut().map(|p| &mut p[..]).collect();
+            pool.install(|| extend_taken(&mut moved, from));
+            assert_eq!(moved, wanted);
+            assert!(owned.iter().flatten().all(Vec::is_empty));
+        }
+    }
+
+    #[test]
+    fn the_first_found_on_all_threads_is_the_least() {
+        let pool = pool(3);
+        let n = 7 * CHUNK + 5;
+        for want in [None, Some(0), Some(CHUNK - 1), Some(5 * CHUNK + 2)] {
+            // Every index from `want` on holds (later chunks find theirs first, maybe).
+            let got = pool.install(|| position_first(n, |i| want.is_some_and(|w| i >= w)));
+            assert_eq!(got, want);
+        }
     }
 
     #[test]

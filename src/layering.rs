@@ -31,6 +31,7 @@ const RANKS: &[(&str, u32)] = &[
     ("describe", 11),  // a prepared scene described (`kepler info`): reads every stage's facts
     ("tests", 99),     // the unit tests gathered in src/tests: fixtures may reach any stage
     ("count", 0),      // units of work done, per chunk: all an algorithm is handed, never a bar
+    ("renumber", 1),   // indices renumbered by first use on all threads: imports only chunked
     ("chunked", 0),    // big lists built in fixed chunks on all threads: imports nothing of ours
     ("progress", 1),   // stages and phases a watcher reads: entered by the stage entry points
 ];

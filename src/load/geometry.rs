@@ -183,6 +183,7 @@ fn mesh_prototype(path: &Path, at: &Location, cx: &mut GeomCtx) -> Result<Arc<Ob
     super::confine::check_under(cache.root.as_deref(), path, &canonical, at)?;
     let file = load_mesh(path, Some(at), cx.progress).map_err(|e| e.via(at))?;
     let mut objects = mesh_file_objects(&file, cx.warnings, cx.progress).map_err(|e| e.via(at))?;
+    file.free();
     // Back to the scene file's nodes.
     cx.progress.enter(Stage::Load, 0);
     let proto = if objects.len() == 1 {

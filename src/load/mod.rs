@@ -73,6 +73,7 @@ fn mesh_scene(
 ) -> Result<Scene> {
     let file = mesh_file::load_mesh(path, None, progress)?;
     let objects = geometry::mesh_file_objects(&file, warnings, progress)?;
+    file.free();
     let root = Object::group("", objects);
     opts.check(&root, "the mesh", &crate::error::Location::file(path))?;
     Ok(Scene::new(root, path.to_path_buf()))

@@ -1,5 +1,6 @@
 //! Wavefront OBJ loading: vertices and polygonal faces, split into groups by `o` and `g`.
 
+use std::ops::Range;
 use std::path::Path;
 
 use rayon::prelude::*;
@@ -9,6 +10,7 @@ use super::text::{decode, Word, Words};
 use crate::count::{Count, Cursor};
 use crate::error::{Error, Pos, Result};
 use crate::geom::P3;
+use crate::renumber::Renumbering;
 
 /// Statements that are read and ignored (texture coordinates, normals, materials, smoothing, lines, points).
 const IGNORED: [&str; 8] = ["vt", "vn", "vp", "usemtl", "mtllib", "s", "l", "p"];
@@ -34,36 +36,64 @@ const CHUNK_BYTES: usize = 1 << 20;
 const CHUNKS_AT_ONCE: usize = 64;
 
 /// [`parse_obj`] with chunks of about `chunk_bytes`: the text is cut at logical line ends,
-/// the chunks parsed on all threads, each not knowing the lines and vertices before it, and
-/// joined in file order by the one group-and-reindex pass, which places them. A chunk that
-/// stopped at an error, or whose references do not all resolve once placed, is parsed again
-/// knowing its place, exactly as one parse from the start would parse it: the result,
-/// errors included, is that of one parse.
+/// the chunks checked as text and parsed on all threads, each not knowing the lines and
+/// vertices before it, and joined in file order on all threads by the group-and-reindex
+/// join, which places them. A chunk that stopped at an error, or whose references do not all
+/// resolve once placed, is parsed again knowing its place, exactly as one parse from the
+/// start would parse it: the result, errors included, is that of one parse.
 fn parse_obj_in(path: &Path, bytes: &[u8], done: Count, chunk_bytes: usize) -> Result<MeshFile> {
-    let text = decode(path, bytes, 1)?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let cuts = chunk_cuts(text, chunk_bytes);
+    let body = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(bytes);
+    let cuts = chunk_cuts(body, chunk_bytes);
+    let texts = chunk_texts(path, bytes, body, &cuts)?;
     let mut joined = ObjJoin::new(path);
     let mut cursor = Cursor::new(done);
-    for batch in cuts.windows(2).collect::<Vec<_>>().chunks(CHUNKS_AT_ONCE) {
+    let mut at = 0;
+    for batch in texts.chunks(CHUNKS_AT_ONCE) {
         let parsed: Vec<ObjChunk> = batch
             .par_iter()
-            .map(|w| ObjChunk::parse(path, &text[w[0]..w[1]], None))
+            .map(|t| ObjChunk::parse(path, t, None))
             .collect();
-        for (chunk, w) in parsed.into_iter().zip(batch) {
-            joined.join(chunk, &text[w[0]..w[1]])?;
-        }
-        cursor.at(batch.last().map_or(0, |w| w[1]));
+        joined.join(parsed, batch)?;
+        at += batch.iter().map(|t| t.len()).sum::<usize>();
+        cursor.at(at);
     }
     cursor.finish(bytes.len());
     finish(path, joined.into_groups())
 }
 
+/// The chunks of `body` (the file `bytes` after any byte-order mark) between the `cuts`,
+/// each checked as text on all threads; where one is not text, the whole file's error (at
+/// its first byte that is not text: a cut follows a line feed, which no UTF-8 sequence
+/// holds, so a chunk is text exactly when its part of the file is).
+fn chunk_texts<'a>(
+    path: &Path,
+    bytes: &'a [u8],
+    body: &'a [u8],
+    cuts: &[usize],
+) -> Result<Vec<&'a str>> {
+    let texts: Vec<Option<&str>> = cuts
+        .par_windows(2)
+        .map(|w| {
+            let b = &body[w[0]..w[1]];
+            if b.contains(&0) {
+                None
+            } else {
+                std::str::from_utf8(b).ok()
+            }
+        })
+        .collect();
+    if texts.iter().all(Option::is_some) {
+        return Ok(texts.into_iter().flatten().collect());
+    }
+    let text = decode(path, bytes, 1)?;
+    let body = &text[bytes.len() - body.len()..];
+    Ok(cuts.windows(2).map(|w| &body[w[0]..w[1]]).collect())
+}
+
 /// Byte offsets cutting `text` into chunks of about `size`, each ending at the end of a
 /// logical line (after a LF whose physical line does not end in the continuation `\`);
 /// first 0, last the text's length.
-fn chunk_cuts(text: &str, size: usize) -> Vec<usize> {
-    let b = text.as_bytes();
+fn chunk_cuts(b: &[u8], size: usize) -> Vec<usize> {
     let mut cuts = vec![0];
     let mut at = size;
     while at < b.len() {
@@ -74,8 +104,10 @@ fn chunk_cuts(text: &str, size: usize) -> Vec<usize> {
             .iter()
             .rposition(|&c| c == b'\n' || c == b'\r')
             .map_or(0, |k| k + 1);
-        let line = &text[line_start..nl];
-        if line.trim_end().ends_with('\\') {
+        // A line that is not text is cut anyway: the file is refused.
+        let continued = std::str::from_utf8(&b[line_start..nl])
+            .is_ok_and(|line| line.trim_end().ends_with('\\'));
+        if continued {
             at = nl + 1;
             continue;
         }
@@ -94,19 +126,19 @@ struct Place {
     before: usize,
 }
 
-/// A face's vertex reference as a chunk read it: `2 g` for global index g (a positive
-/// reference), `2 r + 1` for index r counted from the chunk's first vertex (a negative
-/// reference, r maybe negative: a vertex of an earlier chunk).
-type Reference = i64;
+/// A face's vertex reference as a chunk read it: below `RELATIVE`, the global index (a
+/// positive reference, or any reference of a placed chunk); from `RELATIVE` on, a negative
+/// reference `-(k + 1)` as `RELATIVE + k`, counted back from the vertices defined before the
+/// face (maybe a vertex of an earlier chunk). A file within the size limit has far fewer
+/// vertices than `RELATIVE`; a reference that does not fit has the chunk parsed at its place.
+const RELATIVE: u32 = 1 << 31;
 
 /// One chunk of OBJ text parsed: its vertices, its faces' references, where its groups
 /// start, and whether it stopped at an error.
 struct ObjChunk {
     vertices: Vec<P3>,
-    /// Every face's references, face after face.
-    corners: Vec<Reference>,
-    /// Where each face's corners end in `corners`.
-    face_ends: Vec<u32>,
+    /// Every face's references (see [`RELATIVE`]), a list a face.
+    faces: Vec<Vec<u32>>,
     /// The chunk's vertices defined before each face.
     face_defined: Vec<u32>,
     /// Each face's position (its keyword's; lines counted from the chunk's first unless
@@ -118,6 +150,10 @@ struct ObjChunk {
     error: Option<Error>,
     /// Lines the chunk spans (the next chunk's first line is this far on).
     lines: usize,
+    /// A reference did not fit [`RELATIVE`]'s code: the chunk must be parsed at its place.
+    unfit: bool,
+    /// The references of the face being read.
+    scratch: Vec<u32>,
 }
 
 impl ObjChunk {
@@ -126,13 +162,14 @@ impl ObjChunk {
     fn parse(path: &Path, text: &str, place: Option<Place>) -> ObjChunk {
         let mut c = ObjChunk {
             vertices: Vec::new(),
-            corners: Vec::new(),
-            face_ends: Vec::new(),
+            faces: Vec::new(),
             face_defined: Vec::new(),
             face_pos: Vec::new(),
             groups: Vec::new(),
             error: None,
             lines: 0,
+            unfit: false,
+            scratch: Vec::new(),
         };
         let first_line = place.map_or(1, |p| p.first_line);
         let p = ObjParser {
@@ -153,6 +190,48 @@ impl ObjChunk {
         c.lines = words.line() - first_line;
         c
     }
+
+    /// Frees what the chunk holds once joined.
+    fn free(&mut self) {
+        self.vertices = Vec::new();
+        self.faces = Vec::new();
+        self.face_defined = Vec::new();
+        self.face_pos = Vec::new();
+    }
+
+    /// Rewrites the references of this chunk, parsed without its place, to global indices,
+    /// `before` vertices being defined before it, and moves its faces' lines down by
+    /// `shift`; false (the chunk left half rewritten) when a reference does not name a
+    /// vertex defined before its face.
+    fn resolve(&mut self, before: usize, shift: usize) -> bool {
+        if self.unfit {
+            return false;
+        }
+        for (f, &d) in self.faces.iter_mut().zip(&self.face_defined) {
+            let defined = before + d as usize;
+            for r in f.iter_mut() {
+                let g = if *r < RELATIVE {
+                    *r as usize
+                } else {
+                    let back = (*r - RELATIVE) as usize + 1;
+                    match defined.checked_sub(back) {
+                        Some(g) => g,
+                        None => return false,
+                    }
+                };
+                if g >= defined {
+                    return false;
+                }
+                *r = g as u32;
+            }
+        }
+        for p in &mut self.face_pos {
+            if let Pos::Line { line, .. } = p {
+                *line += shift;
+            }
+        }
+        true
+    }
 }
 
 /// The parse of one chunk: where errors are reported, and the vertices before the chunk
@@ -169,7 +248,7 @@ impl ObjParser<'_> {
             "v" => self.vertex(c, words),
             "f" => self.face(c, keyword, words),
             "o" | "g" => {
-                c.groups.push((c.face_ends.len(), group_name(words)));
+                c.groups.push((c.faces.len(), group_name(words)));
                 Ok(())
             }
             k if IGNORED.contains(&k) => Ok(()),
@@ -216,26 +295,27 @@ impl ObjParser<'_> {
 
     /// `f v1 v2 v3 ...`, each reference `v`, `v/vt`, `v//vn` or `v/vt/vn`, possibly negative.
     fn face(&self, c: &mut ObjChunk, keyword: Word, words: &mut Words) -> Result<()> {
-        let start = c.corners.len();
         let defined = c.vertices.len();
+        c.scratch.clear();
         while let Some(w) = words.next_in_line() {
-            let r = self.reference(w, defined)?;
-            c.corners.push(r);
+            let r = self.reference(w, defined, &mut c.unfit)?;
+            c.scratch.push(r);
         }
-        let n = c.corners.len() - start;
+        let n = c.scratch.len();
         if n < 3 {
             let msg = format!("face has {n} vertices; a face needs at least 3");
             return Err(Error::invalid(keyword.loc(self.path), msg));
         }
-        c.face_ends.push(c.corners.len() as u32);
+        c.faces.push(c.scratch.clone());
         c.face_defined.push(defined as u32);
         c.face_pos.push(keyword.pos());
         Ok(())
     }
 
     /// One face vertex reference, the chunk's first `defined` vertices being defined before
-    /// the face: resolved to a global index and checked when the chunk's place is known.
-    fn reference(&self, w: Word, defined: usize) -> Result<Reference> {
+    /// the face: resolved to a global index and checked when the chunk's place is known, else
+    /// coded as [`RELATIVE`] says (`unfit` set where it cannot be).
+    fn reference(&self, w: Word, defined: usize, unfit: &mut bool) -> Result<u32> {
         let mut parts = w.text.split('/');
         let v = parts.next().unwrap_or_default();
         let bad = || {
@@ -251,30 +331,39 @@ impl ObjParser<'_> {
         let n = (self.before.unwrap_or(0) + defined) as i64;
         let resolved = if i > 0 { i - 1 } else { n + i };
         if i == 0 {
-            Err(Error::invalid(
+            return Err(Error::invalid(
                 w.loc(self.path),
                 "vertex index 0 (OBJ indices start at 1)",
-            ))
-        } else if resolved < 0 || resolved >= n {
-            // Unplaced, a reference may name a vertex of an earlier chunk: left to the join.
-            match self.before {
-                None if i.unsigned_abs() <= u64::from(u32::MAX) => Ok(if i > 0 {
-                    2 * resolved
-                } else {
-                    2 * resolved + 1
-                }),
-                _ => {
-                    let msg = format!(
-                        "vertex index {i} is out of range: {n} vertices are defined before this face"
-                    );
-                    Err(Error::invalid(w.loc(self.path), msg))
-                }
-            }
-        } else if i > 0 || self.before.is_some() {
-            Ok(2 * resolved)
-        } else {
-            Ok(2 * resolved + 1)
+            ));
         }
+        let in_range = 0 <= resolved && resolved < n;
+        if self.before.is_some() || (!in_range && i.unsigned_abs() > u64::from(u32::MAX)) {
+            if !in_range {
+                let msg = format!(
+                    "vertex index {i} is out of range: {n} vertices are defined before this face"
+                );
+                return Err(Error::invalid(w.loc(self.path), msg));
+            }
+            if self.before.is_some() {
+                return Ok(resolved as u32);
+            }
+        }
+        // Unplaced, a reference may name a vertex of an earlier chunk: left to the join.
+        let code = if i > 0 {
+            i - 1
+        } else {
+            i64::from(RELATIVE) + (-i - 1)
+        };
+        let fits = if i > 0 {
+            code < i64::from(RELATIVE)
+        } else {
+            code <= i64::from(u32::MAX)
+        };
+        if !fits {
+            *unfit = true;
+            return Ok(0);
+        }
+        Ok(code as u32)
     }
 }
 
@@ -295,16 +384,22 @@ struct ObjJoin<'p> {
     path: &'p Path,
     /// Every `v` so far (OBJ indices are global).
     vertices: Vec<P3>,
-    /// Per global vertex: the id of the last group that used it, and its index in that group.
-    slot: Vec<(u32, u32)>,
+    /// The vertices' indices in the groups that used them (a round a group).
+    numbers: Renumbering,
     /// Finished groups.
     groups: Vec<MeshGroup>,
     /// The group receiving faces.
     current: MeshGroup,
-    /// The current group's id (for `slot`).
+    /// The current group's id (its round in `numbers`).
     current_id: u32,
     /// The line the next chunk starts on.
     line: usize,
+}
+
+/// A step of a batch's join: a group started, or a run of a chunk's faces.
+enum Step {
+    Group(String),
+    Faces(usize, Range<usize>),
 }
 
 impl<'p> ObjJoin<'p> {
@@ -312,7 +407,7 @@ impl<'p> ObjJoin<'p> {
         ObjJoin {
             path,
             vertices: Vec::new(),
-            slot: Vec::new(),
+            numbers: Renumbering::default(),
             groups: Vec::new(),
             current: MeshGroup::new(stem_name(path)),
             current_id: 0,
@@ -320,91 +415,111 @@ impl<'p> ObjJoin<'p> {
         }
     }
 
-    /// Adds the next chunk (of `text`), parsed without its place: its vertices, groups and
-    /// faces, or, where it stopped at an error or a reference does not resolve, the same
-    /// chunk parsed again at its place, up to the error that parse stops at.
-    fn join(&mut self, c: ObjChunk, text: &str) -> Result<()> {
-        let place = Place {
-            first_line: self.line,
-            before: self.vertices.len(),
-        };
-        let globals = match c.error {
-            None => self.resolve(&c, place.before),
-            Some(_) => None,
-        };
-        // Lines read from the chunk's start are moved to its place.
-        let (c, globals, shift) = match globals {
-            Some(g) => (c, g, place.first_line - 1),
-            None => {
-                let c = ObjChunk::parse(self.path, text, Some(place));
-                let g = c.corners.iter().map(|&r| (r / 2) as u32).collect();
-                (c, g, 0)
-            }
-        };
-        self.line += c.lines;
-        self.vertices.extend_from_slice(&c.vertices);
-        self.slot.resize(self.vertices.len(), (u32::MAX, 0));
-        let mut groups = c.groups.into_iter().peekable();
-        let mut start = 0;
-        for (k, &end) in c.face_ends.iter().enumerate() {
-            while let Some((_, name)) = groups.next_if(|g| g.0 == k) {
-                self.start_group(name);
-            }
-            let pos = match c.face_pos[k] {
-                Pos::Line { line, col } => Pos::Line {
-                    line: line + shift,
-                    col,
-                },
-                p => p,
-            };
-            self.add_face(&globals[start..end as usize], pos);
-            start = end as usize;
+    /// Adds the next chunks (of `texts`), parsed without their places: their vertices,
+    /// groups and faces; or, from the first that stopped at an error or has a reference that
+    /// does not resolve, the chunks parsed again at their places, up to the error such a
+    /// parse stops at.
+    fn join(&mut self, mut chunks: Vec<ObjChunk>, texts: &[&str]) -> Result<()> {
+        let mut places = Vec::with_capacity(chunks.len());
+        let (mut line, mut before) = (self.line, self.vertices.len());
+        for c in &chunks {
+            places.push(Place {
+                first_line: line,
+                before,
+            });
+            line += c.lines;
+            before += c.vertices.len();
         }
-        for (_, name) in groups {
-            self.start_group(name);
-        }
-        c.error.map_or(Ok(()), Err)
-    }
-
-    /// The global indices of an unplaced chunk's references, `before` vertices being
-    /// defined before it; None when one does not name a vertex defined before its face.
-    fn resolve(&self, c: &ObjChunk, before: usize) -> Option<Vec<u32>> {
-        let mut out = Vec::with_capacity(c.corners.len());
-        let mut start = 0;
-        for (k, &end) in c.face_ends.iter().enumerate() {
-            let defined = (before + c.face_defined[k] as usize) as i64;
-            for &r in &c.corners[start..end as usize] {
-                let g = if r & 1 == 0 {
-                    r / 2
-                } else {
-                    (r - 1) / 2 + before as i64
+        // Lines read from each chunk's start are moved to its place.
+        let resolved: Vec<bool> = chunks
+            .par_iter_mut()
+            .zip(&places)
+            .map(|(c, p)| c.error.is_none() && c.resolve(p.before, p.first_line - 1))
+            .collect();
+        let (mut line, mut before) = (self.line, self.vertices.len());
+        let mut again = false;
+        for (k, c) in chunks.iter_mut().enumerate() {
+            // After a chunk parsed again, the places of those after it may have moved.
+            again |= !resolved[k];
+            if again {
+                let place = Place {
+                    first_line: line,
+                    before,
                 };
-                if g < 0 || g >= defined {
-                    return None;
+                *c = ObjChunk::parse(self.path, texts[k], Some(place));
+                if let Some(e) = c.error.take() {
+                    return Err(e);
                 }
-                out.push(g as u32);
             }
-            start = end as usize;
+            line += c.lines;
+            before += c.vertices.len();
         }
-        Some(out)
+        self.line = line;
+        let vertices: Vec<&[P3]> = chunks.iter().map(|c| &c.vertices[..]).collect();
+        crate::chunked::extend_concat(&mut self.vertices, &vertices);
+        self.numbers.grow(self.vertices.len());
+        let mut steps = Vec::new();
+        for (k, c) in chunks.iter_mut().enumerate() {
+            let mut start = 0;
+            for (at, name) in std::mem::take(&mut c.groups) {
+                steps.push(Step::Faces(k, start..at));
+                steps.push(Step::Group(name));
+                start = at;
+            }
+            steps.push(Step::Faces(k, start..c.faces.len()));
+        }
+        // On one thread, each chunk is joined and freed in turn (the same numbers: a
+        // group's round goes on over runs), so that the chunks and the groups are not all
+        // live at once.
+        let one_thread = rayon::current_num_threads() == 1;
+        let mut run = Vec::new();
+        for step in steps {
+            match step {
+                Step::Faces(k, r) => {
+                    let last = r.end == chunks[k].faces.len();
+                    if !r.is_empty() {
+                        run.push((k, r));
+                    }
+                    if one_thread && last {
+                        self.add_run(&mut chunks, &std::mem::take(&mut run));
+                        chunks[k].free();
+                    }
+                }
+                Step::Group(name) => {
+                    self.add_run(&mut chunks, &std::mem::take(&mut run));
+                    self.start_group(name);
+                }
+            }
+        }
+        self.add_run(&mut chunks, &run);
+        chunks.into_par_iter().for_each(drop);
+        Ok(())
     }
 
-    /// Adds a face (global vertex indices) to the current group, reindexed to the group's
-    /// vertices.
-    fn add_face(&mut self, face: &[u32], pos: Pos) {
-        let id = self.current_id;
-        let mesh = &mut self.current.mesh;
-        let mut local = Vec::with_capacity(face.len());
-        for &g in face {
-            let s = &mut self.slot[g as usize];
-            if s.0 != id {
-                *s = (id, mesh.vertices.len() as u32);
-                mesh.vertices.push(self.vertices[g as usize]);
-            }
-            local.push(s.1);
+    /// Adds a run of faces to the current group (the chunk and range of each part, one part
+    /// a chunk, in order), reindexed to the group's vertices.
+    fn add_run(&mut self, chunks: &mut [ObjChunk], run: &[(usize, Range<usize>)]) {
+        if run.is_empty() {
+            return;
         }
-        mesh.faces.push(local);
-        self.current.face_pos.push(pos);
+        let mut faces: Vec<&mut [Vec<u32>]> = Vec::with_capacity(run.len());
+        let mut pos: Vec<&[Pos]> = Vec::with_capacity(run.len());
+        let mut parts = run.iter().peekable();
+        for (k, c) in chunks.iter_mut().enumerate() {
+            if let Some((_, r)) = parts.next_if(|p| p.0 == k) {
+                faces.push(&mut c.faces[r.clone()]);
+                pos.push(&c.face_pos[r.clone()]);
+            }
+        }
+        let mesh = &mut self.current.mesh;
+        let next = mesh.vertices.len() as u32;
+        let new = self
+            .numbers
+            .renumber(self.current_id, &mut faces, next, |f| &mut f[..]);
+        let all = &self.vertices;
+        crate::chunked::extend_map(&mut mesh.vertices, new.len(), |k| all[new[k] as usize]);
+        crate::chunked::extend_taken(&mut mesh.faces, faces);
+        crate::chunked::extend_concat(&mut self.current.face_pos, &pos);
     }
 
     /// `o NAME` or `g NAME`: starts a new group (named after the file if the name is missing).
@@ -601,7 +716,55 @@ mod tests {
         }
         // Cut only at logical line ends.
         let t = "v 0 0 0\\\n 1\nf 1 1 1\r\nv 2 2 2\n";
-        assert_eq!(chunk_cuts(t, 1), [0, 12, 21, t.len()]);
+        assert_eq!(chunk_cuts(t.as_bytes(), 1), [0, 12, 21, t.len()]);
+    }
+
+    /// A grid big enough to be renumbered on all threads, in three groups (one continued
+    /// over batches of chunks), with negative references and vertices defined among the
+    /// faces: joined on three threads in small chunks, it is the one parse on one thread.
+    #[test]
+    fn a_big_file_joined_on_several_threads_is_the_one_parse() {
+        let n = 150;
+        let total = (n + 1) * (n + 1);
+        let mut t = String::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                t.push_str(&format!("v {i} {j} {}\n", (i * j) % 7));
+            }
+        }
+        for j in 0..n {
+            match j {
+                3 => t.push_str("g first\n"),
+                140 => t.push_str("o last\n"),
+                _ if j % 50 == 7 => t.push_str("v 9 9 9\n"),
+                _ => {}
+            }
+            for i in 0..n {
+                let a = j * (n + 1) + i + 1;
+                let q = [a, a + 1, a + n + 2, a + n + 1];
+                if j % 2 == 0 {
+                    t.push_str(&format!("f {} {} {} {}\n", q[0], q[1], q[2], q[3]));
+                } else {
+                    // Counted back from the vertices defined so far.
+                    let defined = (total + j / 50 + usize::from(j % 50 > 7)) as i64;
+                    let r: Vec<i64> = q.iter().map(|&v| v as i64 - defined - 1).collect();
+                    t.push_str(&format!("f {} {} {} {}\n", r[0], r[1], r[2], r[3]));
+                }
+            }
+        }
+        let path = Path::new("dir/m.obj");
+        let one = crate::chunked::pool(1)
+            .install(|| parse_obj_in(path, t.as_bytes(), Count::NONE, usize::MAX))
+            .unwrap();
+        let many = crate::chunked::pool(3)
+            .install(|| parse_obj_in(path, t.as_bytes(), Count::NONE, 4096))
+            .unwrap();
+        assert!(t.len() / 4096 > 2 * CHUNKS_AT_ONCE);
+        let sizes: Vec<usize> = one.groups.iter().map(|g| g.mesh.faces.len()).collect();
+        assert_eq!(sizes, [3 * n, 137 * n, 10 * n]);
+        assert_eq!(one, many);
+        // The big group's first face uses its first vertices.
+        assert_eq!(one.groups[1].mesh.faces[0], [0, 1, 2, 3]);
     }
 
     #[test]

@@ -1,9 +1,11 @@
 //! Reading input files: regular files only (a directory or a device such as `/dev/zero` is
 //! an error, not a hang), of bounded size, errors reported where the file was asked for.
 //!
-//! Nothing is reserved from the size the file system reports (a sparse 64 GB file reports
-//! 64 GB): the buffer grows with the bytes actually read, and a file over its kind's limit is
-//! refused before a byte is read, and again if it grows past the limit while being read.
+//! A file over its kind's limit is refused before a byte is read (a sparse 64 GB file reports
+//! 64 GB), and again if it grows past the limit while being read. A big mesh file, once its
+//! size is known to be within the limit, is read on all threads (each reads its own fixed
+//! ranges of the file into their places); otherwise nothing is reserved from the size the
+//! file system reports: the buffer grows with the bytes actually read.
 
 use std::io::Read;
 use std::path::Path;
@@ -50,7 +52,7 @@ pub(crate) fn read_file(
     let len = check_regular(path, at)?;
     check_size(path, at, len, limit)?;
     let file = std::fs::File::open(path).map_err(|e| failure(path, at, e))?;
-    let mut bytes = Vec::with_capacity(len.min(FIRST_RESERVE) as usize);
+    let mut bytes = read_start(&file, len, done).map_err(|e| failure(path, at, e))?;
     // In chunks until the end, wherever that is (the file may have changed size).
     loop {
         let n = (&file)
@@ -63,6 +65,44 @@ pub(crate) fn read_file(
         check_size(path, at, bytes.len() as u64, limit)?;
         done.add(n);
     }
+}
+
+/// Files read on all threads from this size on (a smaller one is read in one pass).
+const PARALLEL_READ_FROM: u64 = 8 << 20;
+
+/// The first `len` bytes of `file` read on all threads, in fixed ranges of [`READ_CHUNK`]
+/// bytes, the file's position then moved past them (counted in `done` once all are read);
+/// for a small file, on one thread, or where the file is no longer that long, nothing read
+/// (the reading goes on from the position, one pass to the end).
+fn read_start(file: &std::fs::File, len: u64, done: Count) -> std::io::Result<Vec<u8>> {
+    let empty = || Vec::with_capacity(len.min(FIRST_RESERVE) as usize);
+    if len < PARALLEL_READ_FROM || rayon::current_num_threads() == 1 {
+        return Ok(empty());
+    }
+    #[cfg(unix)]
+    {
+        use rayon::prelude::*;
+        use std::io::{Seek, SeekFrom};
+        use std::os::unix::fs::FileExt;
+        // Zeroed pages from the system, first touched by the threads reading into them.
+        let mut bytes = vec![0u8; len as usize];
+        let read = bytes
+            .par_chunks_mut(READ_CHUNK as usize)
+            .enumerate()
+            .try_for_each(|(k, part)| file.read_exact_at(part, k as u64 * READ_CHUNK));
+        match read {
+            Ok(()) => {
+                (&*file).seek(SeekFrom::Start(len))?;
+                done.add(bytes.len());
+                Ok(bytes)
+            }
+            // Shorter than it was (it changed while read): read in one pass instead.
+            Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => Ok(empty()),
+            Err(e) => Err(e),
+        }
+    }
+    #[cfg(not(unix))]
+    Ok(empty())
 }
 
 /// The size in bytes of the regular file at `path`, at most `limit` (errors as
@@ -174,6 +214,26 @@ mod tests {
             e.to_string().ends_with("it is a directory, not a file"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_big_file_read_on_several_threads_is_its_bytes() {
+        let d = std::env::temp_dir().join(format!("kepler-read-big-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        let f = d.join("big.obj");
+        // Not a whole number of ranges, each byte told apart from its neighbours.
+        let want: Vec<u8> = (0..PARALLEL_READ_FROM as usize + 3 * READ_CHUNK as usize + 12_345)
+            .map(|i| (i % 251) as u8)
+            .collect();
+        std::fs::write(&f, &want).unwrap();
+        let p = AtomicUsize::new(0);
+        let pool = crate::chunked::pool(3);
+        let got = pool
+            .install(|| read_file(&f, None, MAX_MESH_BYTES, Count::to(&p)))
+            .unwrap();
+        assert!(got == want, "the bytes read are the file's");
+        assert_eq!(p.load(Ordering::Relaxed), want.len());
+        let _ = std::fs::remove_dir_all(&d);
     }
 
     #[test]

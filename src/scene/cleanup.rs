@@ -85,10 +85,23 @@ pub(crate) fn cleanup(
     } else {
         vec![clean_chunk((0, &raw.faces[..]))]
     };
-    let mut faces = Vec::with_capacity(raw.faces.len());
-    for (f, w) in parts {
-        faces.extend(f);
-        warnings.extend(w);
+    // Moved to their places on all threads (the list's pages first touched there), a few
+    // parts a thread at a time, each freed once moved: the parts and the list are not all
+    // live at once (on one thread, a part at a time, as before).
+    let mut faces = Vec::with_capacity(parts.iter().map(|p| p.0.len()).sum());
+    let mut parts = parts.into_iter();
+    let wave = 2 * rayon::current_num_threads();
+    loop {
+        let mut moved: Vec<Vec<Face>> = Vec::with_capacity(wave);
+        for (f, w) in parts.by_ref().take(wave) {
+            moved.push(f);
+            warnings.extend(w);
+        }
+        if moved.is_empty() {
+            break;
+        }
+        let slices = moved.iter_mut().map(|f| &mut f[..]).collect();
+        crate::chunked::extend_taken(&mut faces, slices);
     }
     let (vertices, faces) = drop_unused_vertices(vertices, faces);
     let closed = is_closed_oriented(&faces);
@@ -103,24 +116,26 @@ pub(crate) fn cleanup(
 }
 
 fn check_coordinates(raw: &PolyMesh, origin: &Origin) -> Result<()> {
-    for (i, v) in raw.vertices.iter().enumerate() {
-        if v.iter().any(|c| !c.is_finite() || c.abs() > MAX_COORD) {
-            return Err(Error::invalid(
-                Location::file(origin.file),
-                format!(
-                    "vertex {} has coordinate {:?}: not finite or above {MAX_COORD:e}",
-                    i + 1,
-                    v.coords.as_slice()
-                ),
-            ));
-        }
-    }
-    Ok(())
+    let bad = |v: &P3| v.iter().any(|c| !c.is_finite() || c.abs() > MAX_COORD);
+    let first = crate::chunked::position_first(raw.vertices.len(), |i| bad(&raw.vertices[i]));
+    let Some(i) = first else {
+        return Ok(());
+    };
+    Err(Error::invalid(
+        Location::file(origin.file),
+        format!(
+            "vertex {} has coordinate {:?}: not finite or above {MAX_COORD:e}",
+            i + 1,
+            raw.vertices[i].coords.as_slice()
+        ),
+    ))
 }
 
 fn check_indices(raw: &PolyMesh, origin: &Origin) -> Result<()> {
     let n = raw.vertices.len();
-    for (i, f) in raw.faces.iter().enumerate() {
+    let bad = |i: usize| raw.faces[i].iter().any(|&k| k as usize >= n);
+    if let Some(i) = crate::chunked::position_first(raw.faces.len(), bad) {
+        let f = &raw.faces[i];
         if let Some(&k) = f.iter().find(|&&k| k as usize >= n) {
             return Err(Error::invalid(
                 origin.at(i),
@@ -144,10 +159,13 @@ pub(crate) fn merge_duplicate_vertices(verts: &[P3]) -> (Vec<P3>, Vec<u32>) {
         let b = x.to_bits() as i64;
         b ^ ((((b >> 63) as u64) >> 1) as i64)
     };
-    let mut order: Vec<u32> = (0..verts.len() as u32).collect();
+    let mut order: Vec<u32> = crate::chunked::map(verts.len(), |i| i as u32);
     crate::scene::topology::sort_by_key(&mut order, |&a| {
         (folded(&verts[a as usize]).map(total), a)
     });
+    if verts.len() > MERGED_CHUNK && rayon::current_num_threads() > 1 {
+        return merge_sorted(verts, &order, |a, b| key(&verts[a]) == key(&verts[b]));
+    }
     // First occurrence of each coordinate value.
     let mut rep = vec![0u32; verts.len()];
     let mut i = 0;
@@ -174,19 +192,85 @@ pub(crate) fn merge_duplicate_vertices(verts: &[P3]) -> (Vec<P3>, Vec<u32>) {
     (out, remap)
 }
 
-fn drop_unused_vertices(vertices: Vec<P3>, mut faces: Vec<Face>) -> (Vec<P3>, Vec<Face>) {
-    let mut new_index = vec![u32::MAX; vertices.len()];
-    let mut out = Vec::with_capacity(vertices.len());
-    for f in &mut faces {
-        for k in &mut f.vertices {
-            let old = *k as usize;
-            if new_index[old] == u32::MAX {
-                new_index[old] = out.len() as u32;
-                out.push(vertices[old]);
+/// Vertices per chunk of [`merge_sorted`].
+const MERGED_CHUNK: usize = crate::chunked::CHUNK;
+
+/// [`merge_duplicate_vertices`]' result on all threads, from the vertices' indices sorted so
+/// that equal vertices (`same`) are neighbours, each run led by its least index: each run's
+/// leader found by fixed chunks of the order, the leaders numbered by fixed chunks of the
+/// vertices (a count a chunk, then the numbers from the chunks' bases).
+fn merge_sorted(
+    verts: &[P3],
+    order: &[u32],
+    same: impl Fn(usize, usize) -> bool + Sync,
+) -> (Vec<P3>, Vec<u32>) {
+    use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
+    let n = verts.len();
+    let leader: Vec<AtomicU32> = crate::chunked::map(n, |_| AtomicU32::new(0));
+    order
+        .par_chunks(MERGED_CHUNK)
+        .enumerate()
+        .for_each(|(c, part)| {
+            // The run holding the chunk's first place may start in an earlier chunk.
+            let mut start = c * MERGED_CHUNK;
+            while start > 0 && same(order[start - 1] as usize, order[start] as usize) {
+                start -= 1;
             }
-            *k = new_index[old];
-        }
+            let mut lead = order[start];
+            for (j, &v) in part.iter().enumerate() {
+                let i = c * MERGED_CHUNK + j;
+                if i > 0 && !same(order[i - 1] as usize, v as usize) {
+                    lead = v;
+                }
+                leader[v as usize].store(lead, Relaxed);
+            }
+        });
+    let rep: Vec<u32> = crate::chunked::map(n, |v| leader[v].load(Relaxed));
+    drop(leader);
+    let counts: Vec<u32> = rep
+        .par_chunks(MERGED_CHUNK)
+        .enumerate()
+        .map(|(c, r)| {
+            let first = c * MERGED_CHUNK;
+            (r.iter().enumerate())
+                .filter(|&(j, &l)| l as usize == first + j)
+                .count() as u32
+        })
+        .collect();
+    let mut bases = Vec::with_capacity(counts.len());
+    let mut base = 0;
+    for k in counts {
+        bases.push(base);
+        base += k;
     }
+    let mut new_index = crate::chunked::map(n, |_| 0u32);
+    new_index
+        .par_chunks_mut(MERGED_CHUNK)
+        .zip(bases)
+        .enumerate()
+        .for_each(|(c, (ni, mut next))| {
+            for (j, x) in ni.iter_mut().enumerate() {
+                if rep[c * MERGED_CHUNK + j] as usize == c * MERGED_CHUNK + j {
+                    *x = next;
+                    next += 1;
+                }
+            }
+        });
+    let out = crate::chunked::flat_map(n, MERGED_CHUNK, |r, out| {
+        out.extend(r.filter(|&v| rep[v] as usize == v).map(|v| verts[v]));
+    });
+    let remap = crate::chunked::map(n, |v| new_index[rep[v] as usize]);
+    (out, remap)
+}
+
+/// The vertices the faces use, in order of first use, the faces renumbered to them (on all
+/// threads for a big mesh).
+fn drop_unused_vertices(vertices: Vec<P3>, mut faces: Vec<Face>) -> (Vec<P3>, Vec<Face>) {
+    let mut numbers = crate::renumber::Renumbering::default();
+    numbers.grow(vertices.len());
+    let used = numbers.renumber(0, &mut [&mut faces[..]], 0, |f| &mut f.vertices[..]);
+    let mut out = Vec::new();
+    crate::chunked::extend_map(&mut out, used.len(), |k| vertices[used[k] as usize]);
     (out, faces)
 }
 
@@ -532,6 +616,52 @@ mod tests {
             assert_eq!(remap[i] as usize, k, "vertex {i}");
         }
         assert_eq!(u.len(), firsts.len());
+    }
+
+    #[test]
+    fn merging_and_cleaning_on_several_threads_is_the_one_thread_result() {
+        let mut rng = crate::geom::rng::XorShift::new(7);
+        // Long runs of repeats and single vertices, over several chunks.
+        let v: Vec<P3> = (0..5 * MERGED_CHUNK + 11)
+            .map(|i| match i % 3 {
+                0 => P3::new(rng.below(50) as f64, -0.0, 1.0),
+                1 => P3::new(0.0, 0.0, 0.0),
+                _ => P3::new(i as f64, rng.below(4) as f64, 0.0),
+            })
+            .collect();
+        let one = crate::chunked::pool(1).install(|| merge_duplicate_vertices(&v));
+        let many = crate::chunked::pool(3).install(|| merge_duplicate_vertices(&v));
+        assert_eq!(one, many);
+        // A 100x100 grid of quads, each with corners of its own (as an STL's), some vertices
+        // unused, some faces degenerate: the same mesh and warnings.
+        let n = 100u32;
+        let (mut vertices, mut faces) = (Vec::new(), Vec::new());
+        for j in 0..n {
+            for i in 0..n {
+                let k = vertices.len() as u32;
+                for (di, dj) in [(0, 0), (1, 0), (1, 1), (0, 1)] {
+                    let h = ((i + di) * 7 % 5) as f64 * 0.1;
+                    vertices.push(P3::new((i + di) as f64, (j + dj) as f64, h));
+                }
+                vertices.push(P3::new(-1.0, -1.0, (i * j) as f64));
+                faces.push(if (i + j) % 97 == 0 {
+                    vec![k, k + 1, k]
+                } else {
+                    vec![k + 3, k + 2, k + 1, k]
+                });
+            }
+        }
+        let raw = PolyMesh::new(vertices, faces);
+        let clean = |threads| {
+            crate::chunked::pool(threads).install(|| {
+                let mut w = Vec::new();
+                let m = cleanup(&raw, &origin(), &mut w, crate::count::Count::NONE).unwrap();
+                (m, w)
+            })
+        };
+        let (one, many) = (clean(1), clean(3));
+        assert!(one.1.len() > 100);
+        assert_eq!(one, many);
     }
 
     #[test]

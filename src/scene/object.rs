@@ -12,7 +12,7 @@ use super::proof::{ProvenPieces, Solidity};
 use super::texture::Texture;
 
 /// A planar polygon of an object, indexing the object's vertex list (the paper's FACE).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Face {
     /// Indices into the object's vertices, counter-clockwise seen from outside for solids.
     pub vertices: Vec<u32>,

@@ -156,18 +156,28 @@ impl Traversals {
         if self.faces == 0 {
             return Topology::Open;
         }
-        let mut open = false;
-        for t in self.by_edge() {
-            let edge = t[0].edge;
-            match t.len() {
-                // An edge from a vertex to itself is its own reverse (as in `by_counts`).
-                1 if edge >> 32 == edge & 0xffff_ffff => {}
-                1 => open = true,
-                2 if t[0].forward != t[1].forward => {}
-                _ => return Topology::Inconsistent,
-            }
-        }
-        if open {
+        let items = &self.items[..];
+        // By fixed chunks of traversals on all threads, each taking the edges that start in
+        // it; (open, inconsistent) or-ed, in any order.
+        let (open, inconsistent) = if items.len() > CHUNK && rayon::current_num_threads() > 1 {
+            let start = |i: usize| {
+                (i..items.len())
+                    .find(|&j| j == 0 || items[j - 1].edge != items[j].edge)
+                    .unwrap_or(items.len())
+            };
+            (0..items.len().div_ceil(CHUNK))
+                .into_par_iter()
+                .map(|c| {
+                    let end = ((c + 1) * CHUNK).min(items.len());
+                    edges_meet(&items[start(c * CHUNK)..start(end)])
+                })
+                .reduce(|| (false, false), |a, b| (a.0 || b.0, a.1 || b.1))
+        } else {
+            edges_meet(items)
+        };
+        if inconsistent {
+            Topology::Inconsistent
+        } else if open {
             Topology::Open
         } else {
             Topology::Closed
@@ -234,6 +244,24 @@ pub(crate) fn sort_by_key<T: Send, K: Ord>(v: &mut [T], key: impl Fn(&T) -> K + 
 
 /// Above this many items [`sort`] and [`sort_by_key`] use all threads.
 const SORTED_IN_PARALLEL_ABOVE: usize = 1 << 14;
+
+/// Whether some edge of `items` (whole edges, sorted by edge) is used once only (open),
+/// and whether some edge is used twice the same way or more than twice (inconsistent; the
+/// search stops there).
+fn edges_meet(items: &[Traversal]) -> (bool, bool) {
+    let mut open = false;
+    for t in items.chunk_by(|a, b| a.edge == b.edge) {
+        let edge = t[0].edge;
+        match t.len() {
+            // An edge from a vertex to itself is its own reverse (as in `by_counts`).
+            1 if edge >> 32 == edge & 0xffff_ffff => {}
+            1 => open = true,
+            2 if t[0].forward != t[1].forward => {}
+            _ => return (open, true),
+        }
+    }
+    (open, false)
+}
 
 /// Sorts `v` by `key`, whose order begins with `pair`'s (a packed edge's two vertices, say):
 /// a stable least-significant-digit radix sort, two counting passes (by the pair's second
@@ -311,6 +339,36 @@ pub(crate) fn edge_pieces(faces: &[Face]) -> Pieces {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn topology_found_on_several_threads_is_the_one_thread_topology() {
+        // A closed 100x100 torus of quads (40,000 traversals, chunks of edges), then opened
+        // by a missing face, then made inconsistent by a face turned the other way, each
+        // flaw in a late chunk.
+        let n = 100u32;
+        let at = |i: u32, j: u32| (j % n) * n + i % n;
+        let torus: Vec<Face> = (0..n * n)
+            .map(|k| {
+                let (i, j) = (k % n, k / n);
+                Face::new(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
+            })
+            .collect();
+        let mut open = torus.clone();
+        open.remove(9000);
+        let mut inconsistent = open.clone();
+        inconsistent[8000].vertices.reverse();
+        let pool = crate::chunked::pool;
+        for (faces, want) in [
+            (torus, Topology::Closed),
+            (open, Topology::Open),
+            (inconsistent, Topology::Inconsistent),
+        ] {
+            let t = Traversals::of(&faces);
+            assert!(t.items.len() > 3 * CHUNK);
+            assert_eq!(pool(1).install(|| t.topology()), want);
+            assert_eq!(pool(3).install(|| t.topology()), want);
+        }
+    }
 
     #[test]
     fn traversals_made_on_several_threads_are_the_one_thread_list() {
