@@ -198,7 +198,7 @@ fn alone(world: &WorldFaces, cand: &[u32], flat: &[bool]) -> Vec<bool> {
         }
         (pieces, loose)
     };
-    let parts: Vec<(Vec<(u32, Bounds3)>, Option<Bounds3>)> = if cand.len() <= CHUNK {
+    let parts: Vec<Runs> = if cand.len() <= CHUNK {
         vec![chunk(cand, 0)]
     } else {
         cand.par_chunks(CHUNK)
@@ -244,6 +244,10 @@ fn alone(world: &WorldFaces, cand: &[u32], flat: &[bool]) -> Vec<bool> {
                 .is_ok()
     })
 }
+
+/// A chunk's runs of one clean piece's flat faces with their boxes, and the box of its other
+/// faces (see [`alone`]).
+type Runs = (Vec<(u32, Bounds3)>, Option<Bounds3>);
 
 /// Candidate faces per chunk of the lists made on all threads.
 const CHUNK: usize = crate::chunked::CHUNK;
