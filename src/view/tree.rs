@@ -705,17 +705,16 @@ mod tests {
     /// The keys gathered side by side give the same order as the pieces read in place, on
     /// random triangles whose corners sit on a coarse lattice (many equal keys, so the ties
     /// are broken by id) and with every third piece left out (gaps in the run of ids).
-    #[test]
-    fn gathered_keys_order_as_the_pieces() {
+    /// `n` random triangles whose corners sit on a lattice of `lattice` steps a side, seen
+    /// by an orthographic camera: the screen faces and the camera.
+    fn random_triangles(seed: u64, n: u32, lattice: usize) -> (ScreenFaces, Camera) {
         use crate::geom::rng::XorShift;
         use crate::geom::{PolyMesh, P3};
-        let mut rng = XorShift::new(35);
-        let n = 3000;
-        let mut pts = Vec::new();
-        let mut faces = Vec::new();
+        let mut rng = XorShift::new(seed);
+        let (mut pts, mut faces) = (Vec::new(), Vec::new());
         for f in 0..n {
             for _ in 0..3 {
-                let c = [0; 3].map(|_| rng.below(9) as f64);
+                let c = [0; 3].map(|_| rng.below(lattice) as f64);
                 pts.push(P3::new(c[0], c[1], c[2]));
             }
             faces.push(vec![3 * f, 3 * f + 1, 3 * f + 2]);
@@ -723,7 +722,12 @@ mod tests {
         let mesh = crate::scene::testing::leaf("tris", &PolyMesh::new(pts, faces));
         let scene = Scene::new(Object::group("", vec![mesh]), "t".into());
         let camera = Camera::orthographic(V3::new(-1., -2., -3.), V3::y()).unwrap();
-        let sf = ScreenFaces::build(&scene, &camera);
+        (ScreenFaces::build(&scene, &camera), camera)
+    }
+
+    #[test]
+    fn gathered_keys_order_as_the_pieces() {
+        let (sf, _) = random_triangles(35, 3000, 9);
         let mut ids: Vec<PieceId> = sf.piece_ids().filter(|p| p.0 % 3 != 1).collect();
         assert!(ids.len() > 1000);
         let mut want = ids.clone();
@@ -756,22 +760,7 @@ mod tests {
     /// split on several threads), after a first run already in the lists.
     #[test]
     fn filled_hierarchy_is_the_one_built_node_by_node() {
-        use crate::geom::rng::XorShift;
-        use crate::geom::{PolyMesh, P3};
-        let mut rng = XorShift::new(36);
-        let n = 2 * SPLIT_ALONE_BELOW as u32 + 77;
-        let (mut pts, mut faces) = (Vec::new(), Vec::new());
-        for f in 0..n {
-            for _ in 0..3 {
-                let c = [0; 3].map(|_| rng.below(50) as f64);
-                pts.push(P3::new(c[0], c[1], c[2]));
-            }
-            faces.push(vec![3 * f, 3 * f + 1, 3 * f + 2]);
-        }
-        let mesh = crate::scene::testing::leaf("tris", &PolyMesh::new(pts, faces));
-        let scene = Scene::new(Object::group("", vec![mesh]), "t".into());
-        let camera = Camera::orthographic(V3::new(-1., -2., -3.), V3::y()).unwrap();
-        let sf = ScreenFaces::build(&scene, &camera);
+        let (sf, camera) = random_triangles(36, 2 * SPLIT_ALONE_BELOW as u32 + 77, 50);
         let all: Vec<PieceId> = sf.piece_ids().collect();
         assert!(all.len() > 2 * SPLIT_ALONE_BELOW);
         let builder = || Builder {
