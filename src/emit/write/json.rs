@@ -164,6 +164,9 @@ impl Sink<'_> {
     }
 }
 
+/// Faces per task of the regions' extent.
+const EXTENT_TASK: usize = 1 << 12;
+
 /// The document, into `out` piece by piece.
 fn json_into(
     out: &mut Sink,
@@ -181,8 +184,16 @@ fn json_into(
         .iter()
         .map(|l| json_string(&l.path))
         .collect();
-    let delta = dust_delta(extent(vis.iter().map(|(_, f)| &f.visible)));
     let (ids, faces) = vis.solved();
+    // The greatest coordinate of every region, on all threads (a greatest is the same in
+    // any order).
+    let delta = dust_delta(
+        faces
+            .par_iter()
+            .with_min_len(EXTENT_TASK)
+            .map(|f| extent(std::iter::once(&f.visible)))
+            .reduce(|| 0.0, f64::max),
+    );
     let (batch_faces, task_faces) = (out.batch_faces, out.task_faces);
     // Formatted on all threads a task of faces at a time, a batch of tasks between writes
     // (the text held is two batches'), joined in face order: the bytes of one thread.
