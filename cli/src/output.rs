@@ -65,8 +65,11 @@ impl OutputFiles {
         };
         for p in outputs {
             if !is_device(p) {
+                // Made and listed under the lock, so that a signal's watcher sees it.
+                let mut pending = lock(&outs.pending);
                 let (tmp, file) = temporary_beside(p)?;
-                lock(&outs.pending).push(tmp.clone());
+                pending.push(tmp.clone());
+                drop(pending);
                 drop(file);
                 std::fs::remove_file(&tmp).map_err(|e| anyhow!("{}: {e}", p.display()))?;
                 lock(&outs.pending).retain(|t| t != &tmp);
@@ -204,7 +207,11 @@ fn watch_signals(pending: &Pending) -> Option<signal_hook::iterator::Handle> {
         .name("signals".into())
         .spawn(move || {
             if let Some(sig) = signals.forever().next() {
-                remove_all(&pending);
+                // The lock is held to the exit: no temporary is made after the removal.
+                let mut listed = lock(&pending);
+                for p in listed.drain(..) {
+                    let _ = std::fs::remove_file(p);
+                }
                 std::process::exit(128 + sig);
             }
         })
@@ -226,11 +233,17 @@ impl Staged {
     /// The file, its temporary created (and listed as pending) on first use.
     fn opened(&mut self) -> std::io::Result<&mut BufWriter<File>> {
         if self.file.is_none() {
+            // The temporary is made and listed under the pending list's lock: a signal's
+            // watcher, which removes the listed ones under that lock, either sees it or
+            // ends the process before it is made (made first and listed after, a signal
+            // between the two left it behind).
+            let mut pending = self.pending.as_ref().map(lock);
             let (tmp, file) =
                 temporary_beside(&self.path).map_err(|e| std::io::Error::other(e.to_string()))?;
-            if let Some(p) = &self.pending {
-                lock(p).push(tmp.clone());
+            if let Some(p) = &mut pending {
+                p.push(tmp.clone());
             }
+            drop(pending);
             self.tmp = Some(tmp);
             self.file = Some(BufWriter::with_capacity(1 << 16, file));
         }
