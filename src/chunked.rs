@@ -79,36 +79,12 @@ pub(crate) fn position_first<F: Fn(usize) -> bool + Sync + Send>(
         .position_first(bad)
 }
 
-/// The parts one after another, copied on all threads (on one thread, one after another).
+/// The parts one after another, copied on all threads (on one thread, one after another):
+/// [`extend_concat`] into a new list.
 pub(crate) fn concat<T: Clone + Send + Sync>(parts: &[Vec<T>]) -> Vec<T> {
-    // starts[k]: where part k begins in the result; starts[parts.len()]: its length.
-    let mut starts = Vec::with_capacity(parts.len() + 1);
-    let mut total = 0;
-    for p in parts {
-        starts.push(total);
-        total += p.len();
-    }
-    starts.push(total);
-    if total <= CHUNK || rayon::current_num_threads() == 1 {
-        return parts.concat();
-    }
-    let mut out = Vec::with_capacity(total);
-    // Each run of places walks its parts with a cursor: a search only where a run starts.
-    (0..total)
-        .into_par_iter()
-        .with_min_len(CHUNK)
-        .map_init(
-            || 0usize,
-            |k, i| {
-                if !(starts[*k] <= i && i < starts[*k + 1]) {
-                    // The last part beginning at or before i (an empty part begins where
-                    // the next does, so this one holds i).
-                    *k = starts.partition_point(|&s| s <= i) - 1;
-                }
-                parts[*k][i - starts[*k]].clone()
-            },
-        )
-        .collect_into_vec(&mut out);
+    let slices: Vec<&[T]> = parts.iter().map(Vec::as_slice).collect();
+    let mut out = Vec::new();
+    extend_concat(&mut out, &slices);
     out
 }
 
@@ -129,10 +105,13 @@ pub(crate) fn extend_concat<T: Clone + Send + Sync>(out: &mut Vec<T>, parts: &[&
         }
         return;
     }
+    // Each run of places walks its parts with a cursor: a search only where a run starts.
     out.par_extend((0..total).into_par_iter().with_min_len(CHUNK).map_init(
         || 0usize,
         |k, i| {
             if !(starts[*k] <= i && i < starts[*k + 1]) {
+                // The last part beginning at or before i (an empty part begins where the
+                // next does, so this one holds i).
                 *k = starts.partition_point(|&s| s <= i) - 1;
             }
             parts[*k][i - starts[*k]].clone()
