@@ -13,6 +13,7 @@ pub(crate) mod style;
 pub(crate) mod texture;
 pub(crate) mod topology;
 pub(crate) mod triangulate;
+pub(crate) mod union_find;
 
 use std::path::PathBuf;
 

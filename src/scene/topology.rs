@@ -3,6 +3,7 @@
 use rayon::prelude::*;
 
 use super::object::Face;
+use super::union_find::UnionFind;
 
 /// True when every undirected edge is used by exactly two faces, once in each direction:
 /// the faces bound a closed, consistently oriented solid.
@@ -121,34 +122,56 @@ impl Traversals {
         }
     }
 
+    /// Whether these faces with `more` beside them are certainly not closed: some edge `more`
+    /// traverses is, with these faces' traversals of it, used once only (not from a vertex to
+    /// itself), twice the same way, or more than twice. Exact and sound: those are that edge's
+    /// traversals in [`Traversals::with_faces`]`(more)` too, so its [`Traversals::topology`]
+    /// is then open or inconsistent. Where this says false it may still be either (an edge
+    /// only these faces traverse, left open). A look-up an edge of `more` (a mesh's few caps),
+    /// no merge.
+    pub(crate) fn not_closed_with(&self, more: &[Face]) -> bool {
+        let added = Traversals::numbered(more, self.faces as u32);
+        let mut both = Vec::new();
+        added.chunk_by(|a, b| a.edge == b.edge).any(|extra| {
+            let edge = extra[0].edge;
+            let from = self.items.partition_point(|t| t.edge < edge);
+            let to = from + self.items[from..].partition_point(|t| t.edge == edge);
+            both.clear();
+            both.extend_from_slice(&self.items[from..to]);
+            both.extend_from_slice(extra);
+            let (open, inconsistent) = edges_meet(&both);
+            open || inconsistent
+        })
+    }
+
     /// The edges one face alone traverses, each as that face's step `a → b` (an edge from a
     /// vertex to itself left out: it is its own reverse), in face order and, within a face,
     /// in corner order. Of an open, consistent mesh ([`Topology::Open`]), exactly its
     /// directed edges whose reverse no face has: the holes' boundaries. `faces` are the
     /// faces these traversals are of.
     pub(crate) fn once(&self, faces: &[Face]) -> Vec<(u32, u32)> {
+        let step = |t: &Traversal| {
+            let (lo, hi) = ((t.edge >> 32) as u32, t.edge as u32);
+            let (a, b) = if t.forward { (lo, hi) } else { (hi, lo) };
+            let v = &faces[t.face as usize].vertices;
+            let n = v.len();
+            let corner = (0..n)
+                .find(|&i| v[i] == a && v[(i + 1) % n] == b)
+                .expect("a traversal is a step of its face");
+            (t.face, corner, a, b)
+        };
+        // In chunks of whole edges on all threads; the few steps then sorted.
         let mut steps: Vec<(u32, usize, u32, u32)> = self
-            .by_edge()
-            .filter(|t| t.len() == 1 && t[0].edge >> 32 != t[0].edge & 0xffff_ffff)
-            .map(|t| {
-                let t = t[0];
-                let (lo, hi) = ((t.edge >> 32) as u32, t.edge as u32);
-                let (a, b) = if t.forward { (lo, hi) } else { (hi, lo) };
-                let v = &faces[t.face as usize].vertices;
-                let n = v.len();
-                let corner = (0..n)
-                    .find(|&i| v[i] == a && v[(i + 1) % n] == b)
-                    .expect("a traversal is a step of its face");
-                (t.face, corner, a, b)
+            .by_whole_edges(|items| {
+                items
+                    .chunk_by(|a, b| a.edge == b.edge)
+                    .filter(|t| t.len() == 1 && t[0].edge >> 32 != t[0].edge & 0xffff_ffff)
+                    .map(|t| step(&t[0]))
+                    .collect::<Vec<_>>()
             })
-            .collect();
+            .concat();
         steps.sort_unstable();
         steps.into_iter().map(|(_, _, a, b)| (a, b)).collect()
-    }
-
-    /// The traversals, an edge at a time.
-    fn by_edge(&self) -> impl Iterator<Item = &[Traversal]> {
-        self.items.chunk_by(|a, b| a.edge == b.edge)
     }
 
     /// How the edges join up, as [`edge_topology`] says.
@@ -156,25 +179,11 @@ impl Traversals {
         if self.faces == 0 {
             return Topology::Open;
         }
-        let items = &self.items[..];
-        // By fixed chunks of traversals on all threads, each taking the edges that start in
-        // it; (open, inconsistent) or-ed, in any order.
-        let (open, inconsistent) = if items.len() > CHUNK && rayon::current_num_threads() > 1 {
-            let start = |i: usize| {
-                (i..items.len())
-                    .find(|&j| j == 0 || items[j - 1].edge != items[j].edge)
-                    .unwrap_or(items.len())
-            };
-            (0..items.len().div_ceil(CHUNK))
-                .into_par_iter()
-                .map(|c| {
-                    let end = ((c + 1) * CHUNK).min(items.len());
-                    edges_meet(&items[start(c * CHUNK)..start(end)])
-                })
-                .reduce(|| (false, false), |a, b| (a.0 || b.0, a.1 || b.1))
-        } else {
-            edges_meet(items)
-        };
+        // By fixed chunks of whole edges; (open, inconsistent) or-ed, in any order.
+        let (open, inconsistent) = self
+            .by_whole_edges(edges_meet)
+            .into_iter()
+            .fold((false, false), |a, b| (a.0 || b.0, a.1 || b.1));
         if inconsistent {
             Topology::Inconsistent
         } else if open {
@@ -184,36 +193,42 @@ impl Traversals {
         }
     }
 
-    /// The pieces of the faces connected through shared edges (union-find over the faces
-    /// of each edge). They depend only on which faces share edges, not on order.
+    /// The pieces of the faces connected through shared edges (a union-find over the faces
+    /// of each edge, in fixed chunks of whole edges on all threads). They depend only on
+    /// which faces share edges, not on order.
     pub(crate) fn pieces(&self) -> Pieces {
-        let faces = self.faces;
-        let mut parent: Vec<u32> = (0..faces as u32).collect();
-        fn find(parent: &mut [u32], mut x: u32) -> u32 {
-            while parent[x as usize] != x {
-                parent[x as usize] = parent[parent[x as usize] as usize];
-                x = parent[x as usize];
+        let sets = UnionFind::new(self.faces);
+        let join = |items: &[Traversal]| {
+            for t in items.chunk_by(|a, b| a.edge == b.edge) {
+                for w in t.windows(2) {
+                    sets.join(w[0].face, w[1].face);
+                }
             }
-            x
-        }
-        for t in self.by_edge() {
-            for w in t.windows(2) {
-                let (ra, rb) = (find(&mut parent, w[0].face), find(&mut parent, w[1].face));
-                parent[ra.max(rb) as usize] = ra.min(rb);
-            }
-        }
-        let mut label = vec![u32::MAX; faces];
-        let mut of_face = vec![0; faces];
-        let mut count = 0;
-        for (k, slot) in of_face.iter_mut().enumerate() {
-            let r = find(&mut parent, k as u32) as usize;
-            if label[r] == u32::MAX {
-                label[r] = count as u32;
-                count += 1;
-            }
-            *slot = label[r];
-        }
+        };
+        self.by_whole_edges(join);
+        let (of_face, count) = sets.numbered();
         Pieces { of_face, count }
+    }
+
+    /// `each` run on the traversals in fixed chunks, on all threads where there are many,
+    /// each chunk holding whole edges (those that start in it).
+    fn by_whole_edges<R: Send>(&self, each: impl Fn(&[Traversal]) -> R + Sync) -> Vec<R> {
+        let items = &self.items[..];
+        if items.len() <= CHUNK || rayon::current_num_threads() == 1 {
+            return vec![each(items)];
+        }
+        let start = |i: usize| {
+            (i..items.len())
+                .find(|&j| j == 0 || items[j - 1].edge != items[j].edge)
+                .unwrap_or(items.len())
+        };
+        (0..items.len().div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|c| {
+                let end = ((c + 1) * CHUNK).min(items.len());
+                each(&items[start(c * CHUNK)..start(end)])
+            })
+            .collect()
     }
 }
 
@@ -339,6 +354,63 @@ pub(crate) fn edge_pieces(faces: &[Face]) -> Pieces {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn not_closed_with_is_sound_and_exact_for_a_closing_set() {
+        // A closed 12x12 torus of triangles with faces taken away; `more` is a random choice
+        // of the taken faces, some turned or repeated, or faces of the torus again. Whenever
+        // the check says "not closed", the merged traversals' topology is not closed; the
+        // taken faces themselves close it, and the check says so.
+        let n = 12u32;
+        let at = |i: u32, j: u32| (j % n) * n + i % n;
+        let torus: Vec<Face> = (0..n * n)
+            .flat_map(|k| {
+                let (i, j) = (k % n, k / n);
+                [
+                    Face::new(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]),
+                    Face::new(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]),
+                ]
+            })
+            .collect();
+        let mut rng = crate::geom::rng::XorShift::new(35);
+        let (mut said_open, mut said_closed) = (0, 0);
+        for round in 0..400 {
+            let taken: Vec<usize> = (0..torus.len()).filter(|_| rng.below(9) == 0).collect();
+            let kept: Vec<Face> = (0..torus.len())
+                .filter(|f| !taken.contains(f))
+                .map(|f| torus[f].clone())
+                .collect();
+            let base = Traversals::of(&kept);
+            let mut more: Vec<Face> = taken.iter().map(|&f| torus[f].clone()).collect();
+            if round % 4 != 0 {
+                more.retain(|_| rng.below(5) != 0);
+                for f in more.iter_mut() {
+                    if rng.below(7) == 0 {
+                        f.vertices.reverse();
+                    }
+                }
+                if rng.below(3) == 0 {
+                    more.push(torus[rng.below(torus.len())].clone());
+                }
+            }
+            let merged = base.with_faces(&more).topology();
+            if base.not_closed_with(&more) {
+                assert_ne!(merged, Topology::Closed, "round {round}");
+                said_open += 1;
+            } else {
+                said_closed += 1;
+            }
+            if round % 4 == 0 && !taken.is_empty() {
+                assert!(!base.not_closed_with(&more), "round {round}");
+                assert_eq!(merged, Topology::Closed, "round {round}");
+            }
+        }
+        // Both answers were given many times: the test cannot pass on one of them alone.
+        assert!(
+            said_open > 100 && said_closed > 90,
+            "{said_open} {said_closed}"
+        );
+    }
 
     #[test]
     fn topology_found_on_several_threads_is_the_one_thread_topology() {

@@ -44,6 +44,9 @@
 
 use std::collections::HashMap;
 
+use rayon::prelude::*;
+
+use crate::chunked::CHUNK;
 use crate::count::Span;
 use crate::geom::{newell, orient3d, P3};
 #[cfg(test)]
@@ -181,7 +184,14 @@ pub(crate) fn capping_open(
     let mut suspect: Vec<bool> = vec![true; loops.len()];
     for attempt in 1..=ATTEMPTS {
         let part = span.span(ATTEMPT_SPANS[attempt - 1], ATTEMPT_SPANS[attempt]);
-        let (capped, loop_of) = with_caps(mesh, &loops, &ways);
+        let (caps, loop_of, centres) = caps_of(mesh, &loops, &ways);
+        if traversals.not_closed_with(&caps) {
+            // Open or inconsistent with any caps: refused as `examine` would refuse the
+            // capped mesh (a terrain's ear-clipped rim repeats its corner triangles), without
+            // making it.
+            return Err(refuse(CapFailure::Inconsistent));
+        }
+        let capped = with_caps(mesh, caps, centres);
         part.reach(0.1);
         // A hole's cap is settled by its first crossing: the retry needs only which holes
         // cross (a height field's fan crosses it along O(sqrt F) triangles each).
@@ -297,21 +307,37 @@ pub(crate) const ATTEMPTS: usize = 3;
 const ATTEMPT_SPANS: [f64; ATTEMPTS + 1] = [0.25, 0.55, 0.7, 0.8];
 
 /// Exact: every point lies on one plane (through the first point, the farthest from it,
-/// and the farthest from the line through those two; or all on one line).
+/// and the farthest from the line through those two; or all on one line). On all threads
+/// where there are many points: the farthest is the last of the farthest either way.
 fn flat(pts: &[P3]) -> bool {
     let Some(&a) = pts.first() else {
         return true;
     };
-    let far = |d: &dyn Fn(&P3) -> f64| {
-        pts.iter()
-            .copied()
-            .max_by(|p, q| d(p).total_cmp(&d(q)))
-            .unwrap_or(a)
+    let many = pts.len() > CHUNK;
+    let far = |d: &(dyn Fn(&P3) -> f64 + Sync)| {
+        let last_farthest =
+            |(i, p): &(usize, &P3), (j, q): &(usize, &P3)| d(p).total_cmp(&d(q)).then(i.cmp(j));
+        let found = if many {
+            pts.par_iter()
+                .with_min_len(CHUNK)
+                .enumerate()
+                .max_by(last_farthest)
+        } else {
+            pts.iter().enumerate().max_by(last_farthest)
+        };
+        found.map_or(a, |(_, p)| *p)
+    };
+    let all = |f: &(dyn Fn(&P3) -> bool + Sync)| {
+        if many {
+            pts.par_iter().with_min_len(CHUNK).all(f)
+        } else {
+            pts.iter().all(f)
+        }
     };
     let b = far(&|p| (p - a).norm_squared());
     let c = far(&|p| (p - a).cross(&(b - a)).norm_squared());
-    degenerate(&[a, b, c]) && pts.iter().all(|&p| degenerate(&[a, b, p]))
-        || pts.iter().all(|p| orient3d(&a, &b, &c, p) == 0.0)
+    degenerate(&[a, b, c]) && all(&|&p| degenerate(&[a, b, p]))
+        || all(&|p| orient3d(&a, &b, &c, p) == 0.0)
 }
 
 /// Exact: every corner of the loop lies on one line (no triangle on them has area).
@@ -320,20 +346,15 @@ fn slit(mesh: &Mesh, lp: &[u32]) -> bool {
     (2..lp.len()).all(|k| degenerate(&[p(0), p(1), p(k)]))
 }
 
-/// The mesh with its holes capped each its way, and the loop of each cap face.
-fn with_caps(mesh: &Mesh, loops: &[Vec<u32>], ways: &[Way]) -> (Mesh, Vec<usize>) {
-    let mut capped = Mesh {
-        vertices: mesh.vertices.clone(),
-        faces: crate::chunked::clone_all(&mesh.faces),
-        ..Mesh::default()
-    };
-    let mut loop_of = Vec::new();
+/// The caps of the holes, each its way (a fan's triangles number its centre after the
+/// mesh's vertices and the fans before it), the loop of each cap face, and the fans' centres.
+fn caps_of(mesh: &Mesh, loops: &[Vec<u32>], ways: &[Way]) -> (Vec<Face>, Vec<usize>, Vec<P3>) {
+    let (mut caps, mut loop_of, mut centres) = (Vec::new(), Vec::new(), Vec::new());
     for (l, (lp, way)) in loops.iter().zip(ways).enumerate() {
         let tris: Vec<[u32; 3]> = match way {
             Way::Fan => {
-                let c = centroid(lp.iter().map(|&v| &mesh.vertices[v as usize]));
-                let ci = capped.vertices.len() as u32;
-                capped.vertices.push(c);
+                let ci = (mesh.vertices.len() + centres.len()) as u32;
+                centres.push(centroid(lp.iter().map(|&v| &mesh.vertices[v as usize])));
                 (0..lp.len())
                     .map(|i| [ci, lp[i], lp[(i + 1) % lp.len()]])
                     .collect()
@@ -341,11 +362,23 @@ fn with_caps(mesh: &Mesh, loops: &[Vec<u32>], ways: &[Way]) -> (Mesh, Vec<usize>
             Way::Ears => ears(mesh, lp).expect("only simple loops are ear-clipped"),
         };
         for t in tris {
-            capped.faces.push(Face::new(t.to_vec()));
+            caps.push(Face::new(t.to_vec()));
             loop_of.push(l);
         }
     }
-    (capped, loop_of)
+    (caps, loop_of, centres)
+}
+
+/// The mesh with `caps` ([`caps_of`]) after its faces and their `centres` after its vertices.
+fn with_caps(mesh: &Mesh, caps: Vec<Face>, centres: Vec<P3>) -> Mesh {
+    let mut capped = Mesh {
+        vertices: mesh.vertices.clone(),
+        faces: crate::chunked::clone_all(&mesh.faces),
+        ..Mesh::default()
+    };
+    capped.vertices.extend(centres);
+    capped.faces.extend(caps);
+    capped
 }
 
 /// The loop ear-clipped (exact predicates) along its Newell normal, oriented like the loop;
@@ -701,6 +734,35 @@ pub(crate) mod tests {
             &cube_without(&[1]),
             &boundary_loops(&cube_without(&[1]).faces)[0]
         ));
+    }
+
+    #[test]
+    fn many_points_are_flat_alike_on_one_thread_and_on_three() {
+        // Points on a tilted plane past a chunk, then one lifted off it at either end, then
+        // all on one line: the answers of one thread and of three agree, and are right.
+        let n = 3 * CHUNK + 5;
+        let on_plane = |k: usize| {
+            let (x, y) = ((k % 97) as f64, (k / 97) as f64);
+            P3::new(x, y, 2.0 * x - 3.0 * y + 1.0)
+        };
+        let plane: Vec<P3> = (0..n).map(on_plane).collect();
+        let mut first_lifted = plane.clone();
+        first_lifted[1].z += 0.5;
+        let mut last_lifted = plane.clone();
+        last_lifted[n - 1].z -= 1e-9;
+        let line: Vec<P3> = (0..n)
+            .map(|k| P3::new(k as f64, 2.0 * k as f64, 7.0))
+            .collect();
+        for (pts, want) in [
+            (plane, true),
+            (first_lifted, false),
+            (last_lifted, false),
+            (line, true),
+        ] {
+            for threads in [1, 3] {
+                assert_eq!(crate::chunked::pool(threads).install(|| flat(&pts)), want);
+            }
+        }
     }
 
     #[test]
