@@ -2,6 +2,8 @@
 //! the exact stages compute in (a field of view of 1e-150 degrees magnifies the scene 1e152
 //! times, and areas then overflow) is an error, not a picture of NaNs.
 
+use rayon::prelude::*;
+
 use crate::error::{Error, Location, Result};
 use crate::scene::{CameraSpec, Scene};
 
@@ -15,17 +17,20 @@ pub(crate) const SCREEN_LIMIT: f64 = 1e30;
 /// [`SCREEN_LIMIT`] (world coordinates are at most 1e12, so only a narrow perspective view
 /// gets there).
 pub(crate) fn check_screen(screen: &ScreenFaces, camera: &Camera) -> Result<()> {
-    let mut worst = 0.0f64;
-    // The points corners name (a vertex behind the near plane has a point no corner names).
-    for p in screen.corner_at.iter().map(|&i| &screen.points[i as usize]) {
-        for &c in p {
-            if !c.is_finite() {
-                worst = f64::INFINITY;
-            } else {
-                worst = worst.max(c.abs());
-            }
-        }
-    }
+    // The points corners name (a vertex behind the near plane has a point no corner names),
+    // in fixed chunks on all threads: a maximum, so the same in any order.
+    let size = |i: &u32| {
+        let p = &screen.points[*i as usize];
+        p.iter().fold(0.0f64, |w, &c| match c.is_finite() {
+            true => w.max(c.abs()),
+            false => f64::INFINITY,
+        })
+    };
+    let worst = screen
+        .corner_at
+        .par_chunks(crate::chunked::CHUNK)
+        .map(|chunk| chunk.iter().map(size).fold(0.0, f64::max))
+        .reduce(|| 0.0, f64::max);
     if worst <= SCREEN_LIMIT {
         return Ok(());
     }
