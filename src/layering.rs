@@ -33,6 +33,7 @@ const RANKS: &[(&str, u32)] = &[
     ("count", 0),      // units of work done, per chunk: all an algorithm is handed, never a bar
     ("renumber", 1),   // indices renumbered by first use on all threads: imports only chunked
     ("chunked", 0),    // big lists built in fixed chunks on all threads: imports nothing of ours
+    ("rank_sort", 0),  // a stable sort by small whole-number ranks on all threads: imports nothing
     ("progress", 1),   // stages and phases a watcher reads: entered by the stage entry points
 ];
 

@@ -51,6 +51,7 @@ mod prepare;
 mod primitives;
 mod progress;
 pub mod query;
+mod rank_sort;
 mod renumber;
 mod scene;
 pub mod tribox;

@@ -54,15 +54,10 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
 ) -> Vec<T> {
     // Few boxes stay off the thread pool (a solid's many small searches would each wait
     // on it).
-    let ids: Vec<u32> = if n > PARALLEL_ABOVE {
-        (0..n as u32)
-            .into_par_iter()
-            .with_min_len(CHUNK)
-            .filter(|&i| valid(&box_of(i)))
-            .collect()
-    } else {
-        (0..n as u32).filter(|&i| valid(&box_of(i))).collect()
-    };
+    // In fixed chunks, joined in order on all threads.
+    let ids: Vec<u32> = crate::chunked::flat_map(n, CHUNK, |r, out| {
+        out.extend(r.map(|i| i as u32).filter(|&i| valid(&box_of(i))))
+    });
     let Some(grid) = Grid::fit(&box_of, n, &ids) else {
         return Vec::new();
     };
@@ -93,30 +88,39 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
         }
     };
     let mut parts: Vec<Vec<u64>> = Vec::new();
+    // The cells of boxes not yet entered: from box `rest_from` on (ids ascend, so each
+    // sub-chunk's boxes have their own run of cells, written on its thread).
+    let (mut rest, mut rest_from) = (&mut lo_cell[..], 0usize);
     for (c, chunk) in ids.chunks(CHUNK * 64).enumerate() {
         let range = |&i: &u32| grid.cell_range(&box_of(i));
         if split {
-            let made: Vec<_> = chunk
-                .par_chunks(CHUNK)
+            let subs: Vec<_> = chunk
+                .chunks(CHUNK)
                 .map(|sub| {
-                    let ranges: Vec<[[u64; 3]; 2]> = sub.iter().map(range).collect();
-                    let mut part = Vec::with_capacity(sub.len() * 2);
-                    for (&i, &r) in sub.iter().zip(&ranges) {
-                        enter(i, r, &mut part);
-                    }
-                    (ranges, part)
+                    let end = sub[sub.len() - 1] as usize + 1;
+                    let (here, after) = std::mem::take(&mut rest).split_at_mut(end - rest_from);
+                    let from = rest_from;
+                    (rest, rest_from) = (after, end);
+                    (sub, here, from)
                 })
                 .collect();
-            for (sub, (ranges, part)) in chunk.chunks(CHUNK).zip(made) {
-                for (&i, [lo, _]) in sub.iter().zip(ranges) {
-                    lo_cell[i as usize] = lo.map(|c| c as u16);
-                }
-                parts.push(part);
-            }
+            let made: Vec<Vec<u64>> = subs
+                .into_par_iter()
+                .map(|(sub, cells, from)| {
+                    let mut part = Vec::with_capacity(sub.len() * 2);
+                    for &i in sub {
+                        let r = range(&i);
+                        cells[i as usize - from] = r[0].map(|c| c as u16);
+                        enter(i, r, &mut part);
+                    }
+                    part
+                })
+                .collect();
+            parts.extend(made);
         } else {
             for &i in chunk {
                 let r = range(&i);
-                lo_cell[i as usize] = r[0].map(|c| c as u16);
+                rest[i as usize] = r[0].map(|c| c as u16);
                 enter(i, r, &mut entries);
             }
         }
@@ -189,19 +193,23 @@ fn valid(b: &Bounds3) -> bool {
 }
 
 /// Index ranges of equal keys (the bits above `shift`) in sorted entries, of two entries
-/// or more.
+/// or more: each found from its first entry, in fixed chunks of entries on all threads.
 fn runs(entries: &[u64], shift: u32) -> Vec<std::ops::Range<usize>> {
-    let mut out = Vec::new();
-    let mut start = 0;
-    for i in 1..=entries.len() {
-        if i == entries.len() || entries[i] >> shift != entries[start] >> shift {
-            if i - start > 1 {
-                out.push(start..i);
+    let key = |i: usize| entries[i] >> shift;
+    crate::chunked::flat_map(entries.len(), crate::chunked::CHUNK, |r, out| {
+        for start in r {
+            if start > 0 && key(start - 1) == key(start) {
+                continue;
             }
-            start = i;
+            let k = key(start);
+            let end = (start + 1..entries.len())
+                .find(|&i| key(i) != k)
+                .unwrap_or(entries.len());
+            if end - start > 1 {
+                out.push(start..end);
+            }
         }
-    }
-    out
+    })
 }
 
 /// Bits needed to write `n`.
@@ -375,12 +383,45 @@ mod tests {
                 [p, [p[0] + s, p[1] + s, p[2] + s]]
             })
             .collect();
+        // Invalid boxes leave gaps in the boxes entered, at sub-chunk ends among others.
+        let mut boxes = boxes;
+        for k in [CHUNK - 1, CHUNK, 2 * CHUNK + 1, 4 * CHUNK - 1] {
+            boxes[k][0][1] = f64::NAN;
+        }
         let pool = crate::chunked::pool;
         let three = pool(3).install(|| overlapping_pairs(&boxes));
         assert!(three.len() > boxes.len() / 10, "the test finds pairs");
         assert_eq!(three, pool(1).install(|| overlapping_pairs(&boxes)));
         let few = &boxes[..3 * PARALLEL_ABOVE];
         assert_eq!(pool(3).install(|| overlapping_pairs(few)), brute(few));
+    }
+
+    /// The runs found in chunks on three threads are those of one pass: runs of every
+    /// length, some across chunk ends, one as long as a chunk.
+    #[test]
+    fn runs_found_on_several_threads_are_the_one_pass_runs() {
+        let chunk = crate::chunked::CHUNK as u64;
+        let mut entries: Vec<u64> = Vec::new();
+        let (mut key, mut k) = (0u64, 0u64);
+        while entries.len() < 3 * chunk as usize + 50 {
+            let len = if k == 7 { chunk + 3 } else { (k * 7 + 3) % 11 };
+            entries.extend((0..len).map(|i| key << 20 | i));
+            (key, k) = (key + 1 + k % 2, k + 1);
+        }
+        let mut want = Vec::new();
+        let mut start = 0;
+        for i in 1..=entries.len() {
+            if i == entries.len() || entries[i] >> 20 != entries[start] >> 20 {
+                if i - start > 1 {
+                    want.push(start..i);
+                }
+                start = i;
+            }
+        }
+        assert!(want.iter().any(|r| r.len() > chunk as usize));
+        let pool = crate::chunked::pool;
+        assert_eq!(pool(1).install(|| runs(&entries, 20)), want);
+        assert_eq!(pool(3).install(|| runs(&entries, 20)), want);
     }
 
     #[test]

@@ -112,6 +112,7 @@ pub(crate) fn cleanup(
         solidity: None,
         caps: Vec::new(),
         proven: None,
+        pieces: None,
     })
 }
 

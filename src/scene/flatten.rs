@@ -165,6 +165,7 @@ mod tests {
             solidity: None,
             caps: Vec::new(),
             proven: None,
+            pieces: None,
         }
     }
 

@@ -249,6 +249,7 @@ mod tests {
             solidity: None,
             caps: Vec::new(),
             proven: None,
+            pieces: None,
         }
     }
 

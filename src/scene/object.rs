@@ -10,6 +10,7 @@ use crate::geom::{Box3, PolyMesh, M4, P3};
 use super::cleanup::{cleanup, Origin};
 use super::proof::{ProvenPieces, Solidity};
 use super::texture::Texture;
+use super::topology::Pieces;
 
 /// A planar polygon of an object, indexing the object's vertex list (the paper's FACE).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -47,6 +48,10 @@ pub struct Mesh {
     /// that are: their back faces may be culled, away from their caps (None when no piece
     /// is proven, or the whole is).
     pub(crate) proven: Option<ProvenPieces>,
+    /// The edge-connected pieces of a mesh the prepare stage proved a solid
+    /// ([`Mesh::cullable`]), as its test found them (None otherwise): the line drawing reads
+    /// them instead of matching the edges again.
+    pub(crate) pieces: Option<Arc<Pieces>>,
     /// The virtual triangles capping the holes of a [`Solidity::Capped`] mesh (or of the
     /// proven pieces of [`Mesh::proven`]), counter-clockwise
     /// seen from outside the capped solid (empty otherwise). Never drawn, never in the output,

@@ -338,7 +338,7 @@ const DENSE_BUCKETS: usize = 4;
 const BUCKETED_UP_TO: usize = 1 << 20;
 
 /// Connected pieces of a mesh's faces through shared edges.
-#[derive(Debug)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct Pieces {
     /// By face: its piece, numbered from 0 in order of first face.
     pub(crate) of_face: Vec<u32>,

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use crate::count::{Count, Share};
 use crate::geom::{P3, V3};
-use crate::scene::topology::{sort_by_key, sort_by_pair};
+use crate::rank_sort::sort_by_rank;
 use crate::scene::{FaceId, Scene};
 use crate::view::{Facing, View};
 
@@ -167,9 +167,8 @@ pub(crate) fn mesh_edges(
     let mut start = 0;
     while start < world.faces.len() {
         let leaf = world.faces[start].leaf;
-        let end = (start..world.faces.len())
-            .find(|&f| world.faces[f].leaf != leaf)
-            .unwrap_or(world.faces.len());
+        // A leaf's faces are one run, leaves in ascending order.
+        let end = start + world.faces[start..].partition_point(|f| f.leaf == leaf);
         let at = |f: usize| FACING_SHARE + (1.0 - FACING_SHARE) * f as f64 / all;
         let span = share.span(at(start), at(end));
         // The leaf's first corner: half-edges name their corners from it.
@@ -268,8 +267,9 @@ fn half_edges(world: &WorldFaces, start: usize, end: usize, base: usize) -> Vec<
             }
         }
     });
-    // seq is unique and counts up: the order is the same however the sort runs.
-    sort_by_pair(&mut half, |h| (h.a, h.b), |h| (h.a, h.b, h.seq));
+    // Counted by the lesser vertex (a leaf's vertices are about half its faces); seq is
+    // unique: the order is the same however the sort runs.
+    sort_by_rank(&mut half, |h| h.a, |h| (h.b, h.seq));
     half
 }
 
@@ -295,7 +295,8 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
     let mut groups: Vec<Range<u32>> = crate::chunked::map(starts.len(), |k| {
         starts[k] as u32..starts.get(k + 1).map_or(n, |&e| e) as u32
     });
-    sort_by_key(&mut groups, |g| half[g.start as usize].seq);
+    // Each group's first seq is unique and below the leaf's corners: counted.
+    sort_by_rank(&mut groups, |g| half[g.start as usize].seq, |_| ());
     groups
 }
 
@@ -397,7 +398,7 @@ mod tests {
     #[test]
     fn edges_found_on_several_threads_are_the_one_thread_edges() {
         // Half-edges and their groups made in many chunks on three threads.
-        let mesh = height_field(70);
+        let mesh = height_field(160);
         let faces = mesh.faces.len();
         let obj = crate::scene::Object::from_mesh("field", mesh);
         let scene = Scene::new(crate::scene::Object::group("", vec![obj]), "t".into());

@@ -33,11 +33,12 @@ pub(crate) fn intersection_edges(
 ) -> Vec<Edge> {
     let share = Share::new(done, world.faces.len());
     let faces = &world.faces;
-    let cand: Vec<u32> = (0..faces.len() as u32)
-        .into_par_iter()
-        .with_min_len(1 << 12)
-        .filter(|&f| keep(FaceId(f)) && faces[f as usize].len >= 3)
-        .collect();
+    let cand: Vec<u32> = flat_map(faces.len(), CHUNK, |r, out| {
+        out.extend(
+            r.map(|f| f as u32)
+                .filter(|&f| keep(FaceId(f)) && faces[f as usize].len >= 3),
+        )
+    });
     // Per face, once: its plane's reference corners, and whether it is flat (exactly: every
     // corner on the plane of the reference points).
     let (cand_refs, cand_flat): (Vec<[u32; 3]>, Vec<bool>) = cand
@@ -107,7 +108,11 @@ pub(crate) fn intersection_edges(
                 .map(|i| coarse_box(&box_of(i)))
                 .collect::<Vec<_>>()
         })
-        .filter(|c| c.iter().flatten().flatten().all(|x| !x.is_infinite()));
+        .filter(|c| {
+            c.par_iter()
+                .with_min_len(1 << 12)
+                .all(|b| b.iter().flatten().all(|x| !x.is_infinite()))
+        });
     let rounded = coarse.is_some();
     // The pair test of the grid below, by positions in `ids`.
     let pair = |i: u32, j: u32| {

@@ -101,6 +101,7 @@ mod tests {
             solidity: None,
             caps: Vec::new(),
             proven: None,
+            pieces: None,
         };
         let scene = Scene::new(
             Object::group("", vec![Object::from_mesh("sq", mesh)]),

@@ -302,23 +302,31 @@ pub(crate) fn split_edges(
         let e = &edges[*k];
         hid_groups.entry((e.leaf, e.kind)).or_default().extend(h);
     }
+    let (visible, hidden) = rayon::join(|| strokes(vis_groups), || strokes(hid_groups));
     Drawing {
-        visible: strokes(vis_groups),
-        hidden: strokes(hid_groups),
+        visible,
+        hidden,
         leaf_paths: Vec::new(),
     }
 }
 
-/// Chained, ordered strokes of grouped segments.
+/// Chained, ordered strokes of grouped segments: the groups on all threads, their strokes
+/// joined in group order.
 pub(crate) fn strokes(groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>>) -> Vec<Stroke> {
-    let mut out = Vec::new();
-    for ((leaf, kind), segs) in groups {
+    let of_group = |((leaf, kind), segs): ((u32, EdgeKind), Vec<[Pt2; 2]>)| -> Vec<Stroke> {
         let lines = chain(&segs).into_iter().filter(|l| !is_dot(l)).collect();
-        for pts in order(lines) {
-            out.push(Stroke { leaf, kind, pts });
-        }
-    }
-    out
+        order(lines)
+            .into_iter()
+            .map(|pts| Stroke { leaf, kind, pts })
+            .collect()
+    };
+    let groups: Vec<_> = groups.into_iter().collect();
+    let parts: Vec<Vec<Stroke>> = if groups.len() > 1 {
+        groups.into_par_iter().map(of_group).collect()
+    } else {
+        groups.into_iter().map(of_group).collect()
+    };
+    parts.into_iter().flatten().collect()
 }
 
 /// Relative length under which a polyline is rounding noise, not a line: clipping an edge
@@ -384,6 +392,45 @@ mod tests {
         assert_eq!(kept, real.to_vec());
         assert!(is_dot(&[[0.0, 0.0], [0.0, 0.0]]));
         assert!(!is_dot(&[[1e-300, 0.0], [0.0, 0.0]]));
+    }
+
+    /// Groups chained and ordered on three threads give the one-thread strokes, in group
+    /// order.
+    #[test]
+    fn strokes_of_groups_on_several_threads_are_the_one_thread_strokes() {
+        let mut s = 7u64;
+        let mut next = move || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut groups = BTreeMap::new();
+        for leaf in 0..3 {
+            for kind in [EdgeKind::Silhouette, EdgeKind::Crease, EdgeKind::Plain] {
+                // Random walks (chains), each from a new start (several strokes to order).
+                let mut p = [next(), next()];
+                let segs: Vec<[Pt2; 2]> = (0..200)
+                    .map(|k| {
+                        if k % 17 == 0 {
+                            p = [next(), next()];
+                        }
+                        let q = [p[0] + 0.01 * next(), p[1] + 0.01 * next()];
+                        let seg = [p, q];
+                        p = q;
+                        seg
+                    })
+                    .collect();
+                groups.insert((leaf, kind), segs);
+            }
+        }
+        let pool = crate::chunked::pool;
+        let one = pool(1).install(|| strokes(groups.clone()));
+        assert!(one.len() > 9, "{} strokes", one.len());
+        assert!(one
+            .windows(2)
+            .all(|w| (w[0].leaf, w[0].kind) <= (w[1].leaf, w[1].kind)));
+        assert_eq!(pool(3).install(|| strokes(groups)), one);
     }
 
     #[test]

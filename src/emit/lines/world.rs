@@ -4,14 +4,24 @@ use std::collections::HashMap;
 
 use rayon::prelude::*;
 
+use crate::chunked;
 use crate::count::Count;
 use crate::geom::{Box3, Corners, P3, V3};
 use crate::scene::topology::{edge_pieces, Pieces};
-use crate::scene::{Leaf, Mesh, Scene};
+use crate::scene::{Face, Leaf, Mesh, Scene};
 use crate::view::ScreenFaces;
 
-/// Above this many faces a leaf's world faces are made on all threads.
-const PARALLEL_ABOVE: usize = 4096;
+/// Faces per chunk of a leaf's world faces made on all threads.
+const CHUNK: usize = chunked::CHUNK;
+
+/// The corners of `faces`, by fixed chunk of [`CHUNK`] faces (on all threads for a big mesh).
+fn corners_by_chunk(faces: &[Face]) -> Vec<usize> {
+    let of = |c: &[Face]| c.iter().map(|f| f.vertices.len()).sum();
+    if faces.len() <= CHUNK || rayon::current_num_threads() == 1 {
+        return faces.chunks(CHUNK).map(of).collect();
+    }
+    faces.par_chunks(CHUNK).map(of).collect()
+}
 
 /// One face in world space: its corners are a run of [`WorldFaces::vertices`], each the
 /// index of a point of its leaf in the world's point space (see [`WorldFaces::points_of`]),
@@ -72,8 +82,7 @@ impl<'s> WorldFaces<'s> {
         let leaves = scene.leaves();
         let corners = leaves
             .iter()
-            .flat_map(|l| &l.mesh.faces)
-            .map(|f| f.vertices.len())
+            .map(|l| corners_by_chunk(&l.mesh.faces).iter().sum::<usize>())
             .sum();
         let mut w = WorldFaces {
             faces: Vec::with_capacity(scene.face_count()),
@@ -109,7 +118,8 @@ impl<'s> WorldFaces<'s> {
     }
 
     /// Appends the faces of leaf `li`, its points at `held` in the shared part (or made here),
-    /// then each face's normal, a big mesh's on all threads, in face order either way.
+    /// each with its normal: a big mesh's made in place in fixed chunks of faces on all
+    /// threads (a chunk's corners start where the corners of the chunks before it end).
     fn add_leaf(&mut self, li: u32, leaf: &Leaf, held: Option<usize>, done: Count) {
         let first = match held {
             Some(at) => at,
@@ -120,40 +130,55 @@ impl<'s> WorldFaces<'s> {
             }
         };
         self.leaf_first.push(first);
-        let made = self.faces.len();
-        for f in &leaf.mesh.faces {
-            self.faces.push(WorldFace {
-                leaf: li,
-                len: f.vertices.len() as u32,
-                first: self.vertices.len(),
-                normal: V3::zeros(),
-            });
-            self.vertices.extend_from_slice(&f.vertices);
-        }
-        // The normals in place (no second array of faces at ten million faces).
-        let WorldFaces {
-            faces,
-            shared,
-            points,
-            vertices,
-            ..
-        } = self;
-        let table = table_of(shared, points, first);
-        let normal = |w: &mut WorldFace| {
-            let at = &vertices[w.first..w.first + w.len as usize];
-            w.normal = Corners::new(at, table).newell();
+        let faces = &leaf.mesh.faces;
+        let n = faces.len();
+        let counts = corners_by_chunk(faces);
+        let table = table_of(self.shared, &self.points, first);
+        let (made, base) = (self.faces.len(), self.vertices.len());
+        let placeholder = WorldFace {
+            leaf: li,
+            len: 0,
+            first: 0,
+            normal: V3::zeros(),
         };
-        let new = &mut faces[made..];
-        let n = new.len();
-        if n > PARALLEL_ABOVE {
-            new.par_iter_mut().enumerate().for_each(|(i, w)| {
-                done.tick(i);
-                normal(w);
-            });
-            done.tick_rest(n);
+        let parallel = n > CHUNK && rayon::current_num_threads() > 1;
+        // The places first (their pages touched on all threads), then filled chunk by chunk.
+        if parallel {
+            let places = (0..n).into_par_iter().with_min_len(CHUNK);
+            self.faces.par_extend(places.map(|_| placeholder.clone()));
+            let corners = (0..counts.iter().sum()).into_par_iter().with_min_len(CHUNK);
+            self.vertices.par_extend(corners.map(|_| 0));
         } else {
-            new.iter_mut().for_each(normal);
-            done.add(n);
+            self.faces.resize(made + n, placeholder);
+            self.vertices.resize(base + counts.iter().sum::<usize>(), 0);
+        }
+        // Each chunk's faces and corners, the corners from where the chunks before end.
+        let mut parts = Vec::with_capacity(counts.len());
+        let (mut at, mut rest) = (base, &mut self.vertices[base..]);
+        for (c, out) in self.faces[made..].chunks_mut(CHUNK).enumerate() {
+            let (here, after) = rest.split_at_mut(counts[c]);
+            parts.push((c * CHUNK, at, out, here));
+            (at, rest) = (at + counts[c], after);
+        }
+        let fill = |(start, at, out, corners): (usize, usize, &mut [WorldFace], &mut [u32])| {
+            let mut k = 0;
+            for (w, f) in out.iter_mut().zip(&faces[start..]) {
+                let len = f.vertices.len();
+                corners[k..k + len].copy_from_slice(&f.vertices);
+                *w = WorldFace {
+                    leaf: li,
+                    len: len as u32,
+                    first: at + k,
+                    normal: Corners::new(&f.vertices, table).newell(),
+                };
+                k += len;
+            }
+            done.add(out.len());
+        };
+        if parallel {
+            parts.into_par_iter().for_each(fill);
+        } else {
+            parts.into_iter().for_each(fill);
         }
     }
 
@@ -207,18 +232,26 @@ fn clean_pieces(
         return;
     }
     let base = *next;
-    let pieces = pieces_of
-        .entry(mesh as *const Mesh)
-        .or_insert_with(|| edge_pieces(&mesh.faces));
+    // A solid's pieces as its test found them; others' found here.
+    let kept = mesh
+        .pieces
+        .as_deref()
+        .filter(|p| mesh.cullable() && p.of_face.len() == n);
+    let pieces = match kept {
+        Some(p) => p,
+        None => pieces_of
+            .entry(mesh as *const Mesh)
+            .or_insert_with(|| edge_pieces(&mesh.faces)),
+    };
     *next += pieces.count as u32;
-    out.extend((0..n).map(|f| {
+    chunked::extend_map(out, n, |f| {
         let clean = whole || proven.is_some_and(|p| p.faces[f]);
         if clean {
             base + pieces.of_face[f]
         } else {
             NO_PIECE
         }
-    }));
+    });
 }
 
 #[cfg(test)]
@@ -236,6 +269,116 @@ mod tests {
         assert_eq!(w.bbox_of(0), [[0., 0., 0.], [1., 1., 0.]]);
         // Not prepared: no piece is known to be free of self-intersection.
         assert_eq!(w.clean_piece, vec![NO_PIECE]);
+    }
+
+    /// A wavy field of `n` by `n` cells: quads in even rows, two triangles each in odd
+    /// rows (so that chunks of faces hold different numbers of corners).
+    fn field(n: u32) -> Mesh {
+        let h = |x: u32, y: u32| ((x * 7 + y * 13) % 5) as f64 * 0.1 + (x as f64 * 0.3).sin();
+        let vertices = (0..=n)
+            .flat_map(|y| (0..=n).map(move |x| P3::new(x as f64, y as f64, h(x, y))))
+            .collect();
+        let at = |x: u32, y: u32| y * (n + 1) + x;
+        let faces = (0..n)
+            .flat_map(|y| (0..n).map(move |x| (x, y)))
+            .flat_map(|(x, y)| {
+                let (a, b, c, d) = (at(x, y), at(x + 1, y), at(x + 1, y + 1), at(x, y + 1));
+                if y % 2 == 0 {
+                    vec![vec![a, b, c, d]]
+                } else {
+                    vec![vec![a, b, c], vec![a, c, d]]
+                }
+            })
+            .map(Face::new)
+            .collect();
+        Mesh {
+            vertices,
+            faces,
+            ..Default::default()
+        }
+    }
+
+    /// A torus of `n` by `n` cells, two triangles each: a closed solid.
+    fn torus(n: u32) -> Mesh {
+        let tau = std::f64::consts::TAU;
+        let vertices = (0..n * n)
+            .map(|k| {
+                let (u, v) = (
+                    (k % n) as f64 * tau / n as f64,
+                    (k / n) as f64 * tau / n as f64,
+                );
+                let r = 2.0 + 0.5 * v.cos();
+                P3::new(r * u.cos(), r * u.sin(), 0.5 * v.sin())
+            })
+            .collect();
+        let at = |i: u32, j: u32| (j % n) * n + i % n;
+        let faces = (0..n * n)
+            .flat_map(|k| {
+                let (i, j) = (k % n, k / n);
+                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                [vec![a, b, c], vec![a, c, d]]
+            })
+            .collect();
+        Mesh::from_polygons(vertices, faces, &mut Vec::new()).expect("a clean torus")
+    }
+
+    /// The world faces of big leaves made in chunks on three threads are the one-thread
+    /// faces: corners, their starts (across chunk ends), normals bit for bit, leaves, and the
+    /// pieces of a big solid.
+    #[test]
+    fn world_faces_on_several_threads_are_the_one_thread_faces() {
+        let big = Object::from_mesh("big", field(120));
+        let n = big.face_count();
+        assert!(n > 2 * CHUNK, "{n} faces");
+        let kids = vec![
+            Object::from_mesh("small", field(3)),
+            big,
+            crate::scene::testing::cuboid("box", [0., 0., 0.], [1., 2., 3.]),
+            Object::from_mesh("ring", torus(100)),
+            Object::from_mesh("again", field(70)),
+        ];
+        let mut scene = Scene::new(Object::group("", kids), "t".into());
+        // Prepared: the torus' and the box's faces are on clean pieces.
+        crate::prepare::prepare(
+            &mut scene,
+            &crate::PrepareOptions::default(),
+            &crate::Progress::default(),
+        );
+        let listed = |w: &WorldFaces| {
+            let faces: Vec<(u32, u32, usize, [u64; 3])> = w
+                .faces
+                .iter()
+                .map(|f| (f.leaf, f.len, f.first, f.normal.map(f64::to_bits).into()))
+                .collect();
+            (
+                faces,
+                w.vertices.clone(),
+                w.leaf_first.clone(),
+                w.clean_piece.clone(),
+            )
+        };
+        let pool = crate::chunked::pool;
+        let one = pool(1).install(|| listed(&WorldFaces::build(&scene, None, Count::NONE)));
+        let three = pool(3).install(|| listed(&WorldFaces::build(&scene, None, Count::NONE)));
+        assert_eq!(one.0.len(), scene.face_count());
+        assert_eq!(one, three);
+        let clean = one.3.iter().filter(|&&p| p != NO_PIECE).count();
+        assert!(clean > 2 * CHUNK, "{clean} faces on clean pieces");
+        // Each face's corners are its mesh face's, from where the one before it ends.
+        let meshes: Vec<&Mesh> = scene.leaves().into_iter().map(|l| l.mesh).collect();
+        let mut corners = 0;
+        for ((leaf, len, first, _), mesh_face) in
+            one.0.iter().zip(meshes.iter().flat_map(|m| m.faces.iter()))
+        {
+            assert_eq!(*first, corners);
+            assert_eq!(*len as usize, mesh_face.vertices.len());
+            assert_eq!(
+                &one.1[*first..*first + *len as usize],
+                &mesh_face.vertices[..]
+            );
+            assert!((*leaf as usize) < meshes.len());
+            corners += *len as usize;
+        }
     }
 
     /// The faces' points and normals with the screen's points shared, against the faces made

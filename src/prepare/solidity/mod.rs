@@ -274,7 +274,13 @@ pub(crate) fn decide(mesh: &mut Mesh, done: Count) {
                 .and_then(|surface| pieces::proven_pieces(mesh, surface, n, known, pieces));
             (s, proof)
         }
-        s => (s, None),
+        s => {
+            // A solid's pieces, kept for the line drawing (they are the mesh's own).
+            if s.is_solid() {
+                mesh.pieces = whole.surface.map(|surface| Arc::new(surface.pieces));
+            }
+            (s, None)
+        }
     };
     if let Some((p, caps)) = proven {
         mesh.proven = Some(p);

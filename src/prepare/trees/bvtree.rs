@@ -130,6 +130,7 @@ pub(crate) fn grids(specs: &[(f64, f64, u32)], bend: f64) -> Mesh {
         solidity: None,
         caps: Vec::new(),
         proven: None,
+        pieces: None,
     }
 }
 

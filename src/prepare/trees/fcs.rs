@@ -176,6 +176,7 @@ mod tests {
             solidity: None,
             caps: Vec::new(),
             proven: None,
+            pieces: None,
         }
     }
 

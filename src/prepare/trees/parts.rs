@@ -204,6 +204,7 @@ mod tests {
             solidity: None,
             caps: Vec::new(),
             proven: None,
+            pieces: None,
         };
         (m, (0..n).collect())
     }

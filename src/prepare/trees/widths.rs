@@ -124,6 +124,7 @@ mod tests {
             solidity: None,
             caps: Vec::new(),
             proven: None,
+            pieces: None,
         };
         let d = drastic_lengths(&m);
         assert!(d.iter().any(|&w| (1.4..3.0).contains(&w)), "{d:?}");

@@ -1,0 +1,174 @@
+//! A stable sort of a big list by a small whole-number rank (a vertex, a position), then a
+//! key within one rank, in linear time on all threads: the items are dealt into buckets of
+//! rank ranges in fixed chunks, and each bucket is counted into its place.
+//!
+//! The result is the list sorted stably by (rank, key): one list whatever the thread count
+//! and however the buckets fall. A comparison sort of a mesh's 30 million edge traversals
+//! spends most of its time comparing, and its first partition runs on one thread; counting
+//! by rank does neither. Ranks must be dense (at most a few times the list's length) for the
+//! counts to be cheap; ties of rank are sorted by key, so a list of few ranks is still
+//! sorted, by comparisons.
+
+use rayon::prelude::*;
+
+/// Items per bucket of rank ranges, on average (a bucket's counts stay in cache).
+const BUCKET: usize = 1 << 16;
+
+/// Items per chunk dealt into buckets on one thread.
+const DEALT: usize = 1 << 16;
+
+/// Most ranks counted per item (beyond, the ranks are too sparse to count: compared).
+const DENSE: u64 = 4;
+
+/// `v` sorted stably by `(rank(x), key(x))`: by counting on all threads where `v` is longer
+/// than a bucket, in one pass of counts otherwise; where the ranks are sparse (the greatest
+/// above [`DENSE`] times the length), by a stable comparison sort on all threads.
+pub(crate) fn sort_by_rank<T, K>(
+    v: &mut [T],
+    rank: impl Fn(&T) -> u32 + Sync,
+    key: impl Fn(&T) -> K + Sync,
+) where
+    T: Clone + Send + Sync,
+    K: Ord,
+{
+    let n = v.len();
+    let parallel = n > BUCKET && rayon::current_num_threads() > 1;
+    let top = if parallel {
+        v.par_iter().with_min_len(BUCKET).map(&rank).max()
+    } else {
+        v.iter().map(&rank).max()
+    };
+    let Some(top) = top else {
+        return;
+    };
+    let width = u64::from(top) + 1;
+    if width > DENSE * n as u64 + 64 {
+        v.par_sort_by_key(|x| (rank(x), key(x)));
+        return;
+    }
+    if !parallel {
+        let items = v.to_vec();
+        counted(&items, v, 0, width as usize, &rank, &key);
+        return;
+    }
+    // Buckets of equal rank ranges, as many as the length asks: ranks [lo(k), lo(k + 1)).
+    let buckets = n.div_ceil(BUCKET) as u64;
+    let bucket = |x: &T| (u64::from(rank(x)) * buckets / width) as usize;
+    let lo = |k: u64| (k * width).div_ceil(buckets) as u32;
+    // Each chunk's items dealt into the buckets, in order.
+    let dealt: Vec<Vec<Vec<T>>> = v
+        .par_chunks(DEALT)
+        .map(|chunk| {
+            let mut parts = vec![Vec::new(); buckets as usize];
+            for x in chunk {
+                parts[bucket(x)].push(x.clone());
+            }
+            parts
+        })
+        .collect();
+    // By bucket: its parts in chunk order, and its place in `v`.
+    let mut columns: Vec<Vec<Vec<T>>> = (0..buckets)
+        .map(|_| Vec::with_capacity(dealt.len()))
+        .collect();
+    for parts in dealt {
+        for (k, part) in parts.into_iter().enumerate() {
+            columns[k].push(part);
+        }
+    }
+    let mut places = Vec::with_capacity(columns.len());
+    let mut rest = &mut v[..];
+    for c in &columns {
+        let (here, after) = rest.split_at_mut(c.iter().map(Vec::len).sum());
+        places.push(here);
+        rest = after;
+    }
+    columns
+        .into_par_iter()
+        .zip(places)
+        .enumerate()
+        .for_each(|(k, (column, place))| {
+            let items = column.concat();
+            let (from, to) = (lo(k as u64), lo(k as u64 + 1));
+            counted(&items, place, from, (to - from) as usize, &rank, &key);
+        });
+}
+
+/// `items` (every rank in `from..from + width`) into `out` sorted stably by rank, then each
+/// run of one rank sorted stably by key.
+fn counted<T: Clone, K: Ord>(
+    items: &[T],
+    out: &mut [T],
+    from: u32,
+    width: usize,
+    rank: &impl Fn(&T) -> u32,
+    key: &impl Fn(&T) -> K,
+) {
+    let slot = |x: &T| (rank(x) - from) as usize;
+    // at[r]: where rank r's items start; while they are placed, the next one's place.
+    let mut at = vec![0usize; width + 1];
+    for x in items {
+        at[slot(x) + 1] += 1;
+    }
+    for r in 1..at.len() {
+        at[r] += at[r - 1];
+    }
+    for x in items {
+        let s = &mut at[slot(x)];
+        out[*s] = x.clone();
+        *s += 1;
+    }
+    // Now at[r] is where rank r's items end.
+    let mut start = 0;
+    for &end in &at[..width] {
+        if end - start > 1 {
+            out[start..end].sort_by_key(key);
+        }
+        start = end;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Items (rank, key, serial): ranks of every density (many ties, all distinct, few
+    /// ranks), keys with ties, so that stability shows in the serials.
+    fn items(n: usize, top: u32, keys: u32) -> Vec<(u32, u32, usize)> {
+        let mut s = n as u64 * 31 + u64::from(top);
+        let mut below = |m: u64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 33) % m) as u32
+        };
+        (0..n)
+            .map(|i| (below(u64::from(top) + 1), below(u64::from(keys)), i))
+            .collect()
+    }
+
+    #[test]
+    fn ranks_counted_on_several_threads_are_the_stable_sort() {
+        let pool = crate::chunked::pool;
+        for (n, top, keys) in [
+            (0, 0, 1),
+            (5, 3, 2),
+            (BUCKET, 10, 3),
+            (3 * BUCKET + 77, 3 * BUCKET as u32, 4),
+            (5 * BUCKET + 1, 7, 1000),
+            (4 * BUCKET + 5, 40 * BUCKET as u32, 2),
+            (2 * DEALT + 3, 0, 5),
+            // Sparse ranks: compared.
+            (BUCKET + 9, u32::MAX - 1, 3),
+            (100, 1_000_000, 3),
+        ] {
+            let v = items(n, top, keys);
+            let mut want = v.clone();
+            want.sort_by_key(|x| (x.0, x.1));
+            for threads in [1, 3] {
+                let mut got = v.clone();
+                pool(threads).install(|| sort_by_rank(&mut got, |x| x.0, |x| x.1));
+                assert_eq!(got, want, "n {n}, top {top}, {threads} threads");
+            }
+        }
+    }
+}
