@@ -66,67 +66,13 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
     let Some(grid) = Grid::fit(&box_of, n, &ids) else {
         return Vec::new();
     };
-    // Entries (cell key, box) packed in one word, key above box: sorting the words sorts
-    // by key then box, as sorting the pairs would, in half the memory.
     let shift = grid.id_bits;
-    // On several threads, each sub-chunk's ranges and entries are made on all threads and
-    // the entries joined in order at the end: the same list as one pass.
-    let split = ids.len() > PARALLEL_ABOVE && rayon::current_num_threads() > 1;
-    let mut entries: Vec<u64> = if split {
-        Vec::new()
-    } else {
-        Vec::with_capacity(ids.len() * 2)
-    };
+    let parallel = ids.len() > PARALLEL_ABOVE;
     // The cell of each box's least corner: the cell of the least corner of two boxes'
     // intersection is their componentwise max (cells are monotone in the coordinates), so
     // no pair needs a float-to-cell conversion.
     let mut lo_cell = vec![[0u16; 3]; n];
-    let entered = span.span(0.0, 0.1).steps(ids.len());
-    // A box's entries, in cell order.
-    let enter = |i: u32, [lo, hi]: [[u64; 3]; 2], entries: &mut Vec<u64>| {
-        for x in lo[0]..=hi[0] {
-            for y in lo[1]..=hi[1] {
-                for z in lo[2]..=hi[2] {
-                    entries.push(grid.key([x, y, z]) << shift | u64::from(i));
-                }
-            }
-        }
-    };
-    let mut parts: Vec<Vec<u64>> = Vec::new();
-    for (c, chunk) in ids.chunks(CHUNK * 64).enumerate() {
-        let range = |&i: &u32| grid.cell_range(&box_of(i));
-        if split {
-            let made: Vec<_> = chunk
-                .par_chunks(CHUNK)
-                .map(|sub| {
-                    let ranges: Vec<[[u64; 3]; 2]> = sub.iter().map(range).collect();
-                    let mut part = Vec::with_capacity(sub.len() * 2);
-                    for (&i, &r) in sub.iter().zip(&ranges) {
-                        enter(i, r, &mut part);
-                    }
-                    (ranges, part)
-                })
-                .collect();
-            for (sub, (ranges, part)) in chunk.chunks(CHUNK).zip(made) {
-                for (&i, [lo, _]) in sub.iter().zip(ranges) {
-                    lo_cell[i as usize] = lo.map(|c| c as u16);
-                }
-                parts.push(part);
-            }
-        } else {
-            for &i in chunk {
-                let r = range(&i);
-                lo_cell[i as usize] = r[0].map(|c| c as u16);
-                enter(i, r, &mut entries);
-            }
-        }
-        entered.tick_in(c, 1);
-    }
-    if split {
-        entries = crate::chunked::concat(&parts);
-        drop(parts);
-    }
-    let parallel = ids.len() > PARALLEL_ABOVE;
+    let mut entries = enter_all(&grid, &box_of, &ids, &mut lo_cell, parallel, &span);
     if parallel {
         entries.par_sort_unstable();
     } else {
@@ -177,6 +123,84 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
     }
     span.finish();
     found.into_iter().map(|x| x.1).collect()
+}
+
+/// Every box's entries (cell key, box) packed in one word, key above box (sorting the
+/// words sorts by key then box, as sorting the pairs would, in half the memory), in box
+/// order and each box's in cell order; and each box's least cell into `lo_cell`.
+///
+/// The entries are counted first, so that the list is made at its size and filled in place,
+/// each sub-chunk of `CHUNK` boxes into its own slice (on all threads where `parallel`): no
+/// parts held beside the list while they are joined, no list grown by doubling. The same
+/// list for any thread count. A tick of `span`'s first tenth per `CHUNK * 64` boxes.
+fn enter_all(
+    grid: &Grid,
+    box_of: &(impl Fn(u32) -> Bounds3 + Sync),
+    ids: &[u32],
+    lo_cell: &mut [[u16; 3]],
+    parallel: bool,
+    span: &Span,
+) -> Vec<u64> {
+    let shift = grid.id_bits;
+    let range = |i: u32| grid.cell_range(&box_of(i));
+    let cells_in = |[lo, hi]: [[u64; 3]; 2]| {
+        (0..3)
+            .map(|k| (hi[k] - lo[k] + 1) as usize)
+            .product::<usize>()
+    };
+    let subs: Vec<&[u32]> = ids.chunks(CHUNK).collect();
+    let count = |sub: &&[u32]| sub.iter().map(|&i| cells_in(range(i))).sum::<usize>();
+    let counts: Vec<usize> = if parallel {
+        subs.par_iter().map(count).collect()
+    } else {
+        subs.iter().map(count).collect()
+    };
+    let mut entries = vec![0u64; counts.iter().sum()];
+    let mut slices: Vec<&mut [u64]> = Vec::with_capacity(subs.len());
+    let mut rest = entries.as_mut_slice();
+    for &c in &counts {
+        let (mine, tail) = std::mem::take(&mut rest).split_at_mut(c);
+        slices.push(mine);
+        rest = tail;
+    }
+    // A sub-chunk's entries into its slice; its boxes' least cells returned.
+    let fill = |(sub, out): (&&[u32], &mut &mut [u64])| -> Vec<[u16; 3]> {
+        let mut at = 0;
+        let mut lows = Vec::with_capacity(sub.len());
+        for &i in sub.iter() {
+            let [lo, hi] = range(i);
+            lows.push(lo.map(|c| c as u16));
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        out[at] = grid.key([x, y, z]) << shift | u64::from(i);
+                        at += 1;
+                    }
+                }
+            }
+        }
+        debug_assert_eq!(at, out.len(), "counted as entered");
+        lows
+    };
+    let entered = span.span(0.0, 0.1).steps(ids.len());
+    for (c, (group, outs)) in subs.chunks(64).zip(slices.chunks_mut(64)).enumerate() {
+        let lows: Vec<Vec<[u16; 3]>> = if parallel {
+            group
+                .par_iter()
+                .zip(outs.par_iter_mut())
+                .map(fill)
+                .collect()
+        } else {
+            group.iter().zip(outs.iter_mut()).map(fill).collect()
+        };
+        for (sub, lows) in group.iter().zip(lows) {
+            for (&i, lo) in sub.iter().zip(lows) {
+                lo_cell[i as usize] = lo;
+            }
+        }
+        entered.tick_in(c, 1);
+    }
+    entries
 }
 
 /// True when the closed boxes share a point.
