@@ -289,15 +289,23 @@ fn faces_beside(adj: &[HalfEdge]) -> Vec<FaceId> {
 
 /// The index ranges of the edges in grouped half-edges, in order of first appearance.
 fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
-    // Where each edge's group starts, found in fixed chunks on all threads.
+    // Where each edge's group starts, found in fixed chunks on all threads (counted, then
+    // written in place: no parts beside the list).
     let n = half.len();
-    let starts = crate::chunked::flat_map(n, CHUNK, |r, starts| {
-        starts.extend(
-            r.filter(|&i| i == 0 || (half[i].a, half[i].b) != (half[i - 1].a, half[i - 1].b)),
-        )
-    });
+    let starts_at =
+        |i: &usize| *i == 0 || (half[*i].a, half[*i].b) != (half[i - 1].a, half[i - 1].b);
+    let starts: Vec<u32> = crate::chunked::fill(
+        n,
+        CHUNK,
+        |r| r.filter(starts_at).count(),
+        |r, out| {
+            for (o, i) in out.iter_mut().zip(r.filter(starts_at)) {
+                *o = i as u32;
+            }
+        },
+    );
     let mut groups: Vec<Range<u32>> = crate::chunked::map(starts.len(), |k| {
-        starts[k] as u32..starts.get(k + 1).map_or(n, |&e| e) as u32
+        starts[k]..starts.get(k + 1).map_or(n as u32, |&e| e)
     });
     sort_by_key(&mut groups, |g| half[g.start as usize].seq);
     groups
