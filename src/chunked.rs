@@ -37,7 +37,47 @@ where
             part
         })
         .collect();
-    concat(&parts)
+    concat_freeing(parts)
+}
+
+/// What `each` writes for every range of `0..n`, in order, in a list made at its size:
+/// `size(r)` must be exactly the number of items `each(r, out)` writes, and `each` is
+/// given a slice of that many to fill. The ranges are fixed chunks of `chunk` indices, each
+/// filled in its own place on all threads (on one thread, or for one chunk, one after
+/// another): unlike [`flat_map`], no parts are held beside the list while it is joined.
+pub(crate) fn fill<T, S, F>(n: usize, chunk: usize, size: S, each: F) -> Vec<T>
+where
+    T: Default + Clone + Send + Sync,
+    S: Fn(Range<usize>) -> usize + Sync,
+    F: Fn(Range<usize>, &mut [T]) + Sync,
+{
+    let chunk = chunk.max(1);
+    let range = |c: usize| c * chunk..((c + 1) * chunk).min(n);
+    let chunks = n.div_ceil(chunk);
+    let serial = chunks <= 1 || rayon::current_num_threads() == 1;
+    let sizes: Vec<usize> = if serial {
+        (0..chunks).map(|c| size(range(c))).collect()
+    } else {
+        (0..chunks)
+            .into_par_iter()
+            .map(|c| size(range(c)))
+            .collect()
+    };
+    let mut out = vec![T::default(); sizes.iter().sum()];
+    let mut places: Vec<(usize, &mut [T])> = Vec::with_capacity(chunks);
+    let mut rest = out.as_mut_slice();
+    for (c, &k) in sizes.iter().enumerate() {
+        let (mine, tail) = std::mem::take(&mut rest).split_at_mut(k);
+        places.push((c, mine));
+        rest = tail;
+    }
+    let run = |(c, place): (usize, &mut [T])| each(range(c), place);
+    if serial {
+        places.into_iter().for_each(run);
+    } else {
+        places.into_par_iter().for_each(run);
+    }
+    out
 }
 
 /// `f(i)` for every `i` in `0..n`, in order: on all threads (an indexed collect) where `n` is
@@ -85,6 +125,23 @@ pub(crate) fn concat<T: Clone + Send + Sync>(parts: &[Vec<T>]) -> Vec<T> {
     let slices: Vec<&[T]> = parts.iter().map(Vec::as_slice).collect();
     let mut out = Vec::new();
     extend_concat(&mut out, &slices);
+    out
+}
+
+/// Parts joined at a time by [`concat_freeing`]: a few chunks of work for each thread.
+const PARTS_AT_ONCE: usize = 16;
+
+/// [`concat`] of parts that are given up: each few parts freed as soon as they are copied,
+/// so that the list and its parts are not all held at once (the list's pages are touched
+/// only as it is filled, and the parts' memory goes back to the allocator as they are
+/// done). The same list as [`concat`].
+pub(crate) fn concat_freeing<T: Clone + Send + Sync>(mut parts: Vec<Vec<T>>) -> Vec<T> {
+    let mut out = Vec::with_capacity(parts.iter().map(Vec::len).sum());
+    for group in parts.chunks_mut(PARTS_AT_ONCE) {
+        let slices: Vec<&[T]> = group.iter().map(Vec::as_slice).collect();
+        extend_concat(&mut out, &slices);
+        group.iter_mut().for_each(|p| *p = Vec::new());
+    }
     out
 }
 
@@ -196,6 +253,31 @@ mod tests {
                 out.push((i, j as u32));
             }
         }
+    }
+
+    #[test]
+    fn fill_is_the_one_pass_list_on_any_thread_count() {
+        // Index i writes i % 3 copies of i: chunks of uneven sizes, some empty.
+        let size = |r: Range<usize>| r.map(|i| i % 3).sum();
+        let each = |r: Range<usize>, out: &mut [usize]| {
+            let mut at = 0;
+            for i in r {
+                for _ in 0..i % 3 {
+                    out[at] = i;
+                    at += 1;
+                }
+            }
+            assert_eq!(at, out.len(), "sized as filled");
+        };
+        let one: Vec<usize> = (0..1000)
+            .flat_map(|i| std::iter::repeat_n(i, i % 3))
+            .collect();
+        assert_eq!(one.len(), 999);
+        for threads in [1, 3] {
+            let got = pool(threads).install(|| fill(1000, 7, size, each));
+            assert_eq!(got, one, "{threads} threads");
+        }
+        assert!(fill(0, 7, size, each).is_empty());
     }
 
     #[test]

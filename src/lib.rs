@@ -71,7 +71,7 @@ pub use prepare::{prepare, PrepareOptions};
 pub use progress::Progress;
 pub use scene::face_id::FaceId;
 pub use scene::flatten::FlatMesh;
-pub use scene::object::{Content, Face, Instance, Mesh, Object};
+pub use scene::object::{Content, Face, FaceIndices, Instance, Mesh, Object};
 pub use scene::object_tree::HierarchyKind;
 pub use scene::Scene;
 pub use view::camera::{Camera, CameraRequest, Projection};

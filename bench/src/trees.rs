@@ -33,11 +33,14 @@ pub fn one_mesh(scene: &Scene) -> Mesh {
             let base = m.vertices.len() as u32;
             m.vertices
                 .extend(mesh.vertices.iter().map(|v| xf.transform_point(v)));
-            m.faces.extend(
-                mesh.faces
-                    .iter()
-                    .map(|f| Face::new(f.vertices.iter().map(|v| v + base).collect())),
-            );
+            m.faces.extend(mesh.faces.iter().map(|f| {
+                Face::new(
+                    f.vertices
+                        .iter()
+                        .map(|v| v + base)
+                        .collect::<kepler_hsr::FaceIndices>(),
+                )
+            }));
         });
     m
 }

@@ -52,85 +52,21 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
     f: impl Fn(u32, u32) -> Option<T> + Sync,
     span: Span,
 ) -> Vec<T> {
-    // Few boxes stay off the thread pool (a solid's many small searches would each wait
-    // on it).
-    // In fixed chunks, joined in order on all threads.
+    // In fixed chunks, joined in order on all threads (few boxes stay off the thread pool:
+    // a solid's many small searches would each wait on it).
     let ids: Vec<u32> = crate::chunked::flat_map(n, CHUNK, |r, out| {
         out.extend(r.map(|i| i as u32).filter(|&i| valid(&box_of(i))))
     });
     let Some(grid) = Grid::fit(&box_of, n, &ids) else {
         return Vec::new();
     };
-    // Entries (cell key, box) packed in one word, key above box: sorting the words sorts
-    // by key then box, as sorting the pairs would, in half the memory.
     let shift = grid.id_bits;
-    // On several threads, each sub-chunk's ranges and entries are made on all threads and
-    // the entries joined in order at the end: the same list as one pass.
-    let split = ids.len() > PARALLEL_ABOVE && rayon::current_num_threads() > 1;
-    let mut entries: Vec<u64> = if split {
-        Vec::new()
-    } else {
-        Vec::with_capacity(ids.len() * 2)
-    };
+    let parallel = ids.len() > PARALLEL_ABOVE;
     // The cell of each box's least corner: the cell of the least corner of two boxes'
     // intersection is their componentwise max (cells are monotone in the coordinates), so
     // no pair needs a float-to-cell conversion.
     let mut lo_cell = vec![[0u16; 3]; n];
-    let entered = span.span(0.0, 0.1).steps(ids.len());
-    // A box's entries, in cell order.
-    let enter = |i: u32, [lo, hi]: [[u64; 3]; 2], entries: &mut Vec<u64>| {
-        for x in lo[0]..=hi[0] {
-            for y in lo[1]..=hi[1] {
-                for z in lo[2]..=hi[2] {
-                    entries.push(grid.key([x, y, z]) << shift | u64::from(i));
-                }
-            }
-        }
-    };
-    let mut parts: Vec<Vec<u64>> = Vec::new();
-    // The cells of boxes not yet entered: from box `rest_from` on (ids ascend, so each
-    // sub-chunk's boxes have their own run of cells, written on its thread).
-    let (mut rest, mut rest_from) = (&mut lo_cell[..], 0usize);
-    for (c, chunk) in ids.chunks(CHUNK * 64).enumerate() {
-        let range = |&i: &u32| grid.cell_range(&box_of(i));
-        if split {
-            let subs: Vec<_> = chunk
-                .chunks(CHUNK)
-                .map(|sub| {
-                    let end = sub[sub.len() - 1] as usize + 1;
-                    let (here, after) = std::mem::take(&mut rest).split_at_mut(end - rest_from);
-                    let from = rest_from;
-                    (rest, rest_from) = (after, end);
-                    (sub, here, from)
-                })
-                .collect();
-            let made: Vec<Vec<u64>> = subs
-                .into_par_iter()
-                .map(|(sub, cells, from)| {
-                    let mut part = Vec::with_capacity(sub.len() * 2);
-                    for &i in sub {
-                        let r = range(&i);
-                        cells[i as usize - from] = r[0].map(|c| c as u16);
-                        enter(i, r, &mut part);
-                    }
-                    part
-                })
-                .collect();
-            parts.extend(made);
-        } else {
-            for &i in chunk {
-                let r = range(&i);
-                rest[i as usize] = r[0].map(|c| c as u16);
-                enter(i, r, &mut entries);
-            }
-        }
-        entered.tick_in(c, 1);
-    }
-    if split {
-        entries = crate::chunked::concat(&parts);
-        drop(parts);
-    }
-    let parallel = ids.len() > PARALLEL_ABOVE;
+    let mut entries = enter_all(&grid, &box_of, &ids, &mut lo_cell, parallel, &span);
     if parallel {
         entries.par_sort_unstable();
     } else {
@@ -181,6 +117,77 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
     }
     span.finish();
     found.into_iter().map(|x| x.1).collect()
+}
+
+/// Every box's entries (cell key, box) packed in one word, key above box (sorting the
+/// words sorts by key then box, as sorting the pairs would, in half the memory), in box
+/// order and each box's in cell order; and each box's least cell into `lo_cell`.
+///
+/// The entries are counted first, so that the list is made at its size and filled in place,
+/// each sub-chunk of `CHUNK` boxes into its own slice (on all threads where `parallel`): no
+/// parts held beside the list while they are joined, no list grown by doubling. The same
+/// list for any thread count. A tick of `span`'s first tenth per `CHUNK * 64` boxes.
+fn enter_all(
+    grid: &Grid,
+    box_of: &(impl Fn(u32) -> Bounds3 + Sync),
+    ids: &[u32],
+    lo_cell: &mut [[u16; 3]],
+    parallel: bool,
+    span: &Span,
+) -> Vec<u64> {
+    let shift = grid.id_bits;
+    let range = |i: u32| grid.cell_range(&box_of(i));
+    let cells_in = |[lo, hi]: [[u64; 3]; 2]| {
+        (0..3)
+            .map(|k| (hi[k] - lo[k] + 1) as usize)
+            .product::<usize>()
+    };
+    let subs: Vec<&[u32]> = ids.chunks(CHUNK).collect();
+    let count = |sub: &&[u32]| sub.iter().map(|&i| cells_in(range(i))).sum::<usize>();
+    let counts: Vec<usize> = if parallel {
+        subs.par_iter().map(count).collect()
+    } else {
+        subs.iter().map(count).collect()
+    };
+    let mut entries = vec![0u64; counts.iter().sum()];
+    // Each sub-chunk's own slices: of the entries (its count), and of the least cells (from
+    // its first box to its last: ids ascend, so the runs do not overlap).
+    let mut slices: Vec<(&mut [u64], &mut [[u16; 3]], usize)> = Vec::with_capacity(subs.len());
+    let (mut rest, mut cells, mut cells_from) = (entries.as_mut_slice(), lo_cell, 0usize);
+    for (sub, &c) in subs.iter().zip(&counts) {
+        let (mine, tail) = std::mem::take(&mut rest).split_at_mut(c);
+        let end = sub[sub.len() - 1] as usize + 1;
+        let (here, after) = std::mem::take(&mut cells).split_at_mut(end - cells_from);
+        slices.push((mine, here, cells_from));
+        (rest, cells, cells_from) = (tail, after, end);
+    }
+    // A sub-chunk's entries and its boxes' least cells, into its slices.
+    let fill = |(sub, (out, lows, from)): (&&[u32], &mut (&mut [u64], &mut [[u16; 3]], usize))| {
+        let mut at = 0;
+        for &i in sub.iter() {
+            let [lo, hi] = range(i);
+            lows[i as usize - *from] = lo.map(|c| c as u16);
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        out[at] = grid.key([x, y, z]) << shift | u64::from(i);
+                        at += 1;
+                    }
+                }
+            }
+        }
+        debug_assert_eq!(at, out.len(), "counted as entered");
+    };
+    let entered = span.span(0.0, 0.1).steps(ids.len());
+    for (c, (group, outs)) in subs.chunks(64).zip(slices.chunks_mut(64)).enumerate() {
+        if parallel {
+            group.par_iter().zip(outs.par_iter_mut()).for_each(fill);
+        } else {
+            group.iter().zip(outs.iter_mut()).for_each(fill);
+        }
+        entered.tick_in(c, 1);
+    }
+    entries
 }
 
 /// True when the closed boxes share a point.

@@ -568,7 +568,7 @@ mod tests {
         let g = build_first(text, M4::identity()).result.unwrap();
         let m = mesh_of(&g);
         assert_eq!(m.faces.len(), 1);
-        assert_eq!(m.faces[0].vertices, vec![0, 1, 2, 3]);
+        assert_eq!(m.faces[0].vertices[..], [0, 1, 2, 3]);
         let e = build_first(
             "vertices { v 0 0 0; v 1 0 0; v 1 1 0 }\nface 0 1 3\n",
             M4::identity(),

@@ -362,7 +362,7 @@ fn clean_face(
         let tri = [idx[t[0]], idx[t[1]], idx[t[2]]];
         let s = FaceShape::of(&tri.map(|k| verts[k as usize]));
         if s.area2 > AREA_TOL * s.diameter * s.diameter {
-            out.push(Face::new(tri.to_vec()));
+            out.push(Face::new(tri));
         }
     }
     warnings.push(Warning {

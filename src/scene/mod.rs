@@ -20,7 +20,7 @@ use std::path::PathBuf;
 use crate::geom::{Box3, M4, P3, V3};
 
 pub(crate) use face_id::FaceId;
-pub(crate) use object::{Content, Face, Mesh, Object};
+pub(crate) use object::{Content, Face, FaceIndices, Mesh, Object};
 pub(crate) use proof::{CapFailure, ProvenPieces, Solidity};
 pub(crate) use texture::{Texture, TextureFrame};
 

@@ -12,20 +12,25 @@ use super::proof::{ProvenPieces, Solidity};
 use super::texture::Texture;
 use super::topology::Pieces;
 
+/// A face's vertex indices: up to four held inline, more on the heap. It dereferences to
+/// `[u32]`; make one with `FaceIndices::from_slice` or `collect()`.
+pub type FaceIndices = smallvec::SmallVec<[u32; 4]>;
+
 /// A planar polygon of an object, indexing the object's vertex list (the paper's FACE).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Face {
-    /// Indices into the object's vertices, counter-clockwise seen from outside for solids.
-    pub vertices: Vec<u32>,
+    /// Indices into the object's vertices, counter-clockwise seen from outside for solids
+    /// (inline up to four: a triangle or a quad takes no heap block of its own).
+    pub vertices: FaceIndices,
     /// Surface markings in the face's texture coordinates (the paper's first use of texture).
     pub(crate) texture: Option<Arc<Texture>>,
 }
 
 impl Face {
-    /// A face with no texture.
-    pub fn new(vertices: Vec<u32>) -> Self {
+    /// A face with no texture, of the indices `vertices` (a `Vec`, an array, a slice).
+    pub fn new(vertices: impl AsRef<[u32]>) -> Self {
         Face {
-            vertices,
+            vertices: FaceIndices::from_slice(vertices.as_ref()),
             texture: None,
         }
     }
@@ -322,5 +327,25 @@ impl Object {
             }
             Content::Instance(i) => i.prototype.walk_meshes(&(xf * i.transform), path, f),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_triangle_or_a_quad_holds_its_indices_inline() {
+        // 32 bytes a face, as with a Vec, but no heap block of its own up to four corners.
+        assert_eq!(std::mem::size_of::<Face>(), 32);
+        for n in 3..=4u32 {
+            let f = Face::new((0..n).collect::<Vec<_>>());
+            assert!(!f.vertices.spilled(), "{n} corners inline");
+            assert_eq!(f.vertices[..], (0..n).collect::<Vec<_>>()[..]);
+        }
+        let five = Face::new([0, 1, 2, 3, 4]);
+        assert!(five.vertices.spilled(), "five corners on the heap");
+        assert_eq!(five.vertices.as_slice(), &[0, 1, 2, 3, 4]);
+        assert_eq!(Face::new(&[7u32, 8, 9][..]), Face::new(vec![7, 8, 9]));
     }
 }

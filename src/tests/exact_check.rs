@@ -165,7 +165,7 @@ fn joined(a: &crate::scene::Mesh, b: &crate::scene::Mesh) -> crate::scene::Mesh 
     let faces: Vec<Vec<u32>> = a
         .faces
         .iter()
-        .map(|f| f.vertices.clone())
+        .map(|f| f.vertices.to_vec())
         .chain(
             b.faces
                 .iter()

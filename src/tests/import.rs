@@ -44,7 +44,7 @@ fn describe(o: &Object, path: &str, out: &mut String) {
     };
     match &o.content {
         Content::Mesh(m) => {
-            let faces: Vec<&Vec<u32>> = m.faces.iter().map(|f| &f.vertices).collect();
+            let faces: Vec<&[u32]> = m.faces.iter().map(|f| f.vertices.as_slice()).collect();
             let _ = writeln!(out, "{p} mesh {:?} {faces:?}", m.vertices);
         }
         Content::Subobjects(s) => {

@@ -51,7 +51,7 @@ fn assert_inside(m: &Mesh, b: &Box3, what: &str) {
 fn transformed(m: &Mesh, xf: &M4) -> Mesh {
     let raw = PolyMesh::new(
         m.vertices.iter().map(|p| xf.transform_point(p)).collect(),
-        m.faces.iter().map(|f| f.vertices.clone()).collect(),
+        m.faces.iter().map(|f| f.vertices.to_vec()).collect(),
     );
     prim(raw)
 }

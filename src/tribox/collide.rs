@@ -288,7 +288,7 @@ mod tests {
         ];
         Mesh {
             vertices: v.to_vec(),
-            faces: f.iter().map(|t| Face::new(t.to_vec())).collect(),
+            faces: f.iter().map(Face::new).collect(),
             closed: true,
             solidity: None,
             caps: Vec::new(),

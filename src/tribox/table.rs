@@ -182,7 +182,7 @@ fn world_mesh(mesh: &Mesh, xf: &M4) -> Option<Mesh> {
             .iter()
             .map(|v| xf.transform_point(v))
             .collect(),
-        mesh.faces.iter().map(|f| f.vertices.clone()).collect(),
+        mesh.faces.iter().map(|f| f.vertices.to_vec()).collect(),
     )
 }
 

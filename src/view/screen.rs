@@ -14,7 +14,7 @@ use crate::geom::poly2::{ring_area, Pt2};
 use crate::geom::{newell, orient2d, orient3d_refs, Corners, Rect, P3};
 #[cfg(test)]
 use crate::scene::Scene;
-use crate::scene::{FaceId, Leaf};
+use crate::scene::{FaceId, FaceIndices, Leaf};
 
 use super::backfaces::BackCull;
 use super::camera::{project_dd, Camera, Projection};
@@ -504,7 +504,7 @@ impl LeafJob<'_> {
 
     /// Adds the pieces of face `k` (local index) to `part`.
     fn face(&self, part: &mut Part, k: usize, scratch: &mut Vec<[f64; 3]>) {
-        let mut idx: Vec<u32> = self.leaf.mesh.faces[k].vertices.clone();
+        let mut idx: FaceIndices = self.leaf.mesh.faces[k].vertices.clone();
         if self.mirrors {
             idx.reverse();
         }

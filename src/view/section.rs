@@ -34,7 +34,7 @@ use crate::geom::plane_cut::{crossing, side, CutPlane};
 use crate::geom::{Box3, M4, MAX_COORD, P3, V3};
 use crate::scene::section_info::SectionInfo;
 use crate::scene::style::Style;
-use crate::scene::{Content, Face, Mesh, Object, Scene};
+use crate::scene::{Content, Face, FaceIndices, Mesh, Object, Scene};
 
 /// Checks the planes a render is asked to cut with: finite, within the coordinate limit,
 /// normals not zero.
@@ -303,7 +303,7 @@ impl Cutter<'_> {
         let mut out_faces = Vec::with_capacity(m.faces.len());
         for (k, (f, r)) in m.faces.iter().zip(&faces).enumerate() {
             if r.len() >= 3 {
-                let idx: Vec<u32> = r.iter().map(|p| verts.index(p)).collect();
+                let idx: FaceIndices = r.iter().map(|p| verts.index(p)).collect();
                 let same = idx.len() == f.vertices.len() && {
                     let orig = ring(&mut f.vertices.iter().map(|&k| world[k as usize]));
                     orig.iter().zip(r).all(|(a, b)| a == b)
@@ -316,14 +316,16 @@ impl Cutter<'_> {
                 // Wholly removed: its place kept, its corners as they were, never projected.
                 self.removed.push(first + k as u32);
                 let orig = ring(&mut f.vertices.iter().map(|&k| world[k as usize]));
-                out_faces.push(Face::new(orig.iter().map(|p| verts.index(p)).collect()));
+                out_faces.push(Face::new(
+                    orig.iter().map(|p| verts.index(p)).collect::<FaceIndices>(),
+                ));
             }
         }
         if !secs.is_empty() {
             let mut sv = VertexSet::default();
             let sf = secs
                 .iter()
-                .map(|r| Face::new(r.iter().map(|p| sv.index(p)).collect()))
+                .map(|r| Face::new(r.iter().map(|p| sv.index(p)).collect::<FaceIndices>()))
                 .collect();
             let mesh = Mesh {
                 vertices: sv.points,

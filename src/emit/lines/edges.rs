@@ -121,7 +121,7 @@ pub(crate) struct Edge {
 
 /// One traversal of an undirected edge by a face: the edge's key (least vertex first), the
 /// corner it starts from and the face. 16 bytes: a 10M-face mesh has 30M of them at once.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 struct HalfEdge {
     a: u32,
     b: u32,
@@ -242,28 +242,32 @@ const CHUNK: usize = crate::chunked::CHUNK;
 /// Every traversal of an edge by the faces `start..end` (one leaf), grouped by edge, each
 /// group in face order; `base` is the leaf's first corner in [`WorldFaces::vertices`].
 fn half_edges(world: &WorldFaces, start: usize, end: usize, base: usize) -> Vec<HalfEdge> {
-    // In fixed chunks of faces on all threads, joined in face order.
-    let mut half = crate::chunked::flat_map(end - start, CHUNK, |r, half| {
-        let faces = start + r.start..start + r.end;
-        half.reserve(
-            world.faces[faces.clone()]
-                .iter()
-                .map(|f| f.len as usize)
-                .sum(),
-        );
-        for f in faces {
+    // In fixed chunks of faces on all threads, each in its place (counted first), in face
+    // order.
+    let faces = |r: Range<usize>| start + r.start..start + r.end;
+    let kept = |v: &[u32], i: usize| v[i] != v[(i + 1) % v.len()];
+    let size = |r: Range<usize>| {
+        faces(r)
+            .map(|f| {
+                let v = world.vertices_of(f);
+                (0..v.len()).filter(|&i| kept(v, i)).count()
+            })
+            .sum()
+    };
+    let mut half = crate::chunked::fill(end - start, CHUNK, size, |r, half| {
+        let mut at = 0;
+        for f in faces(r) {
             let first = world.faces[f].first - base;
             let v = world.vertices_of(f);
-            for i in 0..v.len() {
+            for i in (0..v.len()).filter(|&i| kept(v, i)) {
                 let (p, q) = (v[i], v[(i + 1) % v.len()]);
-                if p != q {
-                    half.push(HalfEdge {
-                        a: p.min(q),
-                        b: p.max(q),
-                        seq: (first + i) as u32,
-                        face: f as u32,
-                    });
-                }
+                half[at] = HalfEdge {
+                    a: p.min(q),
+                    b: p.max(q),
+                    seq: (first + i) as u32,
+                    face: f as u32,
+                };
+                at += 1;
             }
         }
     });
@@ -285,15 +289,23 @@ fn faces_beside(adj: &[HalfEdge]) -> Vec<FaceId> {
 
 /// The index ranges of the edges in grouped half-edges, in order of first appearance.
 fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
-    // Where each edge's group starts, found in fixed chunks on all threads.
+    // Where each edge's group starts, found in fixed chunks on all threads (counted, then
+    // written in place: no parts beside the list).
     let n = half.len();
-    let starts = crate::chunked::flat_map(n, CHUNK, |r, starts| {
-        starts.extend(
-            r.filter(|&i| i == 0 || (half[i].a, half[i].b) != (half[i - 1].a, half[i - 1].b)),
-        )
-    });
+    let starts_at =
+        |i: &usize| *i == 0 || (half[*i].a, half[*i].b) != (half[i - 1].a, half[i - 1].b);
+    let starts: Vec<u32> = crate::chunked::fill(
+        n,
+        CHUNK,
+        |r| r.filter(starts_at).count(),
+        |r, out| {
+            for (o, i) in out.iter_mut().zip(r.filter(starts_at)) {
+                *o = i as u32;
+            }
+        },
+    );
     let mut groups: Vec<Range<u32>> = crate::chunked::map(starts.len(), |k| {
-        starts[k] as u32..starts.get(k + 1).map_or(n, |&e| e) as u32
+        starts[k]..starts.get(k + 1).map_or(n as u32, |&e| e)
     });
     // Each group's first seq is unique and below the leaf's corners: counted.
     sort_by_rank(&mut groups, |g| half[g.start as usize].seq, |_| ());
@@ -386,7 +398,7 @@ mod tests {
                     [at(x, y), at(x + 1, y + 1), at(x, y + 1)],
                 ]
             })
-            .map(|t| crate::scene::Face::new(t.to_vec()))
+            .map(crate::scene::Face::new)
             .collect();
         crate::scene::Mesh {
             vertices,

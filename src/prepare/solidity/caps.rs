@@ -362,7 +362,7 @@ fn caps_of(mesh: &Mesh, loops: &[Vec<u32>], ways: &[Way]) -> (Vec<Face>, Vec<usi
             Way::Ears => ears(mesh, lp).expect("only simple loops are ear-clipped"),
         };
         for t in tris {
-            caps.push(Face::new(t.to_vec()));
+            caps.push(Face::new(t));
             loop_of.push(l);
         }
     }
@@ -484,7 +484,7 @@ pub(crate) mod tests {
                 ]
             })
             .filter(|t| !t.iter().all(|&p| rim(p)))
-            .map(|t| Face::new(t.map(at).to_vec()))
+            .map(|t| Face::new(t.map(at)))
             .collect();
         Mesh {
             vertices,
@@ -526,7 +526,7 @@ pub(crate) mod tests {
                 .iter()
                 .enumerate()
                 .filter(|(k, _)| !skip.contains(k))
-                .map(|(_, f)| Face::new(f.to_vec()))
+                .map(|(_, f)| Face::new(f))
                 .collect(),
             ..Mesh::default()
         }
@@ -610,7 +610,11 @@ pub(crate) mod tests {
             P3::new(0.5, 0.5, 1.5),
         ]);
         for f in [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]] {
-            m.faces.push(Face::new(f.iter().map(|k| a + k).collect()));
+            m.faces.push(Face::new(
+                f.iter()
+                    .map(|k| a + k)
+                    .collect::<crate::scene::FaceIndices>(),
+            ));
         }
         assert_eq!(solidity(&m), Solidity::Open(CapFailure::NotTried));
         assert_eq!(cap_holes(&m).map(|c| c.loops), Ok(1));
@@ -667,7 +671,9 @@ pub(crate) mod tests {
         let l = [[0., 0.], [3., 0.], [3., 1.], [1., 1.], [1., 3.], [0., 3.]];
         let mut vertices: Vec<P3> = l.iter().map(|p| P3::new(p[0], p[1], 0.0)).collect();
         vertices.extend(l.iter().map(|p| P3::new(p[0], p[1], 1.0)));
-        let mut faces = vec![Face::new((0..6).rev().collect())]; // floor, facing -z
+        let mut faces = vec![Face::new(
+            (0..6).rev().collect::<crate::scene::FaceIndices>(),
+        )]; // floor, facing -z
         for i in 0..6u32 {
             let j = (i + 1) % 6;
             faces.push(Face::new(vec![i, j, j + 6, i + 6]));
@@ -699,7 +705,7 @@ pub(crate) mod tests {
         ];
         let faces = [[0, 2, 1], [0, 1, 3], [1, 4, 3], [4, 2, 3], [2, 0, 3]]
             .iter()
-            .map(|f| Face::new(f.to_vec()))
+            .map(Face::new)
             .collect();
         let m = Mesh {
             vertices,
@@ -711,7 +717,7 @@ pub(crate) mod tests {
         assert!(slit(&m, &loops[0]));
         // The face 0-2-1 gets the corner 4 on its edge 2-1: closed, no cap needed.
         let closed = close_slits(&m, &loops).unwrap();
-        assert_eq!(closed[0].vertices, vec![0, 2, 4, 1]);
+        assert_eq!(closed[0].vertices[..], [0, 2, 4, 1]);
         assert_eq!(
             cap_holes(&m),
             Ok(Caps {

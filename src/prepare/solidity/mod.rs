@@ -996,7 +996,7 @@ pub(crate) mod tests {
         ];
         Mesh {
             vertices: p.iter().map(|q| P3::new(q[0], q[1], q[2])).collect(),
-            faces: f.iter().map(|t| Face::new(t.to_vec())).collect(),
+            faces: f.iter().map(Face::new).collect(),
             ..Mesh::default()
         }
     }

@@ -95,11 +95,14 @@ mod tests {
         let mut m = a.clone();
         m.vertices
             .extend(b.vertices.iter().map(|p| P3::new(p.x + dx, p.y, p.z)));
-        m.faces.extend(
-            b.faces
-                .iter()
-                .map(|f| Face::new(f.vertices.iter().map(|v| v + off).collect())),
-        );
+        m.faces.extend(b.faces.iter().map(|f| {
+            Face::new(
+                f.vertices
+                    .iter()
+                    .map(|v| v + off)
+                    .collect::<crate::scene::FaceIndices>(),
+            )
+        }));
         m
     }
 

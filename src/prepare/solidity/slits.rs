@@ -13,7 +13,7 @@
 
 use std::collections::HashMap;
 
-use crate::scene::{Face, Mesh};
+use crate::scene::{Face, FaceIndices, Mesh};
 
 /// The faces of `mesh` with the edges spanning each of `slits` (loops of vertices, each
 /// following its boundary edges backwards, every corner on one line) split at the slit's
@@ -55,12 +55,12 @@ pub(super) fn close_slits(mesh: &Mesh, slits: &[Vec<u32>]) -> Option<Vec<Face>> 
         if n != 3 {
             return None;
         }
-        let mut out = Vec::with_capacity(n + 2);
+        let mut out = FaceIndices::new();
         for i in 0..n {
             let (u, v) = (f.vertices[i], f.vertices[(i + 1) % n]);
             out.push(u);
             if let Some(mid) = inserts.get(&(u, v)) {
-                out.extend(mid);
+                out.extend(mid.iter().copied());
                 found += 1;
             }
         }

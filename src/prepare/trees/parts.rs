@@ -199,7 +199,7 @@ mod tests {
             .unwrap_or(0);
         let m = Mesh {
             vertices: (0..n).map(|i| P3::new(i as f64, 0., 0.)).collect(),
-            faces: faces.iter().map(|f| Face::new(f.to_vec())).collect(),
+            faces: faces.iter().map(Face::new).collect(),
             closed: false,
             solidity: None,
             caps: Vec::new(),
