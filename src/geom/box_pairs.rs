@@ -152,17 +152,26 @@ fn enter_all(
     let mut entries = vec![0u64; counts.iter().sum()];
     // Each sub-chunk's own slices: of the entries (its count), and of the least cells (from
     // its first box to its last: ids ascend, so the runs do not overlap).
-    let mut slices: Vec<(&mut [u64], &mut [[u16; 3]], usize)> = Vec::with_capacity(subs.len());
+    let mut slices: Vec<Slot> = Vec::with_capacity(subs.len());
     let (mut rest, mut cells, mut cells_from) = (entries.as_mut_slice(), lo_cell, 0usize);
     for (sub, &c) in subs.iter().zip(&counts) {
         let (mine, tail) = std::mem::take(&mut rest).split_at_mut(c);
         let end = sub[sub.len() - 1] as usize + 1;
         let (here, after) = std::mem::take(&mut cells).split_at_mut(end - cells_from);
-        slices.push((mine, here, cells_from));
+        slices.push(Slot {
+            entries: mine,
+            lows: here,
+            from: cells_from,
+        });
         (rest, cells, cells_from) = (tail, after, end);
     }
     // A sub-chunk's entries and its boxes' least cells, into its slices.
-    let fill = |(sub, (out, lows, from)): (&&[u32], &mut (&mut [u64], &mut [[u16; 3]], usize))| {
+    let fill = |(sub, slot): (&&[u32], &mut Slot)| {
+        let Slot {
+            entries: out,
+            lows,
+            from,
+        } = slot;
         let mut at = 0;
         for &i in sub.iter() {
             let [lo, hi] = range(i);
@@ -188,6 +197,14 @@ fn enter_all(
         entered.tick_in(c, 1);
     }
     entries
+}
+
+/// A sub-chunk's share of [`enter_all`]'s outputs: its entries, and the least cells of the
+/// boxes from its first to its last (`from` the first's id).
+struct Slot<'a> {
+    entries: &'a mut [u64],
+    lows: &'a mut [[u16; 3]],
+    from: usize,
 }
 
 /// True when the closed boxes share a point.
