@@ -355,23 +355,30 @@ pub(crate) fn edge_pieces(faces: &[Face]) -> Pieces {
 mod tests {
     use super::*;
 
+    /// A closed `n` by `n` torus of quads, consistently oriented.
+    fn torus(n: u32) -> Vec<Face> {
+        let at = |i: u32, j: u32| (j % n) * n + i % n;
+        (0..n * n)
+            .map(|k| {
+                let (i, j) = (k % n, k / n);
+                Face::new([at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
+            })
+            .collect()
+    }
+
+    /// A quad as two triangles along its first diagonal, oriented like it.
+    fn split_quad(q: Face) -> [Face; 2] {
+        let v = &q.vertices;
+        [Face::new([v[0], v[1], v[2]]), Face::new([v[0], v[2], v[3]])]
+    }
+
     #[test]
     fn not_closed_with_is_sound_and_exact_for_a_closing_set() {
         // A closed 12x12 torus of triangles with faces taken away; `more` is a random choice
         // of the taken faces, some turned or repeated, or faces of the torus again. Whenever
         // the check says "not closed", the merged traversals' topology is not closed; the
         // taken faces themselves close it, and the check says so.
-        let n = 12u32;
-        let at = |i: u32, j: u32| (j % n) * n + i % n;
-        let torus: Vec<Face> = (0..n * n)
-            .flat_map(|k| {
-                let (i, j) = (k % n, k / n);
-                [
-                    Face::new(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]),
-                    Face::new(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]),
-                ]
-            })
-            .collect();
+        let torus: Vec<Face> = torus(12).into_iter().flat_map(split_quad).collect();
         let mut rng = crate::geom::rng::XorShift::new(35);
         let (mut said_open, mut said_closed) = (0, 0);
         for round in 0..400 {
@@ -417,14 +424,7 @@ mod tests {
         // A closed 100x100 torus of quads (40,000 traversals, chunks of edges), then opened
         // by a missing face, then made inconsistent by a face turned the other way, each
         // flaw in a late chunk.
-        let n = 100u32;
-        let at = |i: u32, j: u32| (j % n) * n + i % n;
-        let torus: Vec<Face> = (0..n * n)
-            .map(|k| {
-                let (i, j) = (k % n, k / n);
-                Face::new(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
-            })
-            .collect();
+        let torus = torus(100);
         let mut open = torus.clone();
         open.remove(9000);
         let mut inconsistent = open.clone();
