@@ -117,6 +117,10 @@ fn write_json_spilling(
 /// How much text [`write_json`] gathers before it writes.
 pub(crate) const SPILL_AT: usize = 1 << 20;
 
+/// A piece of text this long is written as it lies rather than gathered: a task's faces
+/// (about a hundred kilobytes) are, so the document's bytes are copied once, not twice.
+const DIRECT: usize = 1 << 16;
+
 /// Where the text goes: all kept in `s`, or `s` written to the writer of `to` whenever it
 /// is as long as `to`'s length.
 struct Sink<'w> {
@@ -151,6 +155,22 @@ impl Sink<'_> {
         match &self.to {
             Some((_, at)) if self.s.len() >= *at => self.spill_all(),
             _ => Ok(()),
+        }
+    }
+
+    /// Appends `t`: a piece of at least [`DIRECT`] bytes (or as long as a spill) is written
+    /// straight from where it lies, after the text gathered before it, not copied first.
+    fn put(&mut self, t: &str) -> io::Result<()> {
+        match &self.to {
+            Some((_, at)) if t.len() >= DIRECT.min(*at) => {
+                self.spill_all()?;
+                let (w, _) = self.to.as_mut().expect("a writer");
+                w.write_all(t.as_bytes())
+            }
+            _ => {
+                self.s.push_str(t);
+                self.spill()
+            }
         }
     }
 
@@ -248,9 +268,9 @@ fn json_into(
 fn put(out: &mut Sink, texts: &[String], first: &mut bool) -> io::Result<()> {
     for t in texts.iter().filter(|t| !t.is_empty()) {
         // Every entry starts ",\n"; the document's first starts "\n".
-        out.s.push_str(if *first { &t[1..] } else { t });
+        let t = if *first { &t[1..] } else { t };
         *first = false;
-        out.spill()?;
+        out.put(t)?;
     }
     Ok(())
 }
