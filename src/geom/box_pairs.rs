@@ -6,6 +6,7 @@
 //! each overlapping pair is found exactly once. Overlap is closed (touching boxes overlap).
 
 use rayon::prelude::*;
+use smallvec::SmallVec;
 
 use crate::count::Span;
 
@@ -78,26 +79,30 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
     let (f, box_of, grid, lo_cell, entries, cells) =
         (&f, &box_of, &grid, &lo_cell, &entries, &cells);
     let id = |e: u64| (e & ((1 << shift) - 1)) as u32;
-    // The pairs first met in one cell (a run of equal keys).
+    // The pairs first met in one cell (a run of equal keys), each member's box made once.
     let in_cell = move |r: &std::ops::Range<usize>| {
         let cell = &entries[r.clone()];
         let key = cell[0] >> shift;
-        (0..cell.len()).flat_map(move |a| {
-            let i = id(cell[a]);
-            let (bi, ci) = (box_of(i), lo_cell[i as usize]);
-            (a + 1..cell.len()).filter_map(move |b| {
-                let j = id(cell[b]);
-                let cj = &lo_cell[j as usize];
-                // The cell test first: it needs no box (boxes may be remade on each call).
-                if grid.key(std::array::from_fn(|k| u64::from(ci[k].max(cj[k])))) != key
-                    || !overlap(&bi, &box_of(j))
+        let members: SmallVec<[(u32, Bounds3); 16]> =
+            cell.iter().map(|&e| (id(e), box_of(id(e)))).collect();
+        let mut found = Vec::new();
+        for (a, (i, bi)) in members.iter().enumerate() {
+            let ci = &lo_cell[*i as usize];
+            for (j, bj) in &members[a + 1..] {
+                let cj = &lo_cell[*j as usize];
+                // Met first here: the least corner of the boxes' meet lies in this cell.
+                if !overlap(bi, bj)
+                    || grid.key(std::array::from_fn(|k| u64::from(ci[k].max(cj[k])))) != key
                 {
-                    return None;
+                    continue;
                 }
-                let p = (i.min(j), i.max(j));
-                f(p.0, p.1).map(|t| (p, t))
-            })
-        })
+                let p = (*i.min(j), *i.max(j));
+                if let Some(t) = f(p.0, p.1) {
+                    found.push((p, t));
+                }
+            }
+        }
+        found
     };
     // Each cell counted as it is started.
     let counted = |(k, r): (usize, &std::ops::Range<usize>)| {
