@@ -1,26 +1,36 @@
 //! The hidden pen's dashes as ink that a bridge between two dashes must keep off: the dash
-//! segments bucketed by their first point in a hash grid of cells as long as the longest
-//! segment, asked only for the few gaps a join tries to bridge.
+//! segments in a hash grid of cells about a segment long, each listed in the cells its box
+//! meets, asked only for the few gaps a join tries to bridge.
 //!
 //! It answers as a [`super::dedup::SegmentIndex`] holding the same segments would (whether
-//! any of them runs along a gap for more than `eps`), without listing each segment in every
-//! small cell it crosses: the index of every line drawn has cells sized for all the
-//! picture's segments, and a dash crossed many of them.
+//! any of them runs along a gap for more than `eps`), without listing each segment in the
+//! many small cells of the index of every line drawn (sized for all the picture's segments).
 
 use crate::geom::key_hash::KeyMap;
 use crate::geom::poly2::{dist, Pt2};
 
 use super::dedup::overlap;
 
-/// Dash segments by the cell of their first point.
+/// How much a segment's box is widened, in multiples of `eps`: a segment that runs along a
+/// gap for more than `eps` comes within a few `eps` of it (its ends lie that near the other's
+/// line), so boxes widened by this much meet.
+const MARGIN_EPS: f64 = 100.0;
+
+/// The most cells along an axis of a segment's box: cells are at least an eighth of the
+/// longest segment.
+const CELLS_PER_SEGMENT: f64 = 8.0;
+
+/// Dash segments by the grid cells their widened boxes meet.
 pub(crate) struct Ink {
-    /// The segments, cell by cell.
     segs: Vec<[Pt2; 2]>,
-    /// Each occupied cell's range in `segs`.
+    /// Segment numbers, cell by cell.
+    in_cells: Vec<u32>,
+    /// Each occupied cell's range in `in_cells`.
     cells: KeyMap<(i64, i64), (usize, usize)>,
-    /// The side of a cell: the longest segment (every point of a segment lies this near its
-    /// first point), at least a µm.
+    /// The side of a cell.
     side: f64,
+    /// How much boxes are widened.
+    margin: f64,
     /// The coincidence tolerance.
     eps: f64,
 }
@@ -28,32 +38,47 @@ pub(crate) struct Ink {
 impl Ink {
     /// The ink of `dashes` (polylines), coincident within `eps`.
     pub(crate) fn new(dashes: &[Vec<Pt2>], eps: f64) -> Ink {
-        let mut segs: Vec<[Pt2; 2]> = dashes
+        let segs: Vec<[Pt2; 2]> = dashes
             .iter()
             .flat_map(|d| d.windows(2).map(|w| [w[0], w[1]]))
             .collect();
-        let longest = segs.iter().map(|s| dist(s[0], s[1])).fold(0.0, f64::max);
-        let side = if longest.is_finite() {
-            longest.max(1e-3)
-        } else {
-            f64::MAX
-        };
-        let cell = |p: Pt2| Self::cell_of(p, side);
-        segs.sort_unstable_by_key(|s| cell(s[0]));
-        let mut cells: KeyMap<(i64, i64), (usize, usize)> = KeyMap::default();
+        let lengths = || segs.iter().map(|s| dist(s[0], s[1]));
+        let longest = lengths().fold(0.0, f64::max);
+        let mean = lengths().sum::<f64>() / segs.len().max(1) as f64;
+        let side = mean.max(longest / CELLS_PER_SEGMENT).max(1e-3);
+        let side = if side.is_finite() { side } else { f64::MAX };
+        let margin = MARGIN_EPS * eps;
+        let mut listed: Vec<((i64, i64), u32)> = Vec::with_capacity(2 * segs.len());
         for (k, s) in segs.iter().enumerate() {
-            cells.entry(cell(s[0])).or_insert((k, k)).1 = k + 1;
+            let (lo, hi) = Self::box_cells(s[0], s[1], margin, side);
+            for y in lo.1..=hi.1 {
+                for x in lo.0..=hi.0 {
+                    listed.push(((x, y), k as u32));
+                }
+            }
+        }
+        listed.sort_unstable();
+        let mut cells: KeyMap<(i64, i64), (usize, usize)> = KeyMap::default();
+        for (k, &(c, _)) in listed.iter().enumerate() {
+            cells.entry(c).or_insert((k, k)).1 = k + 1;
         }
         Ink {
             segs,
+            in_cells: listed.into_iter().map(|(_, k)| k).collect(),
             cells,
             side,
+            margin,
             eps,
         }
     }
 
-    fn cell_of(p: Pt2, side: f64) -> (i64, i64) {
-        ((p[0] / side).floor() as i64, (p[1] / side).floor() as i64)
+    /// The least and greatest cells of a → b's box widened by `margin`.
+    fn box_cells(a: Pt2, b: Pt2, margin: f64, side: f64) -> ((i64, i64), (i64, i64)) {
+        let cell = |v: f64| (v / side).floor() as i64;
+        (
+            (cell(a[0].min(b[0]) - margin), cell(a[1].min(b[1]) - margin)),
+            (cell(a[0].max(b[0]) + margin), cell(a[1].max(b[1]) + margin)),
+        )
     }
 
     /// True when a dash segment runs along a → b for more than `eps`.
@@ -62,19 +87,21 @@ impl Ink {
         if len == 0.0 {
             return false;
         }
-        // A segment along a → b has a point within a few eps of it, so its first point lies
-        // within a segment's length and that of a → b's box.
-        let reach = self.side + 10.0 * self.eps + 1e-6;
-        let (lo, hi) = (
-            Self::cell_of([a[0].min(b[0]) - reach, a[1].min(b[1]) - reach], self.side),
-            Self::cell_of([a[0].max(b[0]) + reach, a[1].max(b[1]) + reach], self.side),
-        );
+        let m = 2.0 * self.margin;
+        let near = |s: &[Pt2; 2]| {
+            s[0][0].min(s[1][0]) <= a[0].max(b[0]) + m
+                && s[0][0].max(s[1][0]) >= a[0].min(b[0]) - m
+                && s[0][1].min(s[1][1]) <= a[1].max(b[1]) + m
+                && s[0][1].max(s[1][1]) >= a[1].min(b[1]) - m
+        };
+        let (lo, hi) = Self::box_cells(a, b, self.margin, self.side);
         (lo.1..=hi.1).any(|y| {
             (lo.0..=hi.0).any(|x| {
                 self.cells.get(&(x, y)).is_some_and(|&(from, to)| {
-                    self.segs[from..to]
-                        .iter()
-                        .any(|s| overlap(a, b, len, s[0], s[1], self.eps).is_some())
+                    self.in_cells[from..to].iter().any(|&k| {
+                        let s = &self.segs[k as usize];
+                        near(s) && overlap(a, b, len, s[0], s[1], self.eps).is_some()
+                    })
                 })
             })
         })
