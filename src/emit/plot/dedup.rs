@@ -136,44 +136,6 @@ impl SegmentIndex {
         }
     }
 
-    /// A new index over the same cells holding only the segments `keep` accepts (by their
-    /// number, in the order inserted), answering every query as one they were inserted into
-    /// in order would: each cell lists them in that order.
-    pub(crate) fn filtered(&self, keep: impl Fn(usize) -> bool) -> SegmentIndex {
-        let mut renumber = vec![usize::MAX; self.segs.len()];
-        let mut segs = Vec::with_capacity(self.segs.len());
-        for (k, &s) in self.segs.iter().enumerate() {
-            if keep(k) {
-                renumber[k] = segs.len();
-                segs.push(s);
-            }
-        }
-        let cells = self
-            .grid
-            .cells
-            .iter()
-            .map(|c| {
-                c.iter()
-                    .filter_map(|&k| Some(renumber[k]).filter(|&r| r != usize::MAX))
-                    .collect()
-            })
-            .collect();
-        SegmentIndex {
-            grid: CellGrid {
-                frame: self.grid.frame,
-                cells,
-            },
-            seen: vec![0; segs.len()],
-            segs,
-            query: 0,
-            cells: Vec::new(),
-            cells_for: None,
-            around: Vec::new(),
-            cell_seen: vec![0; self.cell_seen.len()],
-            eps: self.eps,
-        }
-    }
-
     /// Adds a segment.
     pub(crate) fn insert(&mut self, s: [Pt2; 2]) {
         if self.cells_for != Some(s) {
@@ -187,13 +149,26 @@ impl SegmentIndex {
 
     /// True when a segment of the index runs along a → b for more than `eps`.
     pub(crate) fn overlaps(&mut self, a: Pt2, b: Pt2) -> bool {
+        self.overlaps_where(a, b, |_| true)
+    }
+
+    /// True when a segment of the index that `keep` accepts (by its number, in the order
+    /// inserted) runs along a → b for more than `eps`: the answer of an index holding only
+    /// those.
+    pub(crate) fn overlaps_where(&mut self, a: Pt2, b: Pt2, keep: impl Fn(usize) -> bool) -> bool {
         let mut covers = Vec::new();
-        self.covers(a, b, &mut covers);
+        self.covers_where(a, b, &mut covers, keep);
         !covers.is_empty()
     }
 
     /// The parts of a → b that segments of the index cover (unsorted).
     fn covers(&mut self, a: Pt2, b: Pt2, out: &mut Vec<Cover>) {
+        self.covers_where(a, b, out, |_| true);
+    }
+
+    /// The parts of a → b that segments of the index `keep` accepts cover (unsorted), in
+    /// the order an index holding only those would list them.
+    fn covers_where(&mut self, a: Pt2, b: Pt2, out: &mut Vec<Cover>, keep: impl Fn(usize) -> bool) {
         out.clear();
         let len = dist(a, b);
         if len == 0.0 {
@@ -220,7 +195,7 @@ impl SegmentIndex {
         }
         for &cell in &self.around {
             for &k in &self.grid.cells[cell] {
-                if self.seen[k] == self.query {
+                if self.seen[k] == self.query || !keep(k) {
                     continue;
                 }
                 self.seen[k] = self.query;
@@ -236,7 +211,7 @@ impl SegmentIndex {
 /// The part of a → b (parameters t0 < t1) that an earlier segment covers, with the covering
 /// points (the earlier segment's ends, or a and b themselves).
 #[derive(Debug, Clone, Copy)]
-struct Cover {
+pub(super) struct Cover {
     t0: f64,
     p0: Pt2,
     t1: f64,
@@ -262,7 +237,7 @@ fn nearly_parallel(a: Pt2, b: Pt2, len: f64, c: Pt2, d: Pt2, eps: f64) -> bool {
 }
 
 /// How c → d covers a → b (length `len`), when they lie on one line and share more than `eps`.
-fn overlap(a: Pt2, b: Pt2, len: f64, c: Pt2, d: Pt2, eps: f64) -> Option<Cover> {
+pub(super) fn overlap(a: Pt2, b: Pt2, len: f64, c: Pt2, d: Pt2, eps: f64) -> Option<Cover> {
     if !nearly_parallel(a, b, len, c, d, eps) {
         return None;
     }
@@ -512,7 +487,7 @@ mod tests {
     }
 
     #[test]
-    fn a_filtered_index_answers_as_one_built_of_what_it_keeps() {
+    fn a_masked_query_answers_as_an_index_of_what_it_keeps() {
         // Pieces along a few lines (so that queries find covers), every third left out.
         let mut rng = crate::geom::rng::XorShift::new(35);
         let piece = |rng: &mut crate::geom::rng::XorShift| {
@@ -531,13 +506,13 @@ mod tests {
                 only.insert(s);
             }
         }
-        let mut filtered = all.filtered(keep);
         let (mut a, mut b) = (Vec::new(), Vec::new());
         let mut found = 0;
         for _ in 0..300 {
             let [p, q] = piece(&mut rng);
-            filtered.covers(p, q, &mut a);
+            all.covers_where(p, q, &mut a, keep);
             only.covers(p, q, &mut b);
+            assert_eq!(all.overlaps_where(p, q, keep), !b.is_empty());
             let key = |c: &Cover| (c.t0, c.p0, c.t1, c.p1);
             assert_eq!(
                 a.iter().map(key).collect::<Vec<_>>(),

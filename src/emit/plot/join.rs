@@ -26,7 +26,7 @@ pub(crate) fn join(
     span: Span,
 ) -> Vec<Vec<Pt2>> {
     let lines: Vec<Vec<Pt2>> = lines.into_iter().filter(|l| l.len() >= 2).collect();
-    let trails = euler_trails(&lines);
+    let trails = euler_trails(lines);
     span.reach(0.5);
     let joined = if tolerance > 0.0 {
         join_near(trails, tolerance, bridge, span.span(0.5, 1.0))
@@ -45,7 +45,7 @@ struct GraphEdge {
 }
 
 /// The fewest trails that draw every polyline once, joined at exactly equal end points.
-fn euler_trails(lines: &[Vec<Pt2>]) -> Vec<Vec<Pt2>> {
+fn euler_trails(mut lines: Vec<Vec<Pt2>>) -> Vec<Vec<Pt2>> {
     let mut ids: KeyMap<(u64, u64), usize> = KeyMap::default();
     let mut node = |p: Pt2| {
         let n = ids.len();
@@ -116,7 +116,7 @@ fn euler_trails(lines: &[Vec<Pt2>]) -> Vec<Vec<Pt2>> {
             (&mut used, &mut next),
             (&mut stack, &mut circuit),
         );
-        out.extend(split_at_virtual(&circuit, &edges, lines));
+        split_at_virtual(&circuit, &edges, &mut lines, &mut out);
     }
     out
 }
@@ -175,42 +175,63 @@ fn hierholzer(
 /// A node on the walk, with the edge it was reached by and the node before.
 type Step = (usize, Option<(usize, usize)>);
 
-/// Cuts a circuit at its virtual edges into polylines of the real ones.
+/// Cuts a circuit at its virtual edges into polylines of the real ones, onto `out`; each
+/// line is taken from `lines` (a line drawn alone is moved, turned where walked backwards).
 fn split_at_virtual(
     circuit: &[(usize, usize)],
     edges: &[GraphEdge],
-    lines: &[Vec<Pt2>],
-) -> Vec<Vec<Pt2>> {
-    let mut out = Vec::new();
-    let mut cur: Vec<Pt2> = Vec::new();
+    lines: &mut [Vec<Pt2>],
+    out: &mut Vec<Vec<Pt2>>,
+) {
     // A circuit through the virtual point starts right after a virtual edge once rotated.
     let first_virtual = circuit.iter().position(|&(k, _)| edges[k].line.is_none());
     let rot = first_virtual.map_or(0, |i| i + 1);
-    for idx in 0..circuit.len() {
-        let (k, from) = circuit[(idx + rot) % circuit.len()];
-        match edges[k].line {
-            None => {
-                if cur.len() > 1 {
-                    out.push(std::mem::take(&mut cur));
-                }
-                cur.clear();
-            }
-            Some(i) => {
-                let l = &lines[i];
-                // The line's points in the direction walked, its first one only to start.
-                let skip = usize::from(!cur.is_empty());
-                if edges[k].ends[0] == from {
-                    cur.extend(l.iter().skip(skip));
-                } else {
-                    cur.extend(l.iter().rev().skip(skip));
-                }
+    let at = |idx: usize| circuit[(idx + rot) % circuit.len()];
+    // The run of real edges from `from`, cut where a virtual edge comes.
+    let mut from = 0;
+    for idx in 0..=circuit.len() {
+        let cut = idx == circuit.len() || edges[at(idx).0].line.is_none();
+        if !cut {
+            continue;
+        }
+        if idx > from {
+            let trail = trail((from..idx).map(at), edges, lines);
+            if trail.len() > 1 {
+                out.push(trail);
             }
         }
+        from = idx + 1;
     }
-    if cur.len() > 1 {
-        out.push(cur);
+}
+
+/// The polyline of a run of real edges (each with the node it is entered from), taken from
+/// `lines`: one line is moved, several are joined end to end.
+fn trail(
+    mut run: impl ExactSizeIterator<Item = (usize, usize)>,
+    edges: &[GraphEdge],
+    lines: &mut [Vec<Pt2>],
+) -> Vec<Pt2> {
+    let line = |k: usize| edges[k].line.unwrap_or(usize::MAX);
+    if run.len() == 1 {
+        let (k, from) = run.next().unwrap_or((0, 0));
+        let mut l = std::mem::take(&mut lines[line(k)]);
+        if edges[k].ends[0] != from {
+            l.reverse();
+        }
+        return l;
     }
-    out
+    let mut cur: Vec<Pt2> = Vec::new();
+    for (k, from) in run {
+        let l = &lines[line(k)];
+        // The line's points in the direction walked, its first one only to start.
+        let skip = usize::from(!cur.is_empty());
+        if edges[k].ends[0] == from {
+            cur.extend(l.iter().skip(skip));
+        } else {
+            cur.extend(l.iter().rev().skip(skip));
+        }
+    }
+    cur
 }
 
 /// Joins stroke ends closer than `tol` where `bridge` allows, closest pairs first; a stroke
@@ -232,9 +253,13 @@ fn join_near(
         }
     };
     let cell = |p: Pt2| ((p[0] / tol).floor() as i64, (p[1] / tol).floor() as i64);
-    let mut grid: KeyMap<(i64, i64), Vec<usize>> = KeyMap::default();
-    for s in 0..2 * n {
-        grid.entry(cell(end(s))).or_default().push(s);
+    // Every end slot with its cell of side `tol`, sorted: a cell's slots side by side in slot
+    // order, each cell's range in a map (no list per cell).
+    let mut in_cells: Vec<((i64, i64), usize)> = (0..2 * n).map(|s| (cell(end(s)), s)).collect();
+    in_cells.sort_unstable();
+    let mut grid: KeyMap<(i64, i64), (usize, usize)> = KeyMap::default();
+    for (k, &(c, _)) in in_cells.iter().enumerate() {
+        grid.entry(c).or_insert((k, k)).1 = k + 1;
     }
     let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
     for s in 0..2 * n {
@@ -242,7 +267,10 @@ fn join_near(
         let (cx, cy) = cell(p);
         for dy in -1..=1 {
             for dx in -1..=1 {
-                for &t in grid.get(&(cx + dx, cy + dy)).into_iter().flatten() {
+                let Some(&(lo, hi)) = grid.get(&(cx + dx, cy + dy)) else {
+                    continue;
+                };
+                for &(_, t) in &in_cells[lo..hi] {
                     let q = end(t);
                     let d = dist(p, q);
                     if t > s && t / 2 != s / 2 && d <= tol {

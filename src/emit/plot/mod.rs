@@ -16,6 +16,7 @@ pub(crate) mod color;
 pub(crate) mod dash;
 pub(crate) mod dedup;
 pub(crate) mod hatch;
+pub(crate) mod ink;
 pub(crate) mod join;
 pub(crate) mod page;
 pub(crate) mod pairs;
@@ -41,6 +42,7 @@ use self::clip_rect::clip_polyline;
 use self::dash::dashes;
 use self::dedup::{dedup_indexed, SegmentIndex};
 use self::hatch::{hatch, section_hatch, tone_outlines};
+use self::ink::Ink;
 use self::join::join;
 use self::page::Layout;
 use self::picture::{Fill, Layer, LayerMode, Pen, Picture, PictureOptions, PlotStats, Run};
@@ -479,43 +481,46 @@ fn fills(
 struct Bridges {
     /// Every segment drawn, and every bridge.
     drawn: SegmentIndex,
-    /// Every segment drawn but the hidden pen's, every bridge, and every hidden dash (the
-    /// hidden pen's ink); `None` without hidden lines.
-    solid: Option<SegmentIndex>,
+    /// Which of `drawn`'s first segments (the lines drawn, by number) are the hidden pen's:
+    /// a gap between dashes may run along those; `None` without hidden lines.
+    hidden: Option<Vec<bool>>,
+    /// The hidden dashes (the hidden pen's ink), each group's as it is dashed.
+    ink: Vec<Ink>,
 }
 
 impl Bridges {
     /// The bridges of a picture whose lines drawn are `kept` (with their sources' `owner`),
     /// `drawn` the index of them all, in order (dedup's).
     fn new(drawn: SegmentIndex, kept: &[(usize, [Pt2; 2])], owner: &[(Pen, u32)]) -> Self {
-        let hidden = |k: usize| owner[kept[k].0].0 == Pen::Hidden;
-        let solid = (0..kept.len())
-            .any(hidden)
-            .then(|| drawn.filtered(|k| !hidden(k)));
-        Bridges { drawn, solid }
+        let hidden: Vec<bool> = kept.iter().map(|k| owner[k.0].0 == Pen::Hidden).collect();
+        Bridges {
+            drawn,
+            hidden: hidden.contains(&true).then_some(hidden),
+            ink: Vec::new(),
+        }
     }
 
     /// Adds hidden dashes to the ink a bridge along hidden lines must keep off.
     fn ink(&mut self, dashes: &[Vec<Pt2>]) {
-        if let Some(solid) = self.solid.as_mut() {
-            for d in dashes {
-                d.windows(2).for_each(|w| solid.insert([w[0], w[1]]));
-            }
+        if self.hidden.is_some() {
+            self.ink.push(Ink::new(dashes, DEDUP_EPS_MM));
         }
     }
 
     /// Whether the gap from `p` to `q` may be drawn (then it is, from now on); with
     /// `along_hidden`, hidden lines do not stop it.
     fn allow(&mut self, p: Pt2, q: Pt2, along_hidden: bool) -> bool {
-        let free = match (self.solid.as_mut(), along_hidden) {
-            (Some(solid), true) => !solid.overlaps(p, q),
+        let free = match (&self.hidden, along_hidden) {
+            (Some(hidden), true) => {
+                // Lines drawn but the hidden pen's, and the bridges (numbered after them).
+                let solid = |k: usize| !hidden.get(k).is_some_and(|&h| h);
+                !self.drawn.overlaps_where(p, q, solid)
+                    && !self.ink.iter().any(|i| i.overlaps(p, q))
+            }
             _ => !self.drawn.overlaps(p, q),
         };
         if free {
             self.drawn.insert([p, q]);
-            if let Some(solid) = self.solid.as_mut() {
-                solid.insert([p, q]);
-            }
         }
         free
     }
