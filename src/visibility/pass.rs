@@ -7,7 +7,9 @@ use rayon::prelude::*;
 
 use crate::count::Count;
 use crate::geom::boolean;
-use crate::geom::poly2::{canonicalize, multipolygon_area, MultiPolygon};
+use crate::geom::poly2::{
+    canonicalize, multipolygon_area, ring_area, start_at_least, MultiPolygon,
+};
 use crate::geom::ring_check::{repair, ring_defect};
 use crate::geom::Rect;
 use crate::scene::FaceId;
@@ -220,12 +222,13 @@ fn solve_face(
     let ring = view.screen.ring_ccw(f);
     let visible = match visfac(view, root, f, scratch, c) {
         // The region is the ring, made again when read ([`whole_region`]): only its area
-        // is kept.
+        // is kept, measured from the canonical start (the region's area to the bit: one
+        // ring's sums add nothing to it).
         Vtp::Whole if ring_defect(&ring, true).is_none() => {
-            let mut visible = vec![vec![ring]];
-            canonicalize(&mut visible);
+            let mut ring = ring;
+            start_at_least(&mut ring);
             return Solved {
-                area: multipolygon_area(&visible),
+                area: ring_area(&ring),
                 visible: Vec::new(),
                 projected_area,
                 whole: true,
