@@ -119,22 +119,13 @@ pub(crate) fn position_first<F: Fn(usize) -> bool + Sync + Send>(
         .position_first(bad)
 }
 
-/// The parts one after another, copied on all threads (on one thread, one after another):
-/// [`extend_concat`] into a new list.
-pub(crate) fn concat<T: Clone + Send + Sync>(parts: &[Vec<T>]) -> Vec<T> {
-    let slices: Vec<&[T]> = parts.iter().map(Vec::as_slice).collect();
-    let mut out = Vec::new();
-    extend_concat(&mut out, &slices);
-    out
-}
-
 /// Parts joined at a time by [`concat_freeing`]: a few chunks of work for each thread.
 const PARTS_AT_ONCE: usize = 16;
 
-/// [`concat`] of parts that are given up: each few parts freed as soon as they are copied,
-/// so that the list and its parts are not all held at once (the list's pages are touched
-/// only as it is filled, and the parts' memory goes back to the allocator as they are
-/// done). The same list as [`concat`].
+/// The parts one after another, copied on all threads (on one thread, one after another:
+/// [`extend_concat`] into a new list), each few parts freed as soon as they are copied, so
+/// that the list and its parts are not all held at once (the list's pages are touched only
+/// as it is filled, and the parts' memory goes back to the allocator as they are done).
 pub(crate) fn concat_freeing<T: Clone + Send + Sync>(mut parts: Vec<Vec<T>>) -> Vec<T> {
     let mut out = Vec::with_capacity(parts.iter().map(Vec::len).sum());
     for group in parts.chunks_mut(PARTS_AT_ONCE) {
@@ -146,7 +137,8 @@ pub(crate) fn concat_freeing<T: Clone + Send + Sync>(mut parts: Vec<Vec<T>>) -> 
 }
 
 /// `out` with the parts appended one after another, copied on all threads (on one thread,
-/// or for a few items, one after another): [`concat`] into a list that already has items.
+/// or for a few items, one after another): [`concat_freeing`] into a list that already has
+/// items.
 pub(crate) fn extend_concat<T: Clone + Send + Sync>(out: &mut Vec<T>, parts: &[&[T]]) {
     let mut starts = Vec::with_capacity(parts.len() + 1);
     let mut total = 0;
@@ -311,7 +303,7 @@ mod tests {
             .collect();
         assert!(parts.iter().map(Vec::len).sum::<usize>() > 4 * CHUNK);
         assert!(parts.iter().any(Vec::is_empty));
-        let got = pool.install(|| concat(&parts));
+        let got = pool.install(|| concat_freeing(parts.clone()));
         assert_eq!(got, parts.concat());
     }
 

@@ -77,7 +77,7 @@ pub use scene::Scene;
 pub use view::camera::{Camera, CameraRequest, Projection};
 pub use view::lod::LodOptions;
 pub use view::View;
-pub use visibility::pass::{FaceVisibility, Visibility};
+pub use visibility::result::{FaceVisibility, Visibility};
 
 /// The line drawing: which edges are drawn, and the visible and hidden strokes a render makes.
 pub mod lines {

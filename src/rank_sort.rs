@@ -93,6 +93,88 @@ pub(crate) fn sort_by_rank<T, K>(
         });
 }
 
+/// Above this many items [`sort_distinct_by_rank`] deals them into buckets in place.
+const IN_PLACE_ABOVE: usize = 1 << 20;
+
+/// [`sort_by_rank`] of a list whose items' `(rank, key)` are all distinct (so its order is
+/// the one sort order, stable or not), with no copy of the list beside it where it is long
+/// (above [`IN_PLACE_ABOVE`]): the items are swapped into their buckets of rank ranges in
+/// place (an American flag pass, on one thread, after counting on all), then each bucket is
+/// counted into order on all threads through a copy of itself alone.
+pub(crate) fn sort_distinct_by_rank<T, K>(
+    v: &mut [T],
+    rank: impl Fn(&T) -> u32 + Sync,
+    key: impl Fn(&T) -> K + Sync,
+) where
+    T: Clone + Send + Sync,
+    K: Ord,
+{
+    let n = v.len();
+    if n <= IN_PLACE_ABOVE {
+        return sort_by_rank(v, rank, key);
+    }
+    let Some(top) = v.par_iter().with_min_len(BUCKET).map(&rank).max() else {
+        return;
+    };
+    let width = u64::from(top) + 1;
+    if width > DENSE * n as u64 + 64 {
+        v.par_sort_unstable_by_key(|x| (rank(x), key(x)));
+        return;
+    }
+    let buckets = n.div_ceil(BUCKET) as u64;
+    let bucket = |x: &T| (u64::from(rank(x)) * buckets / width) as usize;
+    let lo = |k: u64| (k * width).div_ceil(buckets) as u32;
+    // Items a bucket, summed over chunks in integers: the same in any order.
+    let zero = || vec![0usize; buckets as usize];
+    let add = |mut c: Vec<usize>, chunk: &[T]| {
+        chunk.iter().for_each(|x| c[bucket(x)] += 1);
+        c
+    };
+    let merge = |mut a: Vec<usize>, b: Vec<usize>| {
+        a.iter_mut().zip(&b).for_each(|(a, b)| *a += b);
+        a
+    };
+    let counts = v.par_chunks(DEALT).fold(zero, add).reduce(zero, merge);
+    deal_in_place(v, &bucket, &counts);
+    let mut places = Vec::with_capacity(counts.len());
+    let mut rest = &mut v[..];
+    for &c in &counts {
+        let (here, after) = std::mem::take(&mut rest).split_at_mut(c);
+        places.push(here);
+        rest = after;
+    }
+    places.into_par_iter().enumerate().for_each(|(k, place)| {
+        let items = place.to_vec();
+        let (from, to) = (lo(k as u64), lo(k as u64 + 1));
+        counted(&items, place, from, (to - from) as usize, &rank, &key);
+    });
+}
+
+/// `v`'s items swapped into their buckets (bucket `k` holds `counts[k]` items, buckets in
+/// order), each item moved once: every slot of a bucket not yet filled takes the item there
+/// to its own bucket's next free slot, until the item it gets back is its own.
+fn deal_in_place<T>(v: &mut [T], bucket: &impl Fn(&T) -> usize, counts: &[usize]) {
+    let mut next = Vec::with_capacity(counts.len());
+    let mut end = Vec::with_capacity(counts.len());
+    let mut at = 0;
+    for &c in counts {
+        next.push(at);
+        at += c;
+        end.push(at);
+    }
+    for b in 0..counts.len() {
+        while next[b] < end[b] {
+            let mut d = bucket(&v[next[b]]);
+            while d != b {
+                v.swap(next[b], next[d]);
+                next[d] += 1;
+                d = bucket(&v[next[b]]);
+            }
+            next[b] += 1;
+        }
+    }
+}
+
 /// `items` (every rank in `from..from + width`) into `out` sorted stably by rank, then each
 /// run of one rank sorted stably by key.
 fn counted<T: Clone, K: Ord>(
@@ -168,6 +250,27 @@ mod tests {
                 let mut got = v.clone();
                 pool(threads).install(|| sort_by_rank(&mut got, |x| x.0, |x| x.1));
                 assert_eq!(got, want, "n {n}, top {top}, {threads} threads");
+            }
+        }
+    }
+
+    #[test]
+    fn distinct_items_dealt_in_place_are_the_sort() {
+        let pool = crate::chunked::pool;
+        let n = IN_PLACE_ABOVE + 3 * BUCKET + 5;
+        // (rank, key, serial): the serial makes every item distinct; ranks dense, with
+        // ties, and sparse.
+        for (top, keys) in [(n as u32 / 2, 4), (7, 1000), (u32::MAX - 1, 3)] {
+            let v: Vec<(u32, (u32, usize))> = items(n, top, keys)
+                .into_iter()
+                .map(|(r, k, i)| (r, (k, i)))
+                .collect();
+            let mut want = v.clone();
+            want.sort();
+            for threads in [1, 3] {
+                let mut got = v.clone();
+                pool(threads).install(|| sort_distinct_by_rank(&mut got, |x| x.0, |x| x.1));
+                assert!(got == want, "top {top}, {threads} threads");
             }
         }
     }

@@ -225,7 +225,7 @@ pub fn area_error(r: &Reference, buf: &IdBuffer) -> Error {
             let fv = r.vis.face(FaceId(f as u32));
             let p = counts[f] as f64 * px;
             let inside = if counts[f] > 0 && fv.area > 0.0 {
-                covered_inside(buf, f as u32, &fv.visible) * px
+                covered_inside(buf, f as u32, &fv.visible()) * px
             } else {
                 0.0
             };
@@ -385,9 +385,9 @@ pub fn substitute_error(r: &Reference, view: &View, vis: &Visibility) -> Error {
     };
     let mut regions: BTreeMap<String, [MultiPolygon; 2]> = BTreeMap::new();
     for (k, (v, vw)) in [(&r.vis, &r.view), (vis, view)].into_iter().enumerate() {
-        for (id, fv) in v.iter().filter(|f| !f.1.visible.is_empty()) {
+        for (id, fv) in v.iter().filter(|f| !f.1.is_empty()) {
             let path = key(vw.face_path(id));
-            regions.entry(path).or_default()[k].extend(fv.visible.iter().cloned());
+            regions.entry(path).or_default()[k].extend(fv.visible().iter().cloned());
         }
     }
     let diffs: Vec<(f64, f64)> = regions

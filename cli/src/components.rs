@@ -16,7 +16,7 @@ pub(crate) fn components_svg(scene: &Scene, camera: &Camera, size: u32) -> Resul
     let colour_of = scene.face_components();
     let mut bounds = Rect::EMPTY;
     for (_, f) in r.visibility.iter() {
-        bounds = bounds.union(&Rect::of_points(f.visible.iter().flatten().flatten()));
+        bounds = bounds.union(&Rect::of_points(f.visible().iter().flatten().flatten()));
     }
     if bounds.is_empty() {
         bounds = Rect::new(0., 0., 1., 1.);
@@ -38,14 +38,14 @@ pub(crate) fn components_svg(scene: &Scene, camera: &Camera, size: u32) -> Resul
         );
     let light = V3::new(0.3, 0.5, 1.0).normalize();
     for (id, f) in r.visibility.iter() {
-        if f.visible.is_empty() {
+        if f.is_empty() {
             continue;
         }
         let n = r.view.face_normal(id);
         let shade = 0.45 + 0.55 * n.try_normalize(0.0).map_or(0.0, |n| n.dot(&light).abs());
         let rgb = colour(colour_of.get(id.index()).copied().flatten(), shade);
         let mut d = Data::new();
-        for ring in f.visible.iter().flatten() {
+        for ring in f.visible().iter().flatten() {
             for (k, p) in ring.iter().enumerate() {
                 let p = (p[0], -p[1]);
                 d = if k == 0 { d.move_to(p) } else { d.line_to(p) };

@@ -159,7 +159,7 @@ fn face_check(
     let own: Vec<&ExactPiece> = pieces.iter().filter(|p| p.face == id.0).collect();
     let claim: Vec<Vec<QPt>> = vis
         .face(id)
-        .visible
+        .visible()
         .iter()
         .flatten()
         .map(|r| {

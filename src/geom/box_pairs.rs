@@ -33,9 +33,9 @@ pub(crate) fn overlapping_pairs(boxes: &[Bounds3]) -> Vec<(u32, u32)> {
 /// `f(i, j)` of every pair of overlapping boxes (`i < j`), the `Some` results in ascending
 /// pair order, without keeping the pairs themselves (a mesh has many, few of which matter).
 ///
-/// The work goes to `span` as it is done: the boxes entered in the grid and sorted first,
-/// then the cells by chunks (most of the work), then the results sorted (none:
-/// [`Span::NONE`]).
+/// The work goes to `span` as it is done, slab by slab ([`slabs`]): the boxes entered in
+/// the slab's cells and sorted first, then its cells by chunks (most of the work); then the
+/// results sorted (none: [`Span::NONE`]).
 pub(crate) fn filter_map_pairs<T: Send>(
     boxes: &[Bounds3],
     f: impl Fn(u32, u32) -> Option<T> + Sync,
@@ -53,31 +53,129 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
     f: impl Fn(u32, u32) -> Option<T> + Sync,
     span: Span,
 ) -> Vec<T> {
+    pairs_in_slabs(n, box_of, f, span, SLAB_ENTRIES)
+}
+
+/// [`filter_map_pairs_of`] with slabs of at most about `slab_entries` grid entries.
+fn pairs_in_slabs<T: Send>(
+    n: usize,
+    box_of: impl Fn(u32) -> Bounds3 + Sync,
+    f: impl Fn(u32, u32) -> Option<T> + Sync,
+    span: Span,
+    slab_entries: usize,
+) -> Vec<T> {
     // In fixed chunks, joined in order on all threads (few boxes stay off the thread pool:
     // a solid's many small searches would each wait on it).
     let ids: Vec<u32> = crate::chunked::flat_map(n, CHUNK, |r, out| {
         out.extend(r.map(|i| i as u32).filter(|&i| valid(&box_of(i))))
     });
-    let Some(grid) = Grid::fit(&box_of, n, &ids) else {
+    let Some((grid, entered)) = Grid::fit(&box_of, n, &ids) else {
         return Vec::new();
     };
-    let shift = grid.id_bits;
     let parallel = ids.len() > PARALLEL_ABOVE;
     // The cell of each box's least corner: the cell of the least corner of two boxes'
     // intersection is their componentwise max (cells are monotone in the coordinates), so
-    // no pair needs a float-to-cell conversion.
+    // no pair needs a float-to-cell conversion. Filled with the first slab's entries.
     let mut lo_cell = vec![[0u16; 3]; n];
-    let mut entries = enter_all(&grid, &box_of, &ids, &mut lo_cell, parallel, &span);
+    let slabs = slabs(&grid, &box_of, &ids, entered, slab_entries, parallel);
+    let mut found: Vec<((u32, u32), T)> = Vec::new();
+    let part = 0.95 / slabs.len() as f64;
+    for (s, xs) in slabs.iter().enumerate() {
+        let slab = span.span(part * s as f64, part * (s + 1) as f64);
+        let lows = (s == 0).then_some(lo_cell.as_mut_slice());
+        let entries = enter_all(&grid, &box_of, &ids, xs, lows, parallel, &slab);
+        found.append(&mut slab_pairs(
+            &grid, &box_of, &f, &lo_cell, entries, parallel, &slab,
+        ));
+    }
+    span.reach(0.95);
+    if parallel {
+        found.par_sort_unstable_by_key(|x| x.0);
+    } else {
+        found.sort_unstable_by_key(|x| x.0);
+    }
+    span.finish();
+    found.into_iter().map(|x| x.1).collect()
+}
+
+/// Most grid entries held at a time (4 MiB): above, the grid is entered and searched a
+/// slab of cells at a time.
+const SLAB_ENTRIES: usize = 1 << 19;
+
+/// The grid's cells cut along x into slabs of at most about `limit` entries each (a column
+/// of more is a slab of its own), as ranges of x cells; one slab of the whole grid when all
+/// its `entered` entries fit. A pair is found in the cell of its intersection's
+/// least corner, in one slab: slab by slab, the same pairs are found, and only one slab's
+/// entries and runs are held.
+fn slabs(
+    grid: &Grid,
+    box_of: &(impl Fn(u32) -> Bounds3 + Sync),
+    ids: &[u32],
+    entered: u128,
+    limit: usize,
+    parallel: bool,
+) -> Vec<std::ops::Range<u64>> {
+    let columns = grid.dims[0];
+    if entered <= limit as u128 {
+        return std::iter::once(0..columns).collect();
+    }
+    // Entries a column, summed in integers: the same in any order.
+    let add = |mut h: Vec<u64>, chunk: &[u32]| {
+        for &i in chunk {
+            let [lo, hi] = grid.cell_range(&box_of(i));
+            let across = (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+            for x in lo[0]..=hi[0] {
+                h[x as usize] += across;
+            }
+        }
+        h
+    };
+    let zero = || vec![0u64; columns as usize];
+    let merge = |mut a: Vec<u64>, b: Vec<u64>| {
+        a.iter_mut().zip(&b).for_each(|(a, b)| *a += b);
+        a
+    };
+    let per_column = if parallel {
+        ids.par_chunks(CHUNK).fold(zero, add).reduce(zero, merge)
+    } else {
+        ids.chunks(CHUNK).fold(zero(), add)
+    };
+    let mut out = Vec::new();
+    let (mut from, mut held) = (0u64, 0u64);
+    for (x, &c) in per_column.iter().enumerate() {
+        let x = x as u64;
+        if held > 0 && held + c > limit as u64 {
+            out.push(from..x);
+            (from, held) = (x, 0);
+        }
+        held += c;
+    }
+    out.push(from..columns);
+    out
+}
+
+/// `f(i, j)` of the overlapping pairs first met in the cells of `entries` (one slab's), with
+/// their pairs, in no set order; the entries are freed as soon as the cells are found. The
+/// cells go to `slab` from its fifth on.
+fn slab_pairs<T: Send>(
+    grid: &Grid,
+    box_of: &(impl Fn(u32) -> Bounds3 + Sync),
+    f: &(impl Fn(u32, u32) -> Option<T> + Sync),
+    lo_cell: &[[u16; 3]],
+    mut entries: Vec<u64>,
+    parallel: bool,
+    slab: &Span,
+) -> Vec<((u32, u32), T)> {
+    let shift = grid.id_bits;
     if parallel {
         entries.par_sort_unstable();
     } else {
         entries.sort_unstable();
     }
     let runs = runs(&entries, shift);
-    span.reach(0.2);
-    let cells = span.span(0.2, 0.95).steps(runs.len());
-    let (f, box_of, grid, lo_cell, entries, cells) =
-        (&f, &box_of, &grid, &lo_cell, &entries, &cells);
+    slab.reach(0.2);
+    let cells = slab.span(0.2, 1.0).steps(runs.len());
+    let (entries, cells) = (&entries, &cells);
     let id = |e: u64| (e & ((1 << shift) - 1)) as u32;
     // The pairs first met in one cell (a run of equal keys), each member's box made once.
     let in_cell = move |r: &std::ops::Range<usize>| {
@@ -109,24 +207,19 @@ pub(crate) fn filter_map_pairs_of<T: Send>(
         cells.tick(k);
         in_cell(r)
     };
-    let mut found: Vec<((u32, u32), T)> = if parallel {
+    let found = if parallel {
         runs.par_iter().enumerate().flat_map_iter(counted).collect()
     } else {
         runs.iter().enumerate().flat_map(counted).collect()
     };
-    span.reach(0.95);
-    if parallel {
-        found.par_sort_unstable_by_key(|x| x.0);
-    } else {
-        found.sort_unstable_by_key(|x| x.0);
-    }
-    span.finish();
-    found.into_iter().map(|x| x.1).collect()
+    slab.finish();
+    found
 }
 
-/// Every box's entries (cell key, box) packed in one word, key above box (sorting the
-/// words sorts by key then box, as sorting the pairs would, in half the memory), in box
-/// order and each box's in cell order; and each box's least cell into `lo_cell`.
+/// Every box's entries (cell key, box) in the cells of x in `xs` packed in one word, key
+/// above box (sorting the words sorts by key then box, as sorting the pairs would, in half
+/// the memory), in box order and each box's in cell order; and each box's least cell into
+/// `lo_cell` when given.
 ///
 /// The entries are counted first, so that the list is made at its size and filled in place,
 /// each sub-chunk of `CHUNK` boxes into its own slice (on all threads where `parallel`): no
@@ -136,19 +229,33 @@ fn enter_all(
     grid: &Grid,
     box_of: &(impl Fn(u32) -> Bounds3 + Sync),
     ids: &[u32],
-    lo_cell: &mut [[u16; 3]],
+    xs: &std::ops::Range<u64>,
+    lo_cell: Option<&mut [[u16; 3]]>,
     parallel: bool,
     span: &Span,
 ) -> Vec<u64> {
     let shift = grid.id_bits;
     let range = |i: u32| grid.cell_range(&box_of(i));
+    // A box's cells in the slab (none: x from above its last).
+    let clipped = |[mut lo, mut hi]: [[u64; 3]; 2]| {
+        lo[0] = lo[0].max(xs.start);
+        hi[0] = hi[0].min(xs.end - 1);
+        [lo, hi]
+    };
     let cells_in = |[lo, hi]: [[u64; 3]; 2]| {
+        if lo[0] > hi[0] {
+            return 0;
+        }
         (0..3)
             .map(|k| (hi[k] - lo[k] + 1) as usize)
             .product::<usize>()
     };
     let subs: Vec<&[u32]> = ids.chunks(CHUNK).collect();
-    let count = |sub: &&[u32]| sub.iter().map(|&i| cells_in(range(i))).sum::<usize>();
+    let count = |sub: &&[u32]| {
+        sub.iter()
+            .map(|&i| cells_in(clipped(range(i))))
+            .sum::<usize>()
+    };
     let counts: Vec<usize> = if parallel {
         subs.par_iter().map(count).collect()
     } else {
@@ -158,11 +265,14 @@ fn enter_all(
     // Each sub-chunk's own slices: of the entries (its count), and of the least cells (from
     // its first box to its last: ids ascend, so the runs do not overlap).
     let mut slices: Vec<Slot> = Vec::with_capacity(subs.len());
-    let (mut rest, mut cells, mut cells_from) = (entries.as_mut_slice(), lo_cell, 0usize);
+    let lows = lo_cell.is_some();
+    let mut cells = lo_cell.unwrap_or_default();
+    let (mut rest, mut cells_from) = (entries.as_mut_slice(), 0usize);
     for (sub, &c) in subs.iter().zip(&counts) {
         let (mine, tail) = std::mem::take(&mut rest).split_at_mut(c);
         let end = sub[sub.len() - 1] as usize + 1;
-        let (here, after) = std::mem::take(&mut cells).split_at_mut(end - cells_from);
+        let split = if lows { end - cells_from } else { 0 };
+        let (here, after) = std::mem::take(&mut cells).split_at_mut(split);
         slices.push(Slot {
             entries: mine,
             lows: here,
@@ -180,7 +290,10 @@ fn enter_all(
         let mut at = 0;
         for &i in sub.iter() {
             let [lo, hi] = range(i);
-            lows[i as usize - *from] = lo.map(|c| c as u16);
+            if let Some(low) = lows.get_mut(i as usize - *from) {
+                *low = lo.map(|c| c as u16);
+            }
+            let [lo, hi] = clipped([lo, hi]);
             for x in lo[0]..=hi[0] {
                 for y in lo[1]..=hi[1] {
                     for z in lo[2]..=hi[2] {
@@ -259,8 +372,13 @@ impl Grid {
     /// A grid whose cell is twice the mean box size (most boxes then enter one to four
     /// cells), coarsened until the boxes enter about
     /// `MAX_CELLS_PER_BOX` cells each on average, and until a cell's coordinates fit 16 bits
-    /// and its key and a box index fit one 64-bit entry (a coarser grid finds the same pairs).
-    fn fit(box_of: &(impl Fn(u32) -> Bounds3 + Sync), n: usize, ids: &[u32]) -> Option<Grid> {
+    /// and its key and a box index fit one 64-bit entry (a coarser grid finds the same pairs);
+    /// with the number of entries the boxes make in it.
+    fn fit(
+        box_of: &(impl Fn(u32) -> Bounds3 + Sync),
+        n: usize,
+        ids: &[u32],
+    ) -> Option<(Grid, u128)> {
         let first = box_of(*ids.first()?);
         // Bounds and the sum of box sizes by fixed chunks on all threads, the chunks'
         // sums added in order: the same grid for any thread count.
@@ -325,9 +443,9 @@ impl Grid {
                     .sum::<u128>()
             } else {
                 ids.iter().map(cells_of).sum::<u128>()
-            } as f64;
-            if cells <= MAX_CELLS_PER_BOX * ids.len() as f64 || cell >= span {
-                return Some(g);
+            };
+            if cells as f64 <= MAX_CELLS_PER_BOX * ids.len() as f64 || cell >= span {
+                return Some((g, cells));
             }
             cell *= 2.0;
         }
@@ -423,6 +541,15 @@ mod tests {
         assert_eq!(three, pool(1).install(|| overlapping_pairs(&boxes)));
         let few = &boxes[..3 * PARALLEL_ABOVE];
         assert_eq!(pool(3).install(|| overlapping_pairs(few)), brute(few));
+        // Slab by slab (a few hundred entries each): the same pairs, in the same order.
+        let by_slabs = |boxes: &[Bounds3], limit: usize| {
+            let pair = |i, j| Some((i, j));
+            pairs_in_slabs(boxes.len(), |i| boxes[i as usize], pair, Span::NONE, limit)
+        };
+        assert_eq!(pool(3).install(|| by_slabs(&boxes, 500)), three);
+        assert_eq!(pool(1).install(|| by_slabs(&boxes, 500)), three);
+        assert_eq!(pool(3).install(|| by_slabs(few, 100)), brute(few));
+        assert_eq!(by_slabs(&boxes[..300], 10), brute(&boxes[..300]));
     }
 
     /// The runs found in chunks on three threads are those of one pass: runs of every

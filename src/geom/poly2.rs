@@ -78,15 +78,22 @@ pub(crate) fn locate(m: &MultiPolygon, p: Pt2) -> Side {
     }
 }
 
+/// The ring rotated to start at its lexicographically smallest point (x, then y): the
+/// start [`canonicalize`] gives every ring.
+pub(crate) fn start_at_least(r: &mut [Pt2]) {
+    let key = |p: &Pt2, q: &Pt2| p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]));
+    if let Some(k) = (0..r.len()).min_by(|&i, &j| key(&r[i], &r[j])) {
+        r.rotate_left(k);
+    }
+}
+
 /// Canonical form: every ring starts at its lexicographically smallest point (x, then y),
 /// holes sorted after the outer ring, polygons sorted by their outer ring's start.
 pub(crate) fn canonicalize(m: &mut MultiPolygon) {
     let key = |p: &Pt2, q: &Pt2| p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]));
     for poly in m.iter_mut() {
         for r in poly.iter_mut() {
-            if let Some(k) = (0..r.len()).min_by(|&i, &j| key(&r[i], &r[j])) {
-                r.rotate_left(k);
-            }
+            start_at_least(r);
         }
         if poly.len() > 2 {
             poly[1..].sort_by(|a, b| key(&a[0], &b[0]));

@@ -16,7 +16,7 @@ fn two_overlapping_squares() {
     let (_, vis) = run(&s, top());
     assert_eq!(areas(&vis), vec![4.0, 3.0]);
     // B's VTP is the L-shaped hexagon: corners exact.
-    let b = &vis.face(FaceId(1)).visible;
+    let b = &vis.face(FaceId(1)).visible();
     assert_eq!(b.len(), 1);
     let mut pts = b[0][0].clone();
     pts.sort_by(|p, q| p.partial_cmp(q).unwrap());
@@ -47,10 +47,10 @@ fn crossing_planes_hide_each_other_on_their_own_side() {
     let (_, vis) = run(&scene(vec![("a", a), ("b", b)]), top());
     // Each keeps exactly the half where it is on top: A for x > 0, B for x < 0.
     assert_eq!(areas(&vis), vec![1.0, 1.0]);
-    for p in &vis.face(FaceId(0)).visible[0][0] {
+    for p in &vis.face(FaceId(0)).visible()[0][0] {
         assert!(p[0] >= 0.0, "{p:?}");
     }
-    for p in &vis.face(FaceId(1)).visible[0][0] {
+    for p in &vis.face(FaceId(1)).visible()[0][0] {
         assert!(p[0] <= 0.0, "{p:?}");
     }
 }
@@ -145,7 +145,8 @@ fn l_shaped_solid_seen_into_its_corner() {
         .unwrap();
     close(vis.face(inner).area, 0.575 / 1.34f64.sqrt(), 1e-12);
     // Front faces together cover the silhouette exactly once.
-    let parts: Vec<_> = vis.by_id().into_iter().map(|f| &f.visible).collect();
+    let regions: Vec<_> = vis.by_id().into_iter().map(|f| f.visible()).collect();
+    let parts: Vec<&crate::geom::poly2::MultiPolygon> = regions.iter().map(|m| &**m).collect();
     close(total_area(&parts), union_area_exact(&parts), 1e-14);
     close(total_area(&parts), union_area(&parts), 1e-9);
 }
@@ -202,7 +203,7 @@ fn shared_edge_fold_hides_exactly() {
     );
     let (_, vis) = run(&scene(vec![("fold", over)]), top());
     assert_eq!(areas(&vis), vec![0.0, 2.0]);
-    assert!(vis.face(FaceId(0)).visible.is_empty());
+    assert!(vis.face(FaceId(0)).is_empty());
     let under = mesh(
         &[[0., 0., 0.], [2., 0., 0.], [0., 2., 0.], [0., 0., -1.]],
         &[&[0, 1, 2], &[1, 2, 3]],

@@ -373,7 +373,7 @@ fn assert_same_visibility(mut scene: Scene, camera: Camera, expect_pruning: bool
     let (with, without) = (&culled.visibility, &full.visibility);
     assert_eq!(with.face_count(), without.face_count());
     for (f, (a, b)) in with.by_id().into_iter().zip(without.by_id()).enumerate() {
-        assert_eq!(a.visible, b.visible, "face {f} differs");
+        assert_eq!(a.visible(), b.visible(), "face {f} differs");
         assert_eq!(a.area, b.area, "face {f} differs");
     }
     // The JSON a regression suite keeps is the same bytes.

@@ -65,7 +65,8 @@ fn cameras(rng: &mut Rng, centre: P3) -> Vec<Camera> {
 
 /// Checks disjointness and coverage to `tol` of the projected scene area.
 pub(super) fn check_partition(view: &View, vis: &Visibility, tol: f64) {
-    let vtps: Vec<_> = vis.by_id().into_iter().map(|f| &f.visible).collect();
+    let regions: Vec<_> = vis.by_id().into_iter().map(|f| f.visible()).collect();
+    let vtps: Vec<&crate::geom::poly2::MultiPolygon> = regions.iter().map(|m| &**m).collect();
     let projected: Vec<Vec<Vec<Vec<Pt2>>>> = view
         .screen
         .piece_ids()
@@ -113,10 +114,10 @@ fn check_visp(view: &View, vis: &Visibility, rng: &mut Rng, per_face: usize) -> 
             let p = w[0] + (w[k] - w[0]) * a + (w[k + 1] - w[0]) * b;
             let s = view.camera.project(&p);
             let q = [s[0], s[1]];
-            if near_boundary(&vis.face(id).visible, q) || self_overlap(view, id, q) {
+            if near_boundary(&vis.face(id).visible(), q) || self_overlap(view, id, q) {
                 continue;
             }
-            let in_vtp = match locate(&vis.face(id).visible, q) {
+            let in_vtp = match locate(&vis.face(id).visible(), q) {
                 Side::Inside => true,
                 Side::Outside => false,
                 Side::Boundary => continue,

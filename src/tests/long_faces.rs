@@ -58,7 +58,9 @@ fn cut_rings_give_the_whole_rings_answer() {
         indexed += view.screen.ring_indexes.len();
         let cut = solve(&view, PassOptions::default(), Default::default());
         let mut whole_view = view.clone();
-        whole_view.screen.ring_indexes.clear();
+        std::sync::Arc::make_mut(&mut whole_view.screen)
+            .ring_indexes
+            .clear();
         let whole = solve(&whole_view, PassOptions::default(), Default::default());
         let total: f64 = whole.by_id().iter().map(|f| f.area).sum();
         assert!(total > 0.0);

@@ -24,3 +24,4 @@ mod section;
 mod shared_meshes;
 mod tribox;
 mod tribox_uses;
+mod whole_regions;

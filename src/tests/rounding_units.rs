@@ -63,7 +63,7 @@ impl Worst {
     /// Records every invalid ring of the visible regions and of the JSON.
     fn rings(&mut self, what: &str, scene: &Scene, r: &crate::Rendered) {
         for id in 0..scene.face_count() as u32 {
-            let m = &r.visibility.face(FaceId(id)).visible;
+            let m = &r.visibility.face(FaceId(id)).visible();
             for d in multipolygon_defects(m) {
                 self.rings.push(format!("{what}: face {id} region {d:?}"));
             }

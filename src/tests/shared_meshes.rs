@@ -44,7 +44,7 @@ fn shared_meshes_emit_valid_rings_and_stroke_each_line_once() {
         let r = render(&scene, &cam, &opts, &crate::Progress::default()).unwrap();
         let mut bad = Vec::new();
         for (id, f) in r.visibility.iter() {
-            for d in multipolygon_defects(&f.visible) {
+            for d in multipolygon_defects(&f.visible()) {
                 bad.push((id, d));
             }
         }

@@ -183,7 +183,8 @@ fn lod_render_keeps_visibility_invariants() {
     }
     // The render of the substituted scene: VTPs partition the projected faces.
     let (view, vis) = run(&sub, cam);
-    let vtps: Vec<&MultiPolygon> = vis.by_id().into_iter().map(|f| &f.visible).collect();
+    let regions: Vec<_> = vis.by_id().into_iter().map(|f| f.visible()).collect();
+    let vtps: Vec<&MultiPolygon> = regions.iter().map(|m| &**m).collect();
     let projected: Vec<MultiPolygon> = view
         .screen
         .piece_ids()

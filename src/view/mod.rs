@@ -32,6 +32,8 @@ pub(crate) use piece_id::PieceId;
 pub(crate) use screen::{Facing, ScreenFaces};
 pub(crate) use tree::ViewTree;
 
+use std::sync::Arc;
+
 use crate::progress::{Phase, Progress, Stage};
 use crate::scene::{FaceId, Scene};
 
@@ -41,7 +43,7 @@ pub struct View {
     /// The camera.
     pub camera: Camera,
     /// Faces in screen space, as planar pieces.
-    pub(crate) screen: ScreenFaces,
+    pub(crate) screen: Arc<ScreenFaces>,
     /// The object tree with screen bounds.
     pub(crate) tree: ViewTree,
     /// What culling hid before projection: subtrees, their faces, and objects tested.
@@ -140,7 +142,7 @@ impl View {
         let tree = ViewTree::build(scene, &camera, &screen, &cull.hidden, progress.count());
         View {
             camera,
-            screen,
+            screen: Arc::new(screen),
             tree,
             culled: CullSummary {
                 subtrees: cull.hidden.len() as u64 + cull.components_hidden,

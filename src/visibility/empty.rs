@@ -4,7 +4,7 @@
 use crate::geom::Rect;
 use crate::view::{Facing, Projection, View};
 
-use super::pass::Visibility;
+use super::result::Visibility;
 
 /// The reason nothing (or nothing in the camera's field of view) is visible, if so; `faces`
 /// is the scene's face count.
@@ -18,7 +18,10 @@ pub(crate) fn why_empty(faces: usize, view: &View, vis: &Visibility) -> Option<S
     let mut visible = Rect::EMPTY;
     for (_, f) in vis.iter() {
         if f.area > 0.0 {
-            visible = visible.union(&Rect::of_points(f.visible.iter().flatten().flatten()));
+            visible = f.fold_points(visible, |mut r, p| {
+                r.add(p);
+                r
+            });
         }
     }
     if !visible.is_empty() {

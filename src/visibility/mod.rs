@@ -6,6 +6,7 @@ pub(crate) mod empty;
 pub(crate) mod include;
 pub(crate) mod occlusion;
 pub(crate) mod pass;
+pub(crate) mod result;
 pub(crate) mod stats;
 pub(crate) mod visfac;
 pub(crate) mod visobj;
@@ -14,7 +15,8 @@ pub(crate) mod visp;
 pub(crate) mod vtp_texture;
 
 pub(crate) use include::include;
-pub(crate) use pass::{solve, FaceVisibility, PassOptions, Visibility};
+pub(crate) use pass::{solve, PassOptions};
+pub(crate) use result::{FaceVisibility, Visibility};
 pub(crate) use stats::Counters;
 pub(crate) use visobj::visobj;
 pub(crate) use visp::visp;

@@ -1,18 +1,21 @@
 //! The whole-scene pass: every face's VTP, in parallel over faces. Subtrees the view stage
 //! culled (HIDDEN by inboxes) have no pieces, so the pass never touches their faces.
 
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 use rayon::prelude::*;
 
 use crate::count::Count;
 use crate::geom::boolean;
-use crate::geom::poly2::{canonicalize, multipolygon_area, MultiPolygon};
+use crate::geom::poly2::{
+    canonicalize, multipolygon_area, ring_area, start_at_least, MultiPolygon,
+};
 use crate::geom::ring_check::{repair, ring_defect};
 use crate::geom::Rect;
 use crate::scene::FaceId;
 use crate::view::{Facing, PieceId, ScreenFaces, View};
 
+use super::result::{whole_region, Solved, Visibility};
 use super::stats::Counters;
 use super::visfac::{visfac, Scratch, Vtp};
 
@@ -26,100 +29,6 @@ pub(crate) struct PassOptions {
 impl Default for PassOptions {
     fn default() -> Self {
         PassOptions { use_inbox: true }
-    }
-}
-
-/// The visible part of one face.
-#[derive(Debug, Clone, PartialEq)]
-pub struct FaceVisibility {
-    /// Visible region in screen space (canonical: rings start at their least point).
-    pub visible: MultiPolygon,
-    /// Its area.
-    pub area: f64,
-    /// The face's projected area (0 when edge-on or clipped).
-    pub projected_area: f64,
-    /// Nothing hides any of the face: `visible` is its whole projected ring (VISFAC found no
-    /// occluder), so every edge of the face is visible from end to end.
-    pub(crate) whole: bool,
-}
-
-impl FaceVisibility {
-    /// The result for a visible region: rings the rounding from the integer grid spoiled
-    /// repaired ([`repair`]), canonicalised, with its area measured.
-    fn new(mut visible: MultiPolygon, projected_area: f64) -> Self {
-        repair(&mut visible);
-        canonicalize(&mut visible);
-        let area = multipolygon_area(&visible);
-        FaceVisibility {
-            visible,
-            area,
-            projected_area,
-            whole: false,
-        }
-    }
-}
-
-/// Nothing visible: the VTP of a face in a hidden subtree.
-static HIDDEN: FaceVisibility = FaceVisibility {
-    visible: Vec::new(),
-    area: 0.0,
-    projected_area: 0.0,
-    whole: false,
-};
-
-/// The visible-polygon set of a view: the faces the pass solved (a warped face's planar
-/// pieces merged), by ascending global id; faces of culled subtrees are absent (empty).
-#[derive(Debug, Clone)]
-pub struct Visibility {
-    ids: Vec<FaceId>,
-    faces: Vec<FaceVisibility>,
-    face_count: usize,
-    /// What the pass did.
-    pub counters: Counters,
-}
-
-impl Visibility {
-    /// Face `id`'s visibility; empty (with no projected area) for a face of a culled subtree.
-    pub fn face(&self, id: FaceId) -> &FaceVisibility {
-        if self.ids.len() == self.face_count {
-            return self.faces.get(id.index()).unwrap_or(&HIDDEN);
-        }
-        match self.ids.binary_search(&id) {
-            Ok(k) => &self.faces[k],
-            Err(_) => &HIDDEN,
-        }
-    }
-
-    /// The solved faces with their global ids, ascending.
-    pub fn iter(&self) -> impl Iterator<Item = (FaceId, &FaceVisibility)> + '_ {
-        self.ids.iter().copied().zip(self.faces.iter())
-    }
-
-    /// The solved faces' ids, ascending, and their visibilities, index for index.
-    pub(crate) fn solved(&self) -> (&[FaceId], &[FaceVisibility]) {
-        (&self.ids, &self.faces)
-    }
-
-    /// Every face's visibility in global face order, solved or not.
-    pub fn by_id(&self) -> Vec<&FaceVisibility> {
-        (0..self.face_count as u32)
-            .map(|id| self.face(FaceId(id)))
-            .collect()
-    }
-
-    /// Number of faces in the scene (solved or not).
-    pub fn face_count(&self) -> usize {
-        self.face_count
-    }
-
-    /// Number of faces the pass solved.
-    pub fn solved_count(&self) -> usize {
-        self.faces.len()
-    }
-
-    /// Total visible area.
-    pub fn total_area(&self) -> f64 {
-        self.faces.iter().map(|f| f.area).sum()
     }
 }
 
@@ -154,7 +63,7 @@ pub(crate) fn solve(view: &View, opts: PassOptions, done: Count) -> Visibility {
         done.add(1);
         r
     };
-    let results: Vec<FaceVisibility> = if sf.pieces.len() < SEQUENTIAL_BELOW {
+    let results: Vec<Solved> = if sf.pieces.len() < SEQUENTIAL_BELOW {
         let mut w = Worker::new(&total);
         sf.piece_ids().map(|p| solve(&mut w, p)).collect()
     } else {
@@ -170,12 +79,7 @@ pub(crate) fn solve(view: &View, opts: PassOptions, done: Count) -> Visibility {
         .flat_map(|l| FaceId::each(&l.faces()))
         .collect();
     let faces = by_face(results, &ids, sf);
-    Visibility {
-        ids,
-        faces,
-        face_count: sf.face_count(),
-        counters,
-    }
+    Visibility::new(ids, faces, Arc::clone(&view.screen), counters)
 }
 
 /// A worker of the pass: its buffers, and the counters of the pieces it solved, added to
@@ -206,17 +110,13 @@ impl Drop for Worker<'_> {
 /// The pieces' results (in piece order) as one result per face of `ids`: moved where a
 /// face is one piece (the usual case: then the whole vector is kept as it is), merged where
 /// it has several.
-fn by_face(
-    mut results: Vec<FaceVisibility>,
-    ids: &[FaceId],
-    sf: &ScreenFaces,
-) -> Vec<FaceVisibility> {
+fn by_face(mut results: Vec<Solved>, ids: &[FaceId], sf: &ScreenFaces) -> Vec<Solved> {
     let span = |id: &FaceId| sf.piece_span(*id..id.offset(1));
     if ids.len() == results.len() && ids.iter().all(|id| span(id).len() == 1) {
         return results;
     }
     // Each face's pieces as a slice of their own, split off in order.
-    let mut rest: &mut [FaceVisibility] = &mut results;
+    let mut rest: &mut [Solved] = &mut results;
     let mut at = 0;
     let mut slices = Vec::with_capacity(ids.len());
     for id in ids {
@@ -228,8 +128,7 @@ fn by_face(
         rest = tail;
         at = r.end;
     }
-    let merge =
-        |(pieces, r): (&mut [FaceVisibility], std::ops::Range<usize>)| merge_pieces(pieces, sf, r);
+    let merge = |(pieces, r): (&mut [Solved], std::ops::Range<usize>)| merge_pieces(pieces, sf, r);
     if ids.len() < SEQUENTIAL_BELOW {
         slices.into_iter().map(merge).collect()
     } else {
@@ -239,20 +138,20 @@ fn by_face(
 
 /// One face's visibility from its pieces' (a planar face is one piece; the pieces of a warped
 /// face have disjoint interiors, so their union is exact and their areas add). The pieces'
-/// regions are taken, not copied.
-fn merge_pieces(
-    pieces: &mut [FaceVisibility],
-    sf: &ScreenFaces,
-    r: std::ops::Range<usize>,
-) -> FaceVisibility {
+/// regions are taken, not copied; a whole piece's is made from its ring.
+fn merge_pieces(pieces: &mut [Solved], sf: &ScreenFaces, r: std::ops::Range<usize>) -> Solved {
     if let [one] = pieces {
-        return std::mem::replace(one, HIDDEN.clone());
+        return std::mem::replace(one, Solved::HIDDEN);
     }
     let projected_area = pieces.iter().map(|p| p.projected_area).sum();
     let mut parts: Vec<MultiPolygon> = pieces
         .iter_mut()
-        .filter(|p| !p.visible.is_empty())
-        .map(|p| std::mem::take(&mut p.visible))
+        .zip(r.clone())
+        .filter(|(p, _)| p.whole || !p.visible.is_empty())
+        .map(|(p, k)| match p.whole {
+            true => whole_region(sf, PieceId(k as u32)),
+            false => std::mem::take(&mut p.visible),
+        })
         .collect();
     let visible = match parts.len() {
         0 => Vec::new(),
@@ -269,7 +168,21 @@ fn merge_pieces(
             boolean::union(parts.iter().flatten().flatten(), &rect)
         }
     };
-    FaceVisibility::new(visible, projected_area)
+    new_result(visible, projected_area)
+}
+
+/// The result for a visible region: rings the rounding from the integer grid spoiled
+/// repaired ([`repair`]), canonicalised, with its area measured.
+fn new_result(mut visible: MultiPolygon, projected_area: f64) -> Solved {
+    repair(&mut visible);
+    canonicalize(&mut visible);
+    let area = multipolygon_area(&visible);
+    Solved {
+        visible,
+        area,
+        projected_area,
+        whole: false,
+    }
 }
 
 fn without_inboxes(view: &View) -> View {
@@ -287,19 +200,14 @@ fn solve_face(
     f: PieceId,
     scratch: &mut Scratch,
     c: &mut Counters,
-) -> FaceVisibility {
+) -> Solved {
     let sf = view.screen.piece(f);
     let projected_area = if matches!(sf.facing, Facing::Front | Facing::Back) {
         ccw_area(view, f)
     } else {
         0.0
     };
-    let empty = |area| FaceVisibility {
-        visible: Vec::new(),
-        area: 0.0,
-        projected_area: area,
-        whole: false,
-    };
+    let empty = Solved::empty;
     match sf.facing {
         Facing::EdgeOn | Facing::Clipped => {
             c.faces_edge_on += 1;
@@ -313,12 +221,15 @@ fn solve_face(
     }
     let ring = view.screen.ring_ccw(f);
     let visible = match visfac(view, root, f, scratch, c) {
+        // The region is the ring, made again when read ([`whole_region`]): only its area
+        // is kept, measured from the canonical start (the region's area to the bit: one
+        // ring's sums add nothing to it).
         Vtp::Whole if ring_defect(&ring, true).is_none() => {
-            let mut visible = vec![vec![ring]];
-            canonicalize(&mut visible);
-            return FaceVisibility {
-                area: multipolygon_area(&visible),
-                visible,
+            let mut ring = ring;
+            start_at_least(&mut ring);
+            return Solved {
+                area: ring_area(&ring),
+                visible: Vec::new(),
                 projected_area,
                 whole: true,
             };
@@ -333,7 +244,7 @@ fn solve_face(
         Vtp::Empty => Vec::new(),
         Vtp::Part(m) => m,
     };
-    FaceVisibility::new(visible, projected_area)
+    new_result(visible, projected_area)
 }
 
 /// `ring_area(ring_ccw(f))` without building the ring (same arithmetic, same bits).

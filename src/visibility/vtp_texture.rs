@@ -44,7 +44,7 @@ pub(crate) fn vtp_in_texture(view: &View, vis: &Visibility, id: FaceId) -> Optio
             .collect()
     };
     vis.face(id)
-        .visible
+        .visible()
         .iter()
         .map(|poly| poly.iter().map(map_ring).collect::<Option<Vec<_>>>())
         .collect()

@@ -292,11 +292,7 @@ fn hatching_and_fills_count_their_visible_faces() {
     let log = watched.phases();
     assert_full(&log);
     // Every face with a visible part is hatched (its tone may draw no line) and filled, once.
-    let visible = r
-        .visibility
-        .iter()
-        .filter(|(_, f)| !f.visible.is_empty())
-        .count();
+    let visible = r.visibility.iter().filter(|(_, f)| !f.is_empty()).count();
     let total = |p: Phase| -> Vec<usize> {
         counts(&log)
             .into_iter()

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use crate::count::{Count, Share};
 use crate::geom::{P3, V3};
-use crate::rank_sort::sort_by_rank;
+use crate::rank_sort::sort_distinct_by_rank;
 use crate::scene::{FaceId, Scene};
 use crate::view::{Facing, View};
 
@@ -272,8 +272,8 @@ fn half_edges(world: &WorldFaces, start: usize, end: usize, base: usize) -> Vec<
         }
     });
     // Counted by the lesser vertex (a leaf's vertices are about half its faces); seq is
-    // unique: the order is the same however the sort runs.
-    sort_by_rank(&mut half, |h| h.a, |h| (h.b, h.seq));
+    // unique: the order is the same however the sort runs, and it needs no copy of the list.
+    sort_distinct_by_rank(&mut half, |h| h.a, |h| (h.b, h.seq));
     half
 }
 
@@ -308,7 +308,7 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
         starts[k]..starts.get(k + 1).map_or(n as u32, |&e| e)
     });
     // Each group's first seq is unique and below the leaf's corners: counted.
-    sort_by_rank(&mut groups, |g| half[g.start as usize].seq, |_| ());
+    sort_distinct_by_rank(&mut groups, |g| half[g.start as usize].seq, |_| ());
     groups
 }
 

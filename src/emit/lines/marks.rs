@@ -23,9 +23,10 @@ pub(crate) fn face_marks(scene: &Scene, view: &View, vis: &Visibility) -> Vec<St
         for (k, face) in leaf.mesh.faces.iter().enumerate() {
             let Some(tex) = &face.texture else { continue };
             let fv = vis.face(FaceId((leaf.first_face + k) as u32));
-            if fv.visible.is_empty() {
+            if fv.is_empty() {
                 continue;
             }
+            let region = fv.visible();
             let local: Vec<P3> = face
                 .vertices
                 .iter()
@@ -56,7 +57,7 @@ pub(crate) fn face_marks(scene: &Scene, view: &View, vis: &Visibility) -> Vec<St
                 if a == b {
                     continue;
                 }
-                for iv in intervals_in(a, b, &fv.visible) {
+                for iv in intervals_in(a, b, &region) {
                     if iv[1] > iv[0] {
                         out.push([at(a, b, iv[0]), at(a, b, iv[1])]);
                     }

@@ -20,6 +20,7 @@ pub(crate) mod once;
 pub(crate) mod region;
 pub(crate) mod world;
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
 
@@ -176,7 +177,7 @@ pub(crate) fn visible_intervals(
 ) -> Vec<Interval> {
     let lists: Vec<Vec<Interval>> = faces
         .iter()
-        .map(|&f| intervals_in(a, b, &vis.face(f).visible))
+        .map(|&f| intervals_in(a, b, &vis.face(f).visible()))
         .collect();
     union(&lists)
 }
@@ -205,21 +206,21 @@ impl<'v> Regions<'v> {
     /// [`visible_intervals`] with the regions indexed once.
     fn visible_intervals(&self, a: Pt2, b: Pt2, faces: &[FaceId]) -> Vec<Interval> {
         // An edge of a face nothing hides lies on that face's closed VTP from end to end.
-        if faces.iter().any(|&f| self.vis.face(f).whole) {
+        if faces.iter().any(|&f| self.vis.face(f).whole()) {
             return vec![[0.0, 1.0]];
         }
         let lists: Vec<Vec<Interval>> = faces
             .iter()
-            .map(|&f| {
-                let vtp = &self.vis.face(f).visible;
-                match self.faces.binary_search(&f) {
-                    Ok(k) => {
+            .map(
+                |&f| match (self.vis.face(f).visible(), self.faces.binary_search(&f)) {
+                    (Cow::Borrowed(vtp), Ok(k)) => {
                         intervals_in_region(a, b, self.made[k].get_or_init(|| Region::new(vtp)))
                     }
-                    // Not a face of the edges given to `new`: indexed for this use alone.
-                    Err(_) => intervals_in_region(a, b, &Region::new(vtp)),
-                }
-            })
+                    // Not a face of the edges given to `new` (or a region made when read):
+                    // indexed for this use alone.
+                    (vtp, _) => intervals_in_region(a, b, &Region::new(&vtp)),
+                },
+            )
             .collect();
         union(&lists)
     }

@@ -437,7 +437,8 @@ mod tests {
             assert!(w.points.is_empty());
         }
         // With a leaf the view does not hold, that leaf's points are made: the same bits.
-        let mut sf = View::new(&scene, Camera::three_quarter()).screen;
+        let mut sf =
+            std::sync::Arc::unwrap_or_clone(View::new(&scene, Camera::three_quarter()).screen);
         let last = sf.leaves.pop().unwrap();
         let w = WorldFaces::build(&scene, Some(&sf), Count::NONE);
         assert_eq!(w.points.len(), 8);

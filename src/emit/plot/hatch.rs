@@ -105,7 +105,7 @@ pub(crate) fn hatch(
             let first = leaf.first_face;
             (0..leaf.mesh.faces.len()).map(move |k| (FaceId((first + k) as u32), li as u32))
         })
-        .filter(|(f, _)| !vis.face(*f).visible.is_empty() && !view.screen.occlude_only(*f))
+        .filter(|(f, _)| !vis.face(*f).is_empty() && !view.screen.occlude_only(*f))
         .collect();
     let tones: Vec<(FaceId, u32, u8)> = faces
         .par_iter()
@@ -121,7 +121,7 @@ pub(crate) fn hatch(
             let mut out = Vec::new();
             for &(mult, offset) in families(t) {
                 let fam = Family::new(layout, angle + offset, spacing * mult);
-                for s in fam.clip(&vis.face(f).visible) {
+                for s in fam.clip(&vis.face(f).visible()) {
                     out.push((leaf, s));
                 }
             }
@@ -151,11 +151,11 @@ pub(crate) fn section_hatch(
     let firsts: Vec<usize> = scene.leaves().iter().map(|l| l.first_face).collect();
     let faces: Vec<FaceId> = (first as usize..view.screen.face_count())
         .map(|f| FaceId(f as u32))
-        .filter(|&f| !vis.face(f).visible.is_empty())
+        .filter(|&f| !vis.face(f).is_empty())
         .collect();
     let lines: u64 = faces
         .iter()
-        .map(|&f| fam.count(&vis.face(f).visible))
+        .map(|&f| fam.count(&vis.face(f).visible()))
         .fold(0, u64::saturating_add);
     if lines > MAX_HATCH_LINES {
         return Err(Error::Usage(format!(
@@ -167,7 +167,7 @@ pub(crate) fn section_hatch(
         .map(|&f| {
             // The leaf's index in the scene's order (the drawing's), not the view's.
             let leaf = firsts.partition_point(|&ff| ff <= f.index()) as u32 - 1;
-            fam.clip(&vis.face(f).visible)
+            fam.clip(&vis.face(f).visible())
                 .into_iter()
                 .map(|s| (leaf, s))
                 .collect::<Vec<_>>()
@@ -198,7 +198,8 @@ fn check_line_count(
             families(t)
                 .iter()
                 .map(|&(mult, offset)| {
-                    Family::new(layout, angle + offset, spacing * mult).count(&vis.face(f).visible)
+                    Family::new(layout, angle + offset, spacing * mult)
+                        .count(&vis.face(f).visible())
                 })
                 .fold(0u64, u64::saturating_add)
         })
@@ -330,12 +331,13 @@ pub(crate) fn tone_outlines(
     keys.dedup_by_key(|k| (k.0, k.1));
     keys.par_iter()
         .map(|&(g, t, leaf)| {
-            let rings: Vec<&Ring> = hatching
+            let regions: Vec<_> = hatching
                 .tones
                 .iter()
                 .filter(|&&(_, l, tt)| tt == t && group(l) == g)
-                .flat_map(|&(f, _, _)| vis.face(f).visible.iter().flatten())
+                .map(|&(f, _, _)| vis.face(f).visible())
                 .collect();
+            let rings: Vec<&Ring> = regions.iter().flat_map(|m| m.iter().flatten()).collect();
             let rect = Rect::of_points(rings.iter().flat_map(|r| r.iter()));
             let union = boolean::union(rings.iter().copied(), &rect);
             union

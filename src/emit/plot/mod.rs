@@ -108,10 +108,9 @@ pub(crate) fn picture(
             ));
             b = b.union(&Rect::of_points(marks.iter().flat_map(|s| s.pts.iter())));
             if regions {
-                let faces = vis
-                    .iter()
-                    .flat_map(|(_, f)| f.visible.iter().flatten().flatten());
-                b = b.union(&Rect::of_points(faces));
+                for (_, f) in vis.iter() {
+                    b = b.union(&Rect::of_points(f.visible().iter().flatten().flatten()));
+                }
             }
             Frame::of_scene(&view.camera, scene, b)
         }
@@ -119,7 +118,7 @@ pub(crate) fn picture(
     let layout = Layout::new(&frame, opts.page, opts.margin_mm, opts.size)?;
 
     if let Some(h) = &opts.hatch {
-        let faces = vis.iter().filter(|(_, fv)| !fv.visible.is_empty()).count();
+        let faces = vis.iter().filter(|(_, fv)| !fv.is_empty()).count();
         lane.enter_phase(Stage::Emit, Phase::Hatch, faces);
         let hatching = hatch(scene, view, vis, &layout, h, opts.light, lane.count())?;
         for &(leaf, s) in &hatching.segments {
@@ -447,7 +446,7 @@ fn fills(
     let mut by_grey: BTreeMap<u8, Vec<Vec<Pt2>>> = BTreeMap::new();
     let visible = || {
         vis.iter()
-            .filter(|(f, fv)| !fv.visible.is_empty() && !view.screen.occlude_only(*f))
+            .filter(|(f, fv)| !fv.is_empty() && !view.screen.occlude_only(*f))
     };
     let n = visible().count();
     lane.enter_phase(Stage::Emit, Phase::Fill, n);
@@ -455,8 +454,8 @@ fn fills(
     for (k, (f, fv)) in visible().enumerate() {
         done.tick(k);
         let f: FaceId = f;
-        let rings = fv
-            .visible
+        let region = fv.visible();
+        let rings = region
             .iter()
             .flatten()
             .map(|r| r.iter().map(|&p| layout.to_page(p)).collect::<Vec<Pt2>>())

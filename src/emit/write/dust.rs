@@ -39,13 +39,10 @@ pub(crate) fn dust_delta(extent: f64) -> f64 {
     DUST_ULPS * f64::EPSILON * extent
 }
 
-/// The largest |coordinate| of any point of the regions (0 when there is none).
-pub(crate) fn extent<'a>(regions: impl Iterator<Item = &'a MultiPolygon>) -> f64 {
-    regions
-        .flatten()
-        .flatten()
-        .flatten()
-        .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()))
+/// The largest of `m` and the |coordinates| of `p`: folded over every point of the regions,
+/// the view's extent (0 when there is none).
+pub(crate) fn extent_with(m: f64, p: Pt2) -> f64 {
+    m.max(p[0].abs()).max(p[1].abs())
 }
 
 /// The region without dust (see the module documentation): borrowed when there is none.
@@ -275,7 +272,8 @@ mod tests {
         // A tiny but real square, far below any absolute threshold, is kept.
         let tiny = vec![vec![square(0.5, 0.5, 1e-9)]];
         assert!(matches!(clean(&tiny, dust_delta(1.0)), Cow::Borrowed(_)));
-        assert_eq!(extent([&m, &tiny].into_iter()), 1.0);
+        let pts = [&m, &tiny].into_iter().flatten().flatten().flatten();
+        assert_eq!(pts.fold(0.0, |e, p| extent_with(e, *p)), 1.0);
     }
 
     #[test]

@@ -13,7 +13,7 @@ use std::io;
 
 use rayon::prelude::*;
 
-use super::dust::{clean, dust_delta, extent};
+use super::dust::{clean, dust_delta, extent_with};
 use crate::count::Count;
 use crate::geom::poly2::{multipolygon_area, Pt2};
 use crate::scene::flatten::write_num;
@@ -204,14 +204,14 @@ fn json_into(
         .iter()
         .map(|l| json_string(&l.path))
         .collect();
-    let (ids, faces) = vis.solved();
+    let ids = vis.ids();
     // The greatest coordinate of every region, on all threads (a greatest is the same in
     // any order).
     let delta = dust_delta(
-        faces
-            .par_iter()
+        (0..ids.len())
+            .into_par_iter()
             .with_min_len(EXTENT_TASK)
-            .map(|f| extent(std::iter::once(&f.visible)))
+            .map(|k| vis.at(k).fold_points(0.0, extent_with))
             .reduce(|| 0.0, f64::max),
     );
     let (batch_faces, task_faces) = (out.batch_faces, out.task_faces);
@@ -224,8 +224,8 @@ fn json_into(
             .map(|&a| {
                 let b = (a + task_faces).min(hi);
                 let mut s = String::new();
-                for k in a..b {
-                    face_entry(&mut s, view, &paths, delta, ids[k], &faces[k]);
+                for (k, &id) in (a..b).zip(&ids[a..b]) {
+                    face_entry(&mut s, view, &paths, delta, id, vis.at(k));
                 }
                 s
             })
@@ -282,9 +282,10 @@ fn face_entry(
     paths: &[String],
     delta: f64,
     id: FaceId,
-    f: &FaceVisibility,
+    f: FaceVisibility,
 ) {
-    let visible = clean(&f.visible, delta);
+    let region = f.visible();
+    let visible = clean(&region, delta);
     // An occlude-only object hides what is behind it but is not listed.
     if visible.is_empty() || view.screen.occlude_only(id) {
         return;

@@ -352,7 +352,8 @@ fn triangulate(mesh: &Mesh, span: Span) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
         .enumerate()
         .map(chunk)
         .collect();
-    // Joined on all threads.
+    // Joined on all threads, each few parts freed as soon as they are copied (at a million
+    // faces the triangles and their parts were the prepare stage's peak, held together).
     let (mut tris, mut face_of, mut flat) = (Vec::new(), Vec::new(), Vec::new());
     for (t, f, b) in parts {
         tris.push(t);
@@ -360,8 +361,8 @@ fn triangulate(mesh: &Mesh, span: Span) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
         flat.push(b);
     }
     let (tris, (face_of, flat)) = rayon::join(
-        || crate::chunked::concat(&tris),
-        || rayon::join(|| crate::chunked::concat(&face_of), || flat.concat()),
+        || crate::chunked::concat_freeing(tris),
+        || rayon::join(|| crate::chunked::concat_freeing(face_of), || flat.concat()),
     );
     (tris, face_of, flat)
 }
