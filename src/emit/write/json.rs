@@ -149,6 +149,9 @@ const BATCH_FACES: usize = 1 << 16;
 /// Faces one thread formats at a time.
 const TASK_FACES: usize = 1 << 10;
 
+/// Batches formatted and waiting to be written, at most.
+const AHEAD: usize = 2;
+
 impl Sink<'_> {
     /// Writes out the text gathered so far once it is long enough (kept when in memory).
     fn spill(&mut self) -> io::Result<()> {
@@ -234,22 +237,51 @@ fn json_into(
     let batches: Vec<usize> = (0..ids.len()).step_by(batch_faces).collect();
     let end_of = |b: usize| (b + batch_faces).min(ids.len());
     let mut first = true;
-    let mut texts = batches
-        .first()
-        .map_or_else(Vec::new, |&b| format(b, end_of(b)));
-    for (k, &b) in batches.iter().enumerate() {
-        // The next batch is formatted on the pool while this one is written here.
-        let mut next = Vec::new();
-        let wrote = rayon::in_place_scope(|s| {
-            if let Some(&nb) = batches.get(k + 1) {
-                let (next, format) = (&mut next, &format);
-                s.spawn(move |_| *next = format(nb, end_of(nb)));
-            }
-            put(out, &texts, &mut first)
-        });
-        wrote?;
+    let mut wrote = |out: &mut Sink, b: usize, texts: Vec<String>| {
+        put(out, &texts, &mut first)?;
         done.add(end_of(b) - b);
-        texts = next;
+        Ok::<(), io::Error>(())
+    };
+    if rayon::current_thread_index().is_some() {
+        // On a thread of the pool (a render inside `install`): waiting on a channel there
+        // could leave the formatter's task queued behind the wait, so one batch is formatted
+        // ahead in the scope the pool helps with.
+        let mut texts = batches
+            .first()
+            .map_or_else(Vec::new, |&b| format(b, end_of(b)));
+        for (k, &b) in batches.iter().enumerate() {
+            let mut next = Vec::new();
+            rayon::in_place_scope(|s| {
+                if let Some(&nb) = batches.get(k + 1) {
+                    let (next, format) = (&mut next, &format);
+                    s.spawn(move |_| *next = format(nb, end_of(nb)));
+                }
+                wrote(out, b, std::mem::take(&mut texts))
+            })?;
+            texts = next;
+        }
+    } else {
+        // A task on the pool formats the batches in order, up to [`AHEAD`] of them waiting,
+        // while this thread writes them: the writes (a file's, on this thread alone) no
+        // longer leave the pool idle. A failed write drops the receiver, which ends the task.
+        let (tx, rx) = std::sync::mpsc::sync_channel(AHEAD);
+        rayon::in_place_scope(|s| {
+            let (batches, format) = (&batches, &format);
+            s.spawn(move |_| {
+                for &b in batches {
+                    if tx.send(format(b, end_of(b))).is_err() {
+                        break;
+                    }
+                }
+            });
+            let rx = rx;
+            for &b in batches {
+                // None: the task panicked, which the scope raises here.
+                let Ok(texts) = rx.recv() else { break };
+                wrote(out, b, texts)?;
+            }
+            Ok::<(), io::Error>(())
+        })?;
     }
     out.s.push_str("\n]");
     if let Some(l) = lines {
@@ -436,6 +468,21 @@ mod tests {
                     out.s, kept,
                     "batches of {batch_faces}, tasks of {task_faces}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn written_from_inside_a_pool_the_bytes_are_the_same() {
+        for r in rendered() {
+            let kept = to_json(&r.view, &r.visibility, None, Count::NONE);
+            for threads in [1, 3] {
+                let mut w = Vec::new();
+                crate::chunked::pool(threads).install(|| {
+                    write_json_spilling(&r.view, &r.visibility, None, &mut w, Count::NONE, 700)
+                        .unwrap()
+                });
+                assert_eq!(String::from_utf8(w).unwrap(), kept, "{threads} threads");
             }
         }
     }
