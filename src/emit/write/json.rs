@@ -243,22 +243,11 @@ fn json_into(
         Ok::<(), io::Error>(())
     };
     if rayon::current_thread_index().is_some() {
-        // On a thread of the pool (a render inside `install`): waiting on a channel there
-        // could leave the formatter's task queued behind the wait, so one batch is formatted
-        // ahead in the scope the pool helps with.
-        let mut texts = batches
-            .first()
-            .map_or_else(Vec::new, |&b| format(b, end_of(b)));
-        for (k, &b) in batches.iter().enumerate() {
-            let mut next = Vec::new();
-            rayon::in_place_scope(|s| {
-                if let Some(&nb) = batches.get(k + 1) {
-                    let (next, format) = (&mut next, &format);
-                    s.spawn(move |_| *next = format(nb, end_of(nb)));
-                }
-                wrote(out, b, std::mem::take(&mut texts))
-            })?;
-            texts = next;
+        // On a thread of the pool (a render inside `install`), waiting on a channel could
+        // leave the formatter's task queued behind the wait: each batch is formatted (on
+        // all threads), then written.
+        for &b in &batches {
+            wrote(out, b, format(b, end_of(b)))?;
         }
     } else {
         // A task on the pool formats the batches in order, up to [`AHEAD`] of them waiting,
