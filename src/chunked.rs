@@ -63,7 +63,14 @@ where
             .map(|c| size(range(c)))
             .collect()
     };
-    let mut out = vec![T::default(); sizes.iter().sum()];
+    // The list's places made (their pages first touched) on all threads.
+    let total = sizes.iter().sum();
+    let mut out = Vec::with_capacity(total);
+    if serial {
+        out.resize(total, T::default());
+    } else {
+        out.par_extend((0..total).into_par_iter().with_min_len(CHUNK).map(|_| T::default()));
+    }
     let mut places: Vec<(usize, &mut [T])> = Vec::with_capacity(chunks);
     let mut rest = out.as_mut_slice();
     for (c, &k) in sizes.iter().enumerate() {
@@ -203,19 +210,6 @@ pub(crate) fn extend_taken<T: Default + Send>(out: &mut Vec<T>, parts: Vec<&mut 
     });
 }
 
-/// A copy of `v`, its items cloned on all threads (each a heap allocation of its own, say).
-pub(crate) fn clone_all<T: Clone + Send + Sync>(v: &[T]) -> Vec<T> {
-    if v.len() <= CHUNK || rayon::current_num_threads() == 1 {
-        return v.to_vec();
-    }
-    let mut out = Vec::with_capacity(v.len());
-    v.par_iter()
-        .with_min_len(CHUNK)
-        .cloned()
-        .collect_into_vec(&mut out);
-    out
-}
-
 /// Drops the items of `v` on all threads (each a heap allocation of its own, say: a
 /// million faces' corner lists take as long to free as to make).
 pub(crate) fn drop_all<T: Send>(v: Vec<T>) {
@@ -344,15 +338,6 @@ mod tests {
             let got = pool.install(|| position_first(n, |i| want.is_some_and(|w| i >= w)));
             assert_eq!(got, want);
         }
-    }
-
-    #[test]
-    fn cloning_on_all_threads_copies_in_order() {
-        let pool = pool(3);
-        let v: Vec<Vec<u32>> = (0..5 * CHUNK as u32)
-            .map(|i| vec![i; i as usize % 4])
-            .collect();
-        assert_eq!(pool.install(|| clone_all(&v)), v);
     }
 
     #[test]

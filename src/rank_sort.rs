@@ -48,7 +48,7 @@ pub(crate) fn sort_by_rank<T, K>(
     }
     if !parallel {
         let items = v.to_vec();
-        counted(&items, v, 0, width as usize, &rank, &key);
+        counted(&[&items], v, 0, width as usize, &rank, &key);
         return;
     }
     // Buckets of equal rank ranges, as many as the length asks: ranks [lo(k), lo(k + 1)).
@@ -87,9 +87,9 @@ pub(crate) fn sort_by_rank<T, K>(
         .zip(places)
         .enumerate()
         .for_each(|(k, (column, place))| {
-            let items = column.concat();
+            let parts: Vec<&[T]> = column.iter().map(Vec::as_slice).collect();
             let (from, to) = (lo(k as u64), lo(k as u64 + 1));
-            counted(&items, place, from, (to - from) as usize, &rank, &key);
+            counted(&parts, place, from, (to - from) as usize, &rank, &key);
         });
 }
 
@@ -146,7 +146,7 @@ pub(crate) fn sort_distinct_by_rank<T, K>(
     places.into_par_iter().enumerate().for_each(|(k, place)| {
         let items = place.to_vec();
         let (from, to) = (lo(k as u64), lo(k as u64 + 1));
-        counted(&items, place, from, (to - from) as usize, &rank, &key);
+        counted(&[&items], place, from, (to - from) as usize, &rank, &key);
     });
 }
 
@@ -175,10 +175,10 @@ fn deal_in_place<T>(v: &mut [T], bucket: &impl Fn(&T) -> usize, counts: &[usize]
     }
 }
 
-/// `items` (every rank in `from..from + width`) into `out` sorted stably by rank, then each
-/// run of one rank sorted stably by key.
+/// The items of `parts`, in order (every rank in `from..from + width`), into `out` sorted
+/// stably by rank, then each run of one rank sorted stably by key.
 fn counted<T: Clone, K: Ord>(
-    items: &[T],
+    parts: &[&[T]],
     out: &mut [T],
     from: u32,
     width: usize,
@@ -187,14 +187,15 @@ fn counted<T: Clone, K: Ord>(
 ) {
     let slot = |x: &T| (rank(x) - from) as usize;
     // at[r]: where rank r's items start; while they are placed, the next one's place.
+    let items = || parts.iter().flat_map(|p| p.iter());
     let mut at = vec![0usize; width + 1];
-    for x in items {
+    for x in items() {
         at[slot(x) + 1] += 1;
     }
     for r in 1..at.len() {
         at[r] += at[r - 1];
     }
-    for x in items {
+    for x in items() {
         let s = &mut at[slot(x)];
         out[*s] = x.clone();
         *s += 1;

@@ -131,17 +131,26 @@ impl Traversals {
     /// no merge.
     pub(crate) fn not_closed_with(&self, more: &[Face]) -> bool {
         let added = Traversals::numbered(more, self.faces as u32);
-        let mut both = Vec::new();
-        added.chunk_by(|a, b| a.edge == b.edge).any(|extra| {
+        // Each edge's look-up is a search of the whole list: on all threads.
+        let groups: Vec<&[Traversal]> = added.chunk_by(|a, b| a.edge == b.edge).collect();
+        let leaves_open = |k: usize| {
+            let extra = groups[k];
             let edge = extra[0].edge;
             let from = self.items.partition_point(|t| t.edge < edge);
             let to = from + self.items[from..].partition_point(|t| t.edge == edge);
-            both.clear();
+            let mut both = Vec::with_capacity(to - from + extra.len());
             both.extend_from_slice(&self.items[from..to]);
             both.extend_from_slice(extra);
             let (open, inconsistent) = edges_meet(&both);
             open || inconsistent
-        })
+        };
+        if groups.len() <= SEARCHES_A_TASK || rayon::current_num_threads() == 1 {
+            return (0..groups.len()).any(leaves_open);
+        }
+        (0..groups.len())
+            .into_par_iter()
+            .with_min_len(SEARCHES_A_TASK)
+            .any(leaves_open)
     }
 
     /// The edges one face alone traverses, each as that face's step `a → b` (an edge from a
@@ -287,15 +296,26 @@ fn edges_meet(items: &[Traversal]) -> (bool, bool) {
 /// or corner number counting up as the list is made, or items equal in all). Sorting by the
 /// first number, then each vertex's few items by `key` (insertion sorts, their branches
 /// mispredicted), cost the bunny's render 3.5% more CPU; moving the items in place (an
-/// American flag sort) 14% more again: each swap waits on the last. Pairs sparser than
+/// American flag sort) 14% more again: each swap waits on the last. On several threads a
+/// list longer than [`PAIRS_RANKED_ABOVE`] is sorted that first way all the same
+/// ([`crate::rank_sort`]), for its parts run side by side. Pairs sparser than
 /// [`DENSE_BUCKETS`] a item, and lists longer than [`BUCKETED_UP_TO`] (whose copy raised the
 /// peak of a 600k-face terrain by 8%, and of a 10M-face one too), go to [`sort_by_key`].
-pub(crate) fn sort_by_pair<T: Clone + Send, K: Ord>(
+pub(crate) fn sort_by_pair<T: Clone + Send + Sync, K: Ord>(
     v: &mut [T],
-    pair: impl Fn(&T) -> (u32, u32),
+    pair: impl Fn(&T) -> (u32, u32) + Sync,
     key: impl Fn(&T) -> K + Sync,
 ) {
     let n = v.len();
+    if !(64..=BUCKETED_UP_TO).contains(&n) {
+        return sort_by_key(v, key);
+    }
+    if n > PAIRS_RANKED_ABOVE && rayon::current_num_threads() > 1 {
+        // On all threads: by the first number in buckets of its range, each bucket counted
+        // into place (or compared, where the numbers are sparse), then each first number's
+        // few items by the second, stably (so items with equal pairs keep their order).
+        return crate::rank_sort::sort_by_rank(v, |x| pair(x).0, |x| pair(x).1);
+    }
     let tops = v
         .iter()
         .map(&pair)
@@ -304,7 +324,7 @@ pub(crate) fn sort_by_pair<T: Clone + Send, K: Ord>(
         return;
     };
     let dense = |top: u32| top as usize <= DENSE_BUCKETS * n;
-    if !(64..=BUCKETED_UP_TO).contains(&n) || !dense(first_top) || !dense(second_top) {
+    if !dense(first_top) || !dense(second_top) {
         return sort_by_key(v, key);
     }
     let mut copy = v.to_vec();
@@ -334,8 +354,18 @@ fn scatter<T: Clone>(from: &[T], to: &mut [T], digit: impl Fn(&T) -> u32, top: u
 /// compares).
 const DENSE_BUCKETS: usize = 4;
 
+/// Edges of `more` a task looks up in [`Traversals::not_closed_with`] (each two searches of
+/// a long list: a 1M-face terrain's cap looks up 8,000 edges in 3M traversals).
+const SEARCHES_A_TASK: usize = 256;
+
 /// Longest list [`sort_by_pair`] counts (beyond, it compares on all threads).
 const BUCKETED_UP_TO: usize = 1 << 20;
+
+/// Above this many items, on more than one thread, [`sort_by_pair`] ranks by the first
+/// number on all threads (a bucket of [`crate::rank_sort`]'s, 64k items, a thread): the two
+/// counting passes on one thread were a mid-sized mesh's longest serial step (ogre's
+/// 372k traversals, sorted four times: 30 ms of its 105 ms on one thread of two).
+const PAIRS_RANKED_ABOVE: usize = 1 << 17;
 
 /// Connected pieces of a mesh's faces through shared edges.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -656,7 +686,7 @@ mod tests {
 
     /// [`sort_by_pair`] of packed edges `a << 32 | b` (or such an edge with a number
     /// counting up in the list), by the edge.
-    fn sort_edges<T: Ord + Copy + Send>(v: &mut [T], edge: impl Fn(&T) -> u64) {
+    fn sort_edges<T: Ord + Copy + Send + Sync>(v: &mut [T], edge: impl Fn(&T) -> u64 + Sync) {
         sort_by_pair(v, |x| ((edge(x) >> 32) as u32, edge(x) as u32), |x| *x);
     }
 
@@ -679,13 +709,23 @@ mod tests {
             assert_eq!(numbered, want_numbered);
         }
         // A key finer than the pair, in input order among equal pairs (as half-edges'
-        // corners are): each pass must be stable.
-        let mut v: Vec<(u32, u32, u32)> = (0..3000)
-            .map(|k| (rng.below(40) as u32, rng.below(30) as u32, k))
-            .collect();
-        let mut want = v.clone();
-        want.sort_unstable();
-        sort_by_pair(&mut v, |x| (x.0, x.1), |x| *x);
-        assert_eq!(v, want);
+        // corners are): each pass must be stable; long lists on several threads too.
+        for (n, firsts, seconds) in [
+            (3000, 40, 30),
+            (PAIRS_RANKED_ABOVE + 4321, 100_000, 100_000),
+            (PAIRS_RANKED_ABOVE + 7, 50, 9),
+        ] {
+            let v: Vec<(u32, u32, usize)> = (0..n)
+                .map(|k| (rng.below(firsts) as u32, rng.below(seconds) as u32, k))
+                .collect();
+            let mut want = v.clone();
+            want.sort_unstable();
+            for threads in [1, 3] {
+                let mut got = v.clone();
+                crate::chunked::pool(threads)
+                    .install(|| sort_by_pair(&mut got, |x| (x.0, x.1), |x| *x));
+                assert!(got == want, "{n} items, {threads} threads");
+            }
+        }
     }
 }

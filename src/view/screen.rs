@@ -314,7 +314,12 @@ impl ScreenFaces {
     /// are a batch's), appended in face order: the tables are those of one thread.
     fn add_leaf(&mut self, li: u32, leaf: &Leaf, camera: &Camera, hidden: &[u32], done: Count) {
         let world_first = self.world.len() as u32;
-        self.world.extend(leaf.world_vertices());
+        if leaf.mesh.vertices.len() <= TASK_FACES {
+            self.world.extend(leaf.world_vertices());
+        } else {
+            let verts = leaf.mesh.vertices.par_iter();
+            self.world.par_extend(verts.map(|v| leaf.transform.transform_point(v)));
+        }
         // Held apart while the parts are appended (their new points after all the tasks).
         let world = std::mem::take(&mut self.world);
         let leaf_world = &world[world_first as usize..];
@@ -445,8 +450,9 @@ impl ScreenFaces {
 /// Faces one thread projects at a time.
 const TASK_FACES: usize = 1 << 12;
 
-/// Tasks projected side by side before their parts are appended.
-const TASKS_AT_ONCE: usize = 64;
+/// Tasks projected side by side before their parts are appended (the last batch's are
+/// appended alone: a batch of 64 left a quarter of a 1M-face leaf's appending on one thread).
+const TASKS_AT_ONCE: usize = 16;
 
 /// A corner of a [`Part`] naming the part's `k`th new point (one clipping made) is
 /// `u32::MAX - k`: no table of world points comes near that length.

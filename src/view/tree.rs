@@ -10,6 +10,7 @@
 
 use std::ops::Range;
 
+use crate::chunked::CHUNK;
 use crate::count::Count;
 use crate::geom::coarse;
 use crate::geom::hull2::convex_hull;
@@ -225,11 +226,13 @@ impl Builder<'_> {
                         .prepared(t, 0, first, xf)
                         .unwrap_or_else(|| self.push(empty_node())),
                     _ => {
-                        let ids: Vec<PieceId> = self
-                            .sf
-                            .pieces_in(first..end)
-                            .filter(|&p| self.sf.piece(p).is_occluder())
-                            .collect();
+                        let sf = self.sf;
+                        let span = sf.pieces_in(first..end);
+                        let from = span.clone().next().map_or(0, |p| p.0);
+                        let ids = crate::chunked::flat_map(span.len(), CHUNK, |r, ids| {
+                            let r = from + r.start as u32..from + r.end as u32;
+                            ids.extend(r.map(PieceId).filter(|&p| sf.piece(p).is_occluder()));
+                        });
                         self.bvh(ids)
                     }
                 };
@@ -423,7 +426,7 @@ impl Builder<'_> {
     /// over that order in one walk, so the tree is the same for any thread count.
     fn bvh(&mut self, mut ids: Vec<PieceId>) -> u32 {
         median_order(self.sf, &mut ids);
-        self.bvh_over(&ids)
+        self.bvh_over(ids)
     }
 
     /// The nodes of the median-split hierarchy over `ids`, already in [`median_order`]:
@@ -431,7 +434,7 @@ impl Builder<'_> {
     /// (the left half's nodes, the right's, then theirs), made on all threads. Where each
     /// half's nodes and child lists go depends only on its length ([`Shape`]), so each half
     /// fills its own slices of the lists, and the piece bounds are made side by side.
-    fn bvh_over(&mut self, ids: &[PieceId]) -> u32 {
+    fn bvh_over(&mut self, ids: Vec<PieceId>) -> u32 {
         let sf = self.sf;
         let shape = Shape::of(ids.len());
         let tree = &mut self.tree;
@@ -441,18 +444,27 @@ impl Builder<'_> {
             piece: tree.pieces.len() as u32,
         };
         let bounds = crate::chunked::map(ids.len(), |k| PieceBound::of(sf.piece(ids[k])));
-        tree.piece_bounds.extend(bounds);
-        tree.pieces.extend_from_slice(ids);
+        // A tree of one mesh takes its lists as they are made (no copy on one thread).
+        if tree.piece_bounds.is_empty() {
+            tree.piece_bounds = bounds;
+        } else {
+            tree.piece_bounds.extend(bounds);
+        }
         let (nodes, children) = (at.node as usize, at.child as usize);
         tree.nodes.resize(nodes + shape.nodes, empty_node());
         tree.children.resize(children + shape.children, 0);
         fill(
             sf,
-            ids,
+            &ids,
             &mut tree.nodes[nodes..],
             &mut tree.children[children..],
             at,
         );
+        if tree.pieces.is_empty() {
+            tree.pieces = ids;
+        } else {
+            tree.pieces.extend_from_slice(&ids);
+        }
         tree.nodes.len() as u32 - 1
     }
 }
@@ -605,18 +617,33 @@ fn split_order(c: &Centres, ids: &mut [PieceId]) {
     // Axis 0 and 1 are screen x and y, axis 2 is depth: splitting by depth too separates
     // the front and back layers of a mesh, so the depth test prunes whole nodes. The three
     // spans are folded in one pass, each in the slice's order (the same bits as three).
-    let (lo, hi) = ids.iter().fold(
-        ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
-        |(mut lo, mut hi), &p| {
-            for axis in 0..3 {
-                let k = c.at(p, axis);
-                lo[axis] = lo[axis].min(k);
-                hi[axis] = hi[axis].max(k);
-            }
-            (lo, hi)
-        },
-    );
-    let span = |axis: usize| hi[axis] - lo[axis];
+    // Least and greatest are exact, so the spans are the same folded on any threads.
+    let none = || ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    let add = |(mut lo, mut hi): ([f64; 3], [f64; 3]), &p: &PieceId| {
+        for axis in 0..3 {
+            let k = c.at(p, axis);
+            lo[axis] = lo[axis].min(k);
+            hi[axis] = hi[axis].max(k);
+        }
+        (lo, hi)
+    };
+    let (lo, hi) = if ids.len() < SPLIT_ALONE_BELOW {
+        ids.iter().fold(none(), add)
+    } else {
+        use rayon::prelude::*;
+        let join = |(l1, h1): ([f64; 3], [f64; 3]), (l2, h2): ([f64; 3], [f64; 3])| {
+            (
+                [0, 1, 2].map(|a| l1[a].min(l2[a])),
+                [0, 1, 2].map(|a| h1[a].max(h2[a])),
+            )
+        };
+        ids.par_iter()
+            .with_min_len(CHUNK)
+            .fold(none, add)
+            .reduce(none, join)
+    };
+    // A zero's sign may hang on the fold's grouping (the least of 0 and -0): + 0.0 drops it.
+    let span = |axis: usize| hi[axis] - lo[axis] + 0.0;
     let axis = (0..3)
         .max_by(|&a, &b| span(a).total_cmp(&span(b)).then(b.cmp(&a)))
         .unwrap_or(0);
@@ -786,9 +813,15 @@ mod tests {
             let root = bvh_one_by_one(&mut one, &ids);
             let mut filled = builder();
             bvh_one_by_one(&mut filled, &all[..40]);
-            let got = crate::chunked::pool(3).install(|| filled.bvh_over(&ids));
+            let got = crate::chunked::pool(3).install(|| filled.bvh_over(ids.clone()));
             assert_eq!(got, root, "{len} pieces");
             assert_eq!(listed(&filled.tree), listed(&one.tree), "{len} pieces");
+            // A tree's first mesh takes the lists whole.
+            let (mut alone, mut fresh) = (builder(), builder());
+            let root = bvh_one_by_one(&mut alone, &ids);
+            let got = crate::chunked::pool(3).install(|| fresh.bvh_over(ids.clone()));
+            assert_eq!(got, root, "{len} pieces alone");
+            assert_eq!(listed(&fresh.tree), listed(&alone.tree), "{len} pieces alone");
         }
     }
 

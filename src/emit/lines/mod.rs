@@ -195,11 +195,14 @@ struct Regions<'v> {
 
 impl<'v> Regions<'v> {
     fn new(vis: &'v Visibility, edges: &[Edge]) -> Self {
-        let mut faces: Vec<FaceId> = edges.iter().flat_map(|e| e.faces.iter().copied()).collect();
+        let chunk = crate::chunked::CHUNK;
+        let mut faces: Vec<FaceId> = crate::chunked::flat_map(edges.len(), chunk, |r, out| {
+            out.extend(edges[r].iter().flat_map(|e| e.faces.iter().copied()));
+        });
         faces.par_sort_unstable();
         faces.dedup();
         faces.shrink_to_fit();
-        let made = (0..faces.len()).map(|_| OnceLock::new()).collect();
+        let made = crate::chunked::map(faces.len(), |_| OnceLock::new());
         Regions { vis, faces, made }
     }
 

@@ -371,14 +371,18 @@ fn caps_of(mesh: &Mesh, loops: &[Vec<u32>], ways: &[Way]) -> (Vec<Face>, Vec<usi
 
 /// The mesh with `caps` ([`caps_of`]) after its faces and their `centres` after its vertices.
 fn with_caps(mesh: &Mesh, caps: Vec<Face>, centres: Vec<P3>) -> Mesh {
-    let mut capped = Mesh {
-        vertices: mesh.vertices.clone(),
-        faces: crate::chunked::clone_all(&mesh.faces),
+    // Made at their full length: the caps appended without moving the mesh's faces.
+    let mut vertices = Vec::with_capacity(mesh.vertices.len() + centres.len());
+    crate::chunked::extend_concat(&mut vertices, &[&mesh.vertices]);
+    vertices.extend(centres);
+    let mut faces = Vec::with_capacity(mesh.faces.len() + caps.len());
+    crate::chunked::extend_concat(&mut faces, &[&mesh.faces]);
+    faces.extend(caps);
+    Mesh {
+        vertices,
+        faces,
         ..Mesh::default()
-    };
-    capped.vertices.extend(centres);
-    capped.faces.extend(caps);
-    capped
+    }
 }
 
 /// The loop ear-clipped (exact predicates) along its Newell normal, oriented like the loop;

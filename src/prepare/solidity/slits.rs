@@ -44,29 +44,39 @@ pub(super) fn close_slits(mesh: &Mesh, slits: &[Vec<u32>]) -> Option<Vec<Face>> 
             }
         }
     }
+    // A face edge is looked up only where it starts at a slit's corner.
+    let mut starts = vec![false; mesh.vertices.len()];
+    inserts.keys().for_each(|&(u, _)| starts[u as usize] = true);
+    let spans = |f: &Face, i: usize| {
+        let (u, v) = (f.vertices[i], f.vertices[(i + 1) % f.vertices.len()]);
+        starts[u as usize].then(|| inserts.get(&(u, v))).flatten()
+    };
+    // Each face's spanning edges: only triangles are split, and each such edge must be
+    // found once.
+    let faces = &mesh.faces;
+    let spanned = |f: &Face| (0..f.vertices.len()).filter(|&i| spans(f, i).is_some()).count();
+    let counts: Vec<u8> = crate::chunked::map(faces.len(), |k| spanned(&faces[k]).min(3) as u8);
     let mut found = 0;
-    let mut faces = mesh.faces.clone();
-    for f in &mut faces {
-        let n = f.vertices.len();
-        let hit = (0..n).any(|i| inserts.contains_key(&(f.vertices[i], f.vertices[(i + 1) % n])));
-        if !hit {
-            continue;
-        }
-        if n != 3 {
+    for (f, &c) in faces.iter().zip(&counts) {
+        if c > 0 && f.vertices.len() != 3 {
             return None;
         }
-        let mut out = FaceIndices::new();
-        for i in 0..n {
-            let (u, v) = (f.vertices[i], f.vertices[(i + 1) % n]);
-            out.push(u);
-            if let Some(mid) = inserts.get(&(u, v)) {
-                out.extend(mid.iter().copied());
-                found += 1;
-            }
-        }
-        f.vertices = out;
+        found += usize::from(c);
     }
-    (found == inserts.len()).then_some(faces)
+    (found == inserts.len()).then(|| {
+        crate::chunked::map(faces.len(), |k| {
+            let mut f = faces[k].clone();
+            if counts[k] > 0 {
+                let mut out = FaceIndices::new();
+                for i in 0..f.vertices.len() {
+                    out.push(f.vertices[i]);
+                    out.extend(spans(&f, i).into_iter().flatten().copied());
+                }
+                f.vertices = out;
+            }
+            f
+        })
+    })
 }
 
 /// A key ordering the loop's corners along their line: the coordinate on which the loop's
