@@ -15,19 +15,35 @@ pub(crate) fn why_empty(faces: usize, view: &View, vis: &Visibility) -> Option<S
                 .into(),
         );
     }
-    let mut visible = Rect::EMPTY;
-    for (_, f) in vis.iter() {
-        if f.area > 0.0 {
-            visible = f.fold_points(visible, |mut r, p| {
-                r.add(p);
-                r
-            });
-        }
+    let n = vis.ids().len();
+    let shows = |k: usize| vis.at(k).area > 0.0;
+    let perspective = view.camera.projection == Projection::Perspective;
+    if !perspective && crate::chunked::position_first(n, shows).is_some() {
+        return None;
     }
+    // The bounds of what shows, folded on all threads (least and greatest are exact: the
+    // same box, and the same answer, in any order).
+    let bounds = |r: std::ops::Range<usize>| {
+        r.filter(|&k| shows(k)).fold(Rect::EMPTY, |acc, k| {
+            vis.at(k).fold_points(acc, |mut b, p| {
+                b.add(p);
+                b
+            })
+        })
+    };
+    let visible = if n <= crate::chunked::CHUNK || rayon::current_num_threads() == 1 {
+        bounds(0..n)
+    } else {
+        use rayon::prelude::*;
+        let chunk = crate::chunked::CHUNK;
+        (0..n.div_ceil(chunk))
+            .into_par_iter()
+            .map(|c| bounds(c * chunk..((c + 1) * chunk).min(n)))
+            .reduce(|| Rect::EMPTY, |a, b| a.union(&b))
+    };
     if !visible.is_empty() {
         let window = Rect::new(-1.6, -1.0, 1.6, 1.0);
-        let seen =
-            view.camera.projection != Projection::Perspective || visible.overlaps_closed(&window);
+        let seen = !perspective || visible.overlaps_closed(&window);
         return (!seen).then(|| {
             "nothing visible lies in the camera's field of view: the picture shows what lies outside it".into()
         });
