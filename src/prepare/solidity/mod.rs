@@ -357,7 +357,7 @@ fn mark(obj: &mut Object, marked: &mut Marked, done: Count) {
 /// the view's planar pieces), with each triangle's face, and the faces that give none (not
 /// simple, or a flat triangle; ascending).
 /// The chunks of faces fill `span` as they are done.
-fn triangulate(mesh: &Mesh, span: Span) -> (Vec<[u32; 3]>, Vec<u32>, Vec<u32>) {
+fn triangulate(mesh: &Mesh, span: Span) -> Triangulated {
     let done = span.steps(mesh.faces.len());
     let chunk = |(c, faces): (usize, &[Face])| {
         let mut part = (Vec::with_capacity(faces.len()), Vec::new(), Vec::new());
@@ -372,7 +372,7 @@ fn triangulate(mesh: &Mesh, span: Span) -> (Vec<[u32; 3]>, Vec<u32>, Vec<u32>) {
         return chunk((0, &mesh.faces));
     }
     // In chunks of faces on all threads, joined in face order: the same lists as one pass.
-    let parts: Vec<(Vec<[u32; 3]>, Vec<u32>, Vec<u32>)> = mesh
+    let parts: Vec<Triangulated> = mesh
         .faces
         .par_chunks(TRIANGULATED_CHUNK)
         .enumerate()
@@ -393,17 +393,15 @@ fn triangulate(mesh: &Mesh, span: Span) -> (Vec<[u32; 3]>, Vec<u32>, Vec<u32>) {
     (tris, face_of, flat)
 }
 
+/// A surface's triangles (their corners), each one's face, and the faces that give none.
+type Triangulated = (Vec<[u32; 3]>, Vec<u32>, Vec<u32>);
+
 /// Faces per chunk of [`triangulate`].
 const TRIANGULATED_CHUNK: usize = 4096;
 
 /// Appends face `k`'s triangles and their face to `out.0` and `out.1`, or `k` to `out.2`
 /// when it gives none.
-fn triangulate_face(
-    mesh: &Mesh,
-    f: &Face,
-    k: u32,
-    out: &mut (Vec<[u32; 3]>, Vec<u32>, Vec<u32>),
-) {
+fn triangulate_face(mesh: &Mesh, f: &Face, k: u32, out: &mut Triangulated) {
     let (tris, face_of, bad) = out;
     let at = |v: u32| mesh.vertices[v as usize];
     if let [a, b, c] = f.vertices[..] {
@@ -469,9 +467,7 @@ fn crossing_pairs(
     let is: Vec<bool> = crate::chunked::map(tris.len(), |t| suspect(t as u32));
     let crosses = |i: u32, j: u32| {
         let (f, g) = (face_of[i as usize], face_of[j as usize]);
-        f != g
-            && piece_of[f as usize] == piece_of[g as usize]
-            && cross(&tris.at(i), &tris.at(j))
+        f != g && piece_of[f as usize] == piece_of[g as usize] && cross(&tris.at(i), &tris.at(j))
     };
     let plates = plates::find(mesh, face_of);
     let mut found = if plates.is_empty() {

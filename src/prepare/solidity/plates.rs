@@ -270,7 +270,10 @@ mod tests {
             corners: &corners,
             points: &m.vertices,
         };
-        Some(((0..tris.len() as u32).map(|t| tris.at(t)).collect(), face_of))
+        Some((
+            (0..tris.len() as u32).map(|t| tris.at(t)).collect(),
+            face_of,
+        ))
     }
     use super::*;
     use crate::geom::PolyMesh;
