@@ -174,9 +174,11 @@ fn slab_pairs<T: Send>(
     } else {
         entries.sort_unstable();
     }
-    let runs = runs(&entries, shift);
     slab.reach(0.2);
-    let cells = slab.span(0.2, 1.0).steps(runs.len());
+    // The cells are found chunk by chunk of entries as they are searched (not held: a run's
+    // range was 16 bytes, about a quarter of the entries' own memory on a terrain).
+    let chunks = entries.len().div_ceil(crate::chunked::CHUNK);
+    let cells = slab.span(0.2, 1.0).steps(entries.len());
     let (entries, cells) = (&entries, &cells);
     let id = |e: u64| (e & ((1 << shift) - 1)) as u32;
     // The pairs first met in one cell (a run of equal keys), each member's box made once.
@@ -204,15 +206,20 @@ fn slab_pairs<T: Send>(
         }
         found
     };
-    // Each cell counted as it is started.
-    let counted = |(k, r): (usize, &std::ops::Range<usize>)| {
-        cells.tick(k);
-        in_cell(r)
+    // The cells whose runs start in each chunk of entries, the chunk's entries counted as
+    // it is started.
+    let counted = |c: usize| {
+        let from = c * crate::chunked::CHUNK;
+        let to = (from + crate::chunked::CHUNK).min(entries.len());
+        cells.add(to - from);
+        (from..to)
+            .filter_map(move |start| run_at(entries, shift, start))
+            .flat_map(move |r| in_cell(&r))
     };
     let found = if parallel {
-        runs.par_iter().enumerate().flat_map_iter(counted).collect()
+        (0..chunks).into_par_iter().flat_map_iter(counted).collect()
     } else {
-        runs.iter().enumerate().flat_map(counted).collect()
+        (0..chunks).flat_map(counted).collect()
     };
     slab.finish();
     found
@@ -336,23 +343,26 @@ fn valid(b: &Bounds3) -> bool {
     (0..3).all(|k| b[0][k] <= b[1][k] && b[0][k].is_finite() && b[1][k].is_finite())
 }
 
-/// Index ranges of equal keys (the bits above `shift`) in sorted entries, of two entries
-/// or more: each found from its first entry, in fixed chunks of entries on all threads.
-fn runs(entries: &[u64], shift: u32) -> Vec<std::ops::Range<usize>> {
+/// The index range of equal keys (the bits above `shift`) in sorted entries that starts at
+/// `start`, when one starts there and has two entries or more.
+fn run_at(entries: &[u64], shift: u32, start: usize) -> Option<std::ops::Range<usize>> {
     let key = |i: usize| entries[i] >> shift;
+    if start > 0 && key(start - 1) == key(start) {
+        return None;
+    }
+    let k = key(start);
+    let end = (start + 1..entries.len())
+        .find(|&i| key(i) != k)
+        .unwrap_or(entries.len());
+    (end - start > 1).then_some(start..end)
+}
+
+#[cfg(test)]
+/// Index ranges of equal keys (the bits above `shift`) in sorted entries, of two entries
+/// or more ([`run_at`] at every entry), in fixed chunks of entries on all threads.
+fn runs(entries: &[u64], shift: u32) -> Vec<std::ops::Range<usize>> {
     crate::chunked::flat_map(entries.len(), crate::chunked::CHUNK, |r, out| {
-        for start in r {
-            if start > 0 && key(start - 1) == key(start) {
-                continue;
-            }
-            let k = key(start);
-            let end = (start + 1..entries.len())
-                .find(|&i| key(i) != k)
-                .unwrap_or(entries.len());
-            if end - start > 1 {
-                out.push(start..end);
-            }
-        }
+        out.extend(r.filter_map(|start| run_at(entries, shift, start)))
     })
 }
 

@@ -206,9 +206,9 @@ pub(crate) fn mesh_edges(
         let groups = edge_groups(&half);
         span.reach(0.5);
         let classified = span.span(0.5, 1.0).steps(groups.len());
-        let counted = |(i, g): (usize, Range<u32>)| {
+        let counted = |(i, g): (usize, u32)| {
             classified.tick(i);
-            edge(g)
+            edge(group_at(&half, g))
         };
         if groups.len() > PARALLEL_ABOVE {
             // In parallel, in the same order.
@@ -287,14 +287,16 @@ fn faces_beside(adj: &[HalfEdge]) -> Vec<FaceId> {
     faces
 }
 
-/// The index ranges of the edges in grouped half-edges, in order of first appearance.
-fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
+/// The edges in grouped half-edges, each as where its group starts ([`group_at`] gives the
+/// group), in order of first appearance: 4 bytes an edge, not a range's 8 (a 10M-face
+/// terrain has 15M edges, and the lines stage's peak was here with its half-edges).
+fn edge_groups(half: &[HalfEdge]) -> Vec<u32> {
     // Where each edge's group starts, found in fixed chunks on all threads (counted, then
     // written in place: no parts beside the list).
     let n = half.len();
     let starts_at =
         |i: &usize| *i == 0 || (half[*i].a, half[*i].b) != (half[i - 1].a, half[i - 1].b);
-    let starts: Vec<u32> = crate::chunked::fill(
+    let mut starts: Vec<u32> = crate::chunked::fill(
         n,
         CHUNK,
         |r| r.filter(starts_at).count(),
@@ -304,12 +306,21 @@ fn edge_groups(half: &[HalfEdge]) -> Vec<Range<u32>> {
             }
         },
     );
-    let mut groups: Vec<Range<u32>> = crate::chunked::map(starts.len(), |k| {
-        starts[k]..starts.get(k + 1).map_or(n as u32, |&e| e)
-    });
     // Each group's first seq is unique and below the leaf's corners: counted.
-    sort_distinct_by_rank(&mut groups, |g| half[g.start as usize].seq, |_| ());
-    groups
+    sort_distinct_by_rank(&mut starts, |&g| half[g as usize].seq, |_| ());
+    starts
+}
+
+/// The index range of the group of grouped half-edges that starts at `start`: up to the
+/// first half-edge of another edge.
+fn group_at(half: &[HalfEdge], start: u32) -> Range<u32> {
+    let s = start as usize;
+    let edge = (half[s].a, half[s].b);
+    let len = half[s + 1..]
+        .iter()
+        .take_while(|h| (h.a, h.b) == edge)
+        .count();
+    start..start + 1 + len as u32
 }
 
 /// True when every face beside an edge was removed whole by a section cut.

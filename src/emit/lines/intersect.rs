@@ -39,20 +39,17 @@ pub(crate) fn intersection_edges(
                 .filter(|&f| keep(FaceId(f)) && faces[f as usize].len >= 3),
         )
     });
-    // Per face, once: its plane's reference corners, and whether it is flat (exactly: every
-    // corner on the plane of the reference points).
-    let (cand_refs, cand_flat): (Vec<[u32; 3]>, Vec<bool>) = cand
+    // Per face, once: whether it is flat (exactly: every corner on the plane of its
+    // reference points). The reference points are found again where a pair is tested (not
+    // held: 12 bytes a face).
+    let cand_flat: Vec<bool> = cand
         .par_iter()
         .map(|&f| {
             let p = world.points_of(f as usize);
-            let r = plane_refs(p);
-            let rp = r.map(|k| p[k as usize]);
-            (
-                r,
-                p.len() == 3 || p.iter().all(|q| orient3d_refs(&rp, q) == 0.0),
-            )
+            let rp = plane_refs(p).map(|k| p[k as usize]);
+            p.len() == 3 || p.iter().all(|q| orient3d_refs(&rp, q) == 0.0)
         })
-        .unzip();
+        .collect();
     // Faces that can cross nothing are not paired at all.
     let alone = alone(world, &cand, &cand_flat);
     // The candidates left, in order (each list in chunks on all threads).
@@ -60,13 +57,10 @@ pub(crate) fn intersection_edges(
     let ids: Vec<u32> = flat_map(cand.len(), CHUNK, |r, out| {
         out.extend(left(r).map(|k| cand[k]))
     });
-    let refs: Vec<[u32; 3]> = flat_map(cand.len(), CHUNK, |r, out| {
-        out.extend(left(r).map(|k| cand_refs[k]))
-    });
     let flat: Vec<bool> = flat_map(cand.len(), CHUNK, |r, out| {
         out.extend(left(r).map(|k| cand_flat[k]))
     });
-    drop((alone, cand, cand_refs, cand_flat));
+    drop((alone, cand, cand_flat));
     // The faces of many corners, by position, with their corners sorted (so that a pair's
     // adjacency costs what the smaller face has, not the product).
     let sorted: Vec<(u32, Vec<u32>)> = flat_map(ids.len(), CHUNK, |r, out| {
@@ -85,12 +79,7 @@ pub(crate) fn intersection_edges(
     };
     let side = |i: usize| {
         let f = ids[i] as usize;
-        let pts = world.points_of(f);
-        Side {
-            pts,
-            normal: &faces[f].normal,
-            refs: refs[i].map(|k| pts[k as usize]),
-        }
+        Side::new(world.points_of(f), &faces[f].normal)
     };
     // Results come in ascending (position, position) pair order, so in (face, face) order:
     // fixed whatever the thread count.
@@ -316,7 +305,7 @@ struct Side<'a> {
 }
 
 impl<'a> Side<'a> {
-    #[cfg(test)]
+    /// The face with corners `pts` and Newell normal `normal`.
     fn new(pts: Corners<'a>, normal: &'a V3) -> Self {
         let refs = plane_refs(pts).map(|k| pts[k as usize]);
         Side { pts, normal, refs }

@@ -53,6 +53,30 @@ struct Tri {
     p: [P3; 3],
 }
 
+/// A surface's triangles as the tests read them: each one's corners (12 bytes a triangle,
+/// kept), its points read from the mesh when a test asks ([`Tris::at`]).
+#[derive(Debug, Clone, Copy)]
+struct Tris<'a> {
+    corners: &'a [[u32; 3]],
+    points: &'a [P3],
+}
+
+impl Tris<'_> {
+    /// How many triangles.
+    fn len(&self) -> usize {
+        self.corners.len()
+    }
+
+    /// Triangle `t` with its points.
+    fn at(&self, t: u32) -> Tri {
+        let v = self.corners[t as usize];
+        Tri {
+            v,
+            p: v.map(|k| self.points[k as usize]),
+        }
+    }
+}
+
 #[cfg(test)]
 /// Decides the solidity of one mesh (exact).
 pub(crate) fn solidity(mesh: &Mesh) -> Solidity {
@@ -63,7 +87,8 @@ pub(crate) fn solidity(mesh: &Mesh) -> Solidity {
 /// test: its triangles with each one's face, the faces that give none, and its pieces.
 #[derive(Debug)]
 pub(crate) struct Surface {
-    tris: Vec<Tri>,
+    /// Its triangles' corners (the points are the mesh's).
+    tris: Vec<[u32; 3]>,
     face_of: Vec<u32>,
     /// Faces that are not simple or have a flat triangle (ascending): they give no triangles.
     flat: Vec<u32>,
@@ -124,8 +149,9 @@ impl Surface {
     }
 
     /// By piece: whether its signed volume is positive (exact), decided for the pieces
-    /// passing `wanted` (false for the others).
-    fn outward(&self, wanted: impl Fn(usize) -> bool) -> Vec<bool> {
+    /// passing `wanted` (false for the others). `mesh` is the mesh this surface is of.
+    fn outward(&self, mesh: &Mesh, wanted: impl Fn(usize) -> bool) -> Vec<bool> {
+        let at = |t: usize| self.tris[t].map(|k| mesh.vertices[k as usize]);
         let mut by_piece: Vec<Vec<usize>> = vec![Vec::new(); self.pieces.count];
         for (t, &f) in self.face_of.iter().enumerate() {
             by_piece[self.piece(f)].push(t);
@@ -133,7 +159,7 @@ impl Surface {
         by_piece
             .iter()
             .enumerate()
-            .map(|(k, ts)| wanted(k) && volume_sign(ts.iter().map(|&t| &self.tris[t].p)) > 0)
+            .map(|(k, ts)| wanted(k) && volume_sign(ts.iter().map(|&t| at(t))) > 0)
             .collect()
     }
 }
@@ -219,7 +245,7 @@ pub(crate) fn examine_until(
                 e.crossing = surface.crossing_until(mesh, suspect, groups, searched);
                 if !e.crossing.is_empty() {
                     e.solidity = Solidity::SelfIntersecting(e.crossing.len() as u64);
-                } else if !surface.outward(|_| true).iter().all(|&o| o) {
+                } else if !surface.outward(mesh, |_| true).iter().all(|&o| o) {
                     e.solidity = Solidity::InsideOut;
                 }
             }
@@ -331,7 +357,7 @@ fn mark(obj: &mut Object, marked: &mut Marked, done: Count) {
 /// the view's planar pieces), with each triangle's face, and the faces that give none (not
 /// simple, or a flat triangle; ascending).
 /// The chunks of faces fill `span` as they are done.
-fn triangulate(mesh: &Mesh, span: Span) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
+fn triangulate(mesh: &Mesh, span: Span) -> Triangulated {
     let done = span.steps(mesh.faces.len());
     let chunk = |(c, faces): (usize, &[Face])| {
         let mut part = (Vec::with_capacity(faces.len()), Vec::new(), Vec::new());
@@ -346,7 +372,7 @@ fn triangulate(mesh: &Mesh, span: Span) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
         return chunk((0, &mesh.faces));
     }
     // In chunks of faces on all threads, joined in face order: the same lists as one pass.
-    let parts: Vec<(Vec<Tri>, Vec<u32>, Vec<u32>)> = mesh
+    let parts: Vec<Triangulated> = mesh
         .faces
         .par_chunks(TRIANGULATED_CHUNK)
         .enumerate()
@@ -367,24 +393,23 @@ fn triangulate(mesh: &Mesh, span: Span) -> (Vec<Tri>, Vec<u32>, Vec<u32>) {
     (tris, face_of, flat)
 }
 
+/// A surface's triangles (their corners), each one's face, and the faces that give none.
+type Triangulated = (Vec<[u32; 3]>, Vec<u32>, Vec<u32>);
+
 /// Faces per chunk of [`triangulate`].
 const TRIANGULATED_CHUNK: usize = 4096;
 
 /// Appends face `k`'s triangles and their face to `out.0` and `out.1`, or `k` to `out.2`
 /// when it gives none.
-fn triangulate_face(mesh: &Mesh, f: &Face, k: u32, out: &mut (Vec<Tri>, Vec<u32>, Vec<u32>)) {
+fn triangulate_face(mesh: &Mesh, f: &Face, k: u32, out: &mut Triangulated) {
     let (tris, face_of, bad) = out;
     let at = |v: u32| mesh.vertices[v as usize];
     if let [a, b, c] = f.vertices[..] {
         // A triangle, the usual case: no ear clipping, no allocation.
-        let t = Tri {
-            v: [a, b, c],
-            p: [at(a), at(b), at(c)],
-        };
-        if degenerate(&t.p) {
+        if degenerate(&[at(a), at(b), at(c)]) {
             bad.push(k);
         } else {
-            tris.push(t);
+            tris.push([a, b, c]);
             face_of.push(k);
         }
         return;
@@ -394,16 +419,11 @@ fn triangulate_face(mesh: &Mesh, f: &Face, k: u32, out: &mut (Vec<Tri>, Vec<u32>
         bad.push(k);
         return;
     };
-    let first = tris.len();
-    tris.extend(local.iter().map(|t| Tri {
-        v: t.map(|i| f.vertices[i]),
-        p: t.map(|i| pts[i]),
-    }));
-    if tris[first..].iter().any(|t| degenerate(&t.p)) {
+    if local.iter().any(|t| degenerate(&t.map(|i| pts[i]))) {
         // A face with a flat triangle gives none.
-        tris.truncate(first);
         bad.push(k);
     } else {
+        tris.extend(local.iter().map(|t| t.map(|i| f.vertices[i])));
         face_of.resize(tris.len(), k);
     }
 }
@@ -426,16 +446,20 @@ pub(crate) fn degenerate(p: &[P3; 3]) -> bool {
 /// on the face, so the lifts meet only there too.
 fn crossing_pairs(
     mesh: &Mesh,
-    tris: &[Tri],
+    tris: &[[u32; 3]],
     face_of: &[u32],
     piece_of: &[u32],
     suspect: impl Fn(u32) -> bool + Sync,
     groups: Option<&Groups>,
     span: Span,
 ) -> Vec<(u32, u32)> {
+    let tris = Tris {
+        corners: tris,
+        points: &mesh.vertices,
+    };
     // Per triangle on all threads (in order: an indexed collect; a small mesh off the pool).
     let boxes: Vec<Bounds3> = crate::chunked::map(tris.len(), |t| {
-        let t = &tris[t];
+        let t = tris.at(t as u32);
         let lo = std::array::from_fn(|k| t.p[0][k].min(t.p[1][k]).min(t.p[2][k]));
         let hi = std::array::from_fn(|k| t.p[0][k].max(t.p[1][k]).max(t.p[2][k]));
         [lo, hi]
@@ -443,9 +467,7 @@ fn crossing_pairs(
     let is: Vec<bool> = crate::chunked::map(tris.len(), |t| suspect(t as u32));
     let crosses = |i: u32, j: u32| {
         let (f, g) = (face_of[i as usize], face_of[j as usize]);
-        f != g
-            && piece_of[f as usize] == piece_of[g as usize]
-            && cross(&tris[i as usize], &tris[j as usize])
+        f != g && piece_of[f as usize] == piece_of[g as usize] && cross(&tris.at(i), &tris.at(j))
     };
     let plates = plates::find(mesh, face_of);
     let mut found = if plates.is_empty() {
@@ -457,7 +479,7 @@ fn crossing_pairs(
             rest[p.tris.start as usize..p.tris.end as usize].fill([[f64::NAN; 3]; 2]);
         }
         let mut found = grid_pairs(&rest, &is, &crosses, groups, span.span(0.0, 0.9));
-        found.extend(plate_pairs(&plates, tris, &boxes, &is, &crosses));
+        found.extend(plate_pairs(&plates, &tris, &boxes, &is, &crosses));
         found.sort_unstable();
         found.dedup();
         found
@@ -612,7 +634,7 @@ const SCANNED_PLATES: usize = 8;
 /// by pair only for those not clear of it.
 fn plate_pairs(
     plates: &[plates::Plate],
-    tris: &[Tri],
+    tris: &Tris,
     boxes: &[Bounds3],
     is: &[bool],
     crosses: &(impl Fn(u32, u32) -> bool + Sync),
@@ -732,7 +754,7 @@ fn in_cone(v: [f64; 2], a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
 /// Exact sign of the signed volume of closed triangles (+1 outward, -1 inward, 0 none): a
 /// floating-point sum with a proven error bound, and a big-integer sum where that bound
 /// does not decide.
-pub(crate) fn volume_sign<'a>(tris: impl Iterator<Item = &'a [P3; 3]> + Clone) -> i32 {
+pub(crate) fn volume_sign(tris: impl Iterator<Item = [P3; 3]> + Clone) -> i32 {
     let Some(o) = tris.clone().next().map(|t| t[0]) else {
         return 0;
     };
@@ -766,10 +788,10 @@ pub(crate) fn volume_sign<'a>(tris: impl Iterator<Item = &'a [P3; 3]> + Clone) -
 
 /// Sign of Σ det(a, b, c) over the triangles, in big integers: every coordinate is an
 /// integer multiple of the least power of two among them.
-fn exact_volume_sign<'a>(tris: impl Iterator<Item = &'a [P3; 3]> + Clone) -> i32 {
+fn exact_volume_sign(tris: impl Iterator<Item = [P3; 3]> + Clone) -> i32 {
     let coords = tris
         .clone()
-        .flat_map(|t| t.iter().flat_map(|p| [p.x, p.y, p.z]));
+        .flat_map(|t| t.into_iter().flat_map(|p| [p.x, p.y, p.z]));
     let lsb = coords
         .filter(|c| *c != 0.0)
         .map(|c| decompose(c).1)
@@ -1071,10 +1093,10 @@ pub(crate) mod tests {
             .iter()
             .map(|f| [t[f[0] as usize], t[f[1] as usize], t[f[2] as usize]])
             .collect();
-        assert_eq!(volume_sign(tris.iter()), 1);
-        assert_eq!(exact_volume_sign(tris.iter()), 1);
+        assert_eq!(volume_sign(tris.iter().copied()), 1);
+        assert_eq!(exact_volume_sign(tris.iter().copied()), 1);
         let rev: Vec<[P3; 3]> = tris.iter().map(|t| [t[0], t[2], t[1]]).collect();
-        assert_eq!(volume_sign(rev.iter()), -1);
+        assert_eq!(volume_sign(rev.iter().copied()), -1);
         assert_eq!(decompose(0.75), (3, -2));
         assert_eq!(decompose(-8.0), (-1, 3));
         assert_eq!(decompose(f64::MIN_POSITIVE / 4.0).1, -1024);

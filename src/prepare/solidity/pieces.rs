@@ -55,7 +55,7 @@ pub(crate) fn proven_pieces(
         let found = surface.crossing(mesh, |f| good[piece(f)], span);
         found.iter().for_each(|&[f, _]| good[piece(f)] = false);
     }
-    let good = surface.outward(|k| good[k]);
+    let good = surface.outward(mesh, |k| good[k]);
     let proven = good.iter().filter(|&&g| g).count();
     if proven == 0 {
         return None;

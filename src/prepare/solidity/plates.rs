@@ -35,7 +35,7 @@ use crate::scene::triangulate::{projection_axes, strictly_convex_face};
 use crate::scene::Mesh;
 
 use super::slab::Slab;
-use super::Tri;
+use super::{Tri, Tris};
 
 /// Faces of more corners than this are plates when strictly convex; smaller ones go through
 /// the grid with everything else.
@@ -148,7 +148,7 @@ impl Plate {
     /// candidates not [`Plate::clear_of`] the plate; `boxes` are every triangle's bounds.
     pub(super) fn crossings(
         &self,
-        tris: &[Tri],
+        tris: &Tris,
         boxes: &[Box3],
         candidates: &[u32],
         cross: impl Fn(u32, u32) -> bool + Sync,
@@ -156,7 +156,7 @@ impl Plate {
         let unclear: Vec<u32> = candidates
             .par_iter()
             .copied()
-            .filter(|&u| !self.clear_of(&tris[u as usize]))
+            .filter(|&u| !self.clear_of(&tris.at(u)))
             .collect();
         if unclear.is_empty() {
             return Vec::new();
@@ -166,7 +166,7 @@ impl Plate {
         // some triangle needs it.
         let (standing, loose): (Vec<_>, Vec<_>) = unclear
             .par_iter()
-            .map(|&u| (u, self.standing_on(&tris[u as usize])))
+            .map(|&u| (u, self.standing_on(&tris.at(u))))
             .partition(|(_, on)| on.is_some());
         let test = |t: u32, u: u32| cross(t, u).then(|| (t.min(u), t.max(u)));
         let mut hits: Vec<(u32, u32)> = Vec::new();
@@ -200,10 +200,10 @@ impl Plate {
     }
 
     /// (corner position, plate triangle) for every corner of every plate triangle, sorted.
-    fn triangles_at(&self, tris: &[Tri]) -> Vec<(u32, u32)> {
+    fn triangles_at(&self, tris: &Tris) -> Vec<(u32, u32)> {
         let mut at: Vec<(u32, u32)> = (self.tris.start..self.tris.end)
             .flat_map(|t| {
-                tris[t as usize].v.map(|v| {
+                tris.corners[t as usize].map(|v| {
                     let i = self.corners.binary_search_by_key(&v, |c| c.0);
                     (i.map_or(u32::MAX, |i| self.corners[i].1), t)
                 })
@@ -254,13 +254,26 @@ impl Plate {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{cross, crossing_pairs, examine, triangulate, Tri};
+    use super::super::{cross, crossing_pairs, examine, triangulate, Tri, Tris};
     use crate::count::Span;
 
-    /// The triangles and their faces of a mesh with no flat face.
-    fn surface_triangles(m: &Mesh) -> Option<(Vec<Tri>, Vec<u32>)> {
+    /// The triangles' corners and their faces of a mesh with no flat face.
+    fn surface_corners(m: &Mesh) -> Option<(Vec<[u32; 3]>, Vec<u32>)> {
         let (tris, face_of, flat) = triangulate(m, Span::NONE);
         flat.is_empty().then_some((tris, face_of))
+    }
+
+    /// The triangles (with their points) and their faces of a mesh with no flat face.
+    fn surface_triangles(m: &Mesh) -> Option<(Vec<Tri>, Vec<u32>)> {
+        let (corners, face_of) = surface_corners(m)?;
+        let tris = Tris {
+            corners: &corners,
+            points: &m.vertices,
+        };
+        Some((
+            (0..tris.len() as u32).map(|t| tris.at(t)).collect(),
+            face_of,
+        ))
     }
     use super::*;
     use crate::geom::PolyMesh;
@@ -318,7 +331,7 @@ mod tests {
     }
 
     fn pairs(m: &Mesh) -> Vec<(u32, u32)> {
-        let (tris, face_of) = surface_triangles(m).unwrap();
+        let (tris, face_of) = surface_corners(m).unwrap();
         // One piece: every pair is tested, as `brute` tests them.
         let span = Span::NONE;
         crossing_pairs(
