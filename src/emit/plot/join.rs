@@ -546,9 +546,9 @@ mod tests {
             .collect();
         for tol in [0.0, 0.05, 0.5] {
             let mut asked = (Vec::new(), Vec::new());
-            let mut allow = |log: &mut Vec<(Pt2, Pt2)>, p: Pt2, q: Pt2| {
+            let allow = |log: &mut Vec<(Pt2, Pt2)>, p: Pt2, q: Pt2| {
                 log.push((p, q));
-                (p[0] + q[1]).to_bits() % 3 != 0
+                !(p[0] + q[1]).to_bits().is_multiple_of(3)
             };
             let want = join(
                 dashed.clone(),
