@@ -13,6 +13,8 @@ use crate::count::Span;
 use crate::geom::key_hash::{point_key as key, KeyMap};
 use crate::geom::poly2::{dist, Pt2};
 
+use super::lone::lone;
+
 /// Joins polylines (each of two points or more) at exactly equal ends, then, when
 /// `tolerance > 0`, at ends closer than `tolerance` where `bridge(p, q)` allows drawing the
 /// gap from p to q.
@@ -37,6 +39,106 @@ pub(crate) fn join(
     joined
 }
 
+/// [`join`]'s strokes, in its order, where most lines meet no other: the lines with no other
+/// line's end within `tolerance` of their ends ([`lone`]) are passed through as they are,
+/// and only the others are joined, each line taking the place [`join`] gives it (the Euler
+/// walk takes a line drawn alone when its first point's virtual edge comes, the near join at
+/// its index), so the joins' bridges and the strokes' order are [`join`]'s.
+pub(crate) fn join_sparse(
+    lines: Vec<Vec<Pt2>>,
+    tolerance: f64,
+    bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
+    span: Span,
+) -> Vec<Vec<Pt2>> {
+    let lines: Vec<Vec<Pt2>> = lines.into_iter().filter(|l| l.len() >= 2).collect();
+    let alone = lone(&lines, tolerance);
+    // The others, with their indices among all.
+    let mut others: Vec<Vec<Pt2>> = Vec::new();
+    let mut index: Vec<usize> = Vec::new();
+    let mut lines: Vec<Option<Vec<Pt2>>> = lines
+        .into_iter()
+        .zip(&alone)
+        .enumerate()
+        .map(|(i, (l, &a))| {
+            if a {
+                return Some(l);
+            }
+            others.push(l);
+            index.push(i);
+            None
+        })
+        .collect();
+    let walked = euler_walk(others);
+    span.reach(0.5);
+    // The trails in `join`'s order: those through the virtual point by their first points'
+    // first slots (a line alone at its start, slot 2i), then the closed ones.
+    let slot = |k: usize| {
+        let s = walked.first_seen[k];
+        2 * index[s / 2] + s % 2
+    };
+    let mut order: Vec<Trail> = Vec::with_capacity(lines.len());
+    let mut k = 0;
+    for (i, l) in lines.iter().enumerate() {
+        if l.is_none() {
+            continue;
+        }
+        while k < walked.through_virtual && slot(k) < 2 * i {
+            order.push(Trail::Joined(k));
+            k += 1;
+        }
+        order.push(Trail::Alone(i));
+    }
+    order.extend((k..walked.trails.len()).map(Trail::Joined));
+    let mut trails: Vec<Option<Vec<Pt2>>> = walked.trails.into_iter().map(Some).collect();
+    if tolerance <= 0.0 {
+        let out = order
+            .iter()
+            .filter_map(|t| match *t {
+                Trail::Alone(i) => lines[i].take(),
+                Trail::Joined(k) => trails[k].take(),
+            })
+            .collect();
+        span.finish();
+        return out;
+    }
+    // Where each joined trail sits among all, then the near join of those alone.
+    let mut place = vec![0; trails.len()];
+    for (p, t) in order.iter().enumerate() {
+        if let Trail::Joined(k) = *t {
+            place[k] = p;
+        }
+    }
+    let mut at = Vec::new();
+    let joined = join_near_at(
+        trails.iter_mut().filter_map(Option::take).collect(),
+        tolerance,
+        bridge,
+        span.span(0.5, 1.0),
+        &mut at,
+    );
+    let mut joined = joined.into_iter().zip(at).peekable();
+    let mut out = Vec::with_capacity(order.len());
+    for (p, t) in order.iter().enumerate() {
+        while let Some((l, _)) = joined.next_if(|&(_, k)| place[k] < p) {
+            out.push(l);
+        }
+        if let Trail::Alone(i) = *t {
+            out.extend(lines[i].take());
+        }
+    }
+    out.extend(joined.map(|(l, _)| l));
+    span.finish();
+    out
+}
+
+/// A trail of [`join_sparse`]: a line alone (its index) or one the Euler walk made (its
+/// index among the walk's trails).
+#[derive(Clone, Copy)]
+enum Trail {
+    Alone(usize),
+    Joined(usize),
+}
+
 /// An edge of the end-point graph: a polyline, or a virtual edge to the pairing point.
 #[derive(Clone, Copy)]
 struct GraphEdge {
@@ -45,17 +147,40 @@ struct GraphEdge {
 }
 
 /// The fewest trails that draw every polyline once, joined at exactly equal end points.
-fn euler_trails(mut lines: Vec<Vec<Pt2>>) -> Vec<Vec<Pt2>> {
+fn euler_trails(lines: Vec<Vec<Pt2>>) -> Vec<Vec<Pt2>> {
+    euler_walk(lines).trails
+}
+
+/// [`euler_trails`]' trails, with where the first ones start.
+struct Walked {
+    /// The trails, in the order they are walked.
+    trails: Vec<Vec<Pt2>>,
+    /// How many of them the circuit through the virtual point gave (the first ones): those
+    /// come in order of their first points' first appearance among the lines' ends.
+    through_virtual: usize,
+    /// For each of those, the end slot (2i start, 2i + 1 end of line i) where its first
+    /// point first appears.
+    first_seen: Vec<usize>,
+}
+
+/// The trails of [`euler_trails`], and where those through the virtual point start.
+fn euler_walk(mut lines: Vec<Vec<Pt2>>) -> Walked {
     let mut ids: KeyMap<(u64, u64), usize> = KeyMap::default();
-    let mut node = |p: Pt2| {
+    // Each node's first end slot.
+    let mut seen_at: Vec<usize> = Vec::new();
+    let mut node = |p: Pt2, slot: usize| {
         let n = ids.len();
-        *ids.entry(key(p)).or_insert(n)
+        let id = *ids.entry(key(p)).or_insert(n);
+        if id == n {
+            seen_at.push(slot);
+        }
+        id
     };
     let mut edges: Vec<GraphEdge> = lines
         .iter()
         .enumerate()
         .map(|(i, l)| GraphEdge {
-            ends: [node(l[0]), node(l[l.len() - 1])],
+            ends: [node(l[0], 2 * i), node(l[l.len() - 1], 2 * i + 1)],
             line: Some(i),
         })
         .collect();
@@ -104,6 +229,8 @@ fn euler_trails(mut lines: Vec<Vec<Pt2>>) -> Vec<Vec<Pt2>> {
     let starts =
         std::iter::once(virt).chain(edges.iter().filter_map(|e| e.line.map(|_| e.ends[0])));
     let (mut stack, mut circuit) = (Vec::new(), Vec::new());
+    let mut first_nodes = Vec::new();
+    let mut through_virtual = 0;
     for start in starts {
         // Most starts are on lines drawn already: nothing to walk.
         if next[start] == adj.of(start).len() {
@@ -116,9 +243,20 @@ fn euler_trails(mut lines: Vec<Vec<Pt2>>) -> Vec<Vec<Pt2>> {
             (&mut used, &mut next),
             (&mut stack, &mut circuit),
         );
-        split_at_virtual(&circuit, &edges, &mut lines, &mut out);
+        split_at_virtual(&circuit, &edges, &mut lines, (&mut out, &mut first_nodes));
+        if start == virt {
+            through_virtual = out.len();
+        }
     }
-    out
+    let first_seen = first_nodes[..through_virtual]
+        .iter()
+        .map(|&v| seen_at[v])
+        .collect();
+    Walked {
+        trails: out,
+        through_virtual,
+        first_seen,
+    }
 }
 
 /// The edges at each node of the end-point graph, in edge order.
@@ -175,13 +313,14 @@ fn hierholzer(
 /// A node on the walk, with the edge it was reached by and the node before.
 type Step = (usize, Option<(usize, usize)>);
 
-/// Cuts a circuit at its virtual edges into polylines of the real ones, onto `out`; each
-/// line is taken from `lines` (a line drawn alone is moved, turned where walked backwards).
+/// Cuts a circuit at its virtual edges into polylines of the real ones, onto `out`, and the
+/// node each starts at onto `first`; each line is taken from `lines` (a line drawn alone is
+/// moved, turned where walked backwards).
 fn split_at_virtual(
     circuit: &[(usize, usize)],
     edges: &[GraphEdge],
     lines: &mut [Vec<Pt2>],
-    out: &mut Vec<Vec<Pt2>>,
+    (out, first): (&mut Vec<Vec<Pt2>>, &mut Vec<usize>),
 ) {
     // A circuit through the virtual point starts right after a virtual edge once rotated.
     let first_virtual = circuit.iter().position(|&(k, _)| edges[k].line.is_none());
@@ -198,6 +337,7 @@ fn split_at_virtual(
             let trail = trail((from..idx).map(at), edges, lines);
             if trail.len() > 1 {
                 out.push(trail);
+                first.push(at(from).1);
             }
         }
         from = idx + 1;
@@ -237,10 +377,22 @@ fn trail(
 /// Joins stroke ends closer than `tol` where `bridge` allows, closest pairs first; a stroke
 /// is never joined to itself. Fills `span` as the pairs are tried.
 fn join_near(
+    lines: Vec<Vec<Pt2>>,
+    tol: f64,
+    bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
+    span: Span,
+) -> Vec<Vec<Pt2>> {
+    join_near_at(lines, tol, bridge, span, &mut Vec::new())
+}
+
+/// [`join_near`], with the index of the line each stroke is made at (the first line of its
+/// chain met in input order) pushed onto `at`, stroke by stroke.
+fn join_near_at(
     mut lines: Vec<Vec<Pt2>>,
     tol: f64,
     bridge: &mut dyn FnMut(Pt2, Pt2) -> bool,
     span: Span,
+    at: &mut Vec<usize>,
 ) -> Vec<Vec<Pt2>> {
     let n = lines.len();
     // End slot 2i is line i's start, 2i + 1 its end.
@@ -325,6 +477,7 @@ fn join_near(
             // Joined to nothing (most dashes): the line itself.
             done[i] = true;
             out.push(std::mem::take(&mut lines[i]));
+            at.push(i);
             continue;
         }
         // Enter line i at its free end.
@@ -351,6 +504,7 @@ fn join_near(
             }
         }
         out.push(chain);
+        at.push(i);
     }
     out
 }
@@ -360,6 +514,59 @@ mod tests {
     use super::*;
     use crate::geom::poly2::polyline_length;
     use std::collections::HashMap;
+
+    #[test]
+    fn a_sparse_join_gives_the_join_s_strokes_in_its_order() {
+        // Dashed random polylines, some meeting at shared ends (closed ones too), some ends
+        // within the tolerance of others: the same strokes, in the same order, with the
+        // same bridges asked for in the same order, with and without a tolerance.
+        let mut rng = crate::geom::rng::XorShift::new(9);
+        let corners: Vec<Pt2> = (0..60)
+            .map(|_| [rng.range(0.0, 40.0), rng.range(0.0, 40.0)])
+            .collect();
+        let mut paths: Vec<Vec<Pt2>> = (0..150)
+            .map(|_| {
+                let a = corners[rng.below(corners.len())];
+                let b = corners[rng.below(corners.len())];
+                let m = [
+                    (a[0] + b[0]) / 2.0 + rng.range(-2.0, 2.0),
+                    (a[1] + b[1]) / 2.0,
+                ];
+                vec![a, m, b]
+            })
+            .collect();
+        // A closed one, and a short one whose ends lie near another's.
+        paths.push(vec![[50.0, 50.0], [53.0, 50.0], [53.0, 53.0], [50.0, 50.0]]);
+        paths.push(vec![[60.0, 60.0], [61.0, 60.0]]);
+        paths.push(vec![[61.03, 60.0], [64.0, 61.0]]);
+        let dashed: Vec<Vec<Pt2>> = paths
+            .iter()
+            .filter(|p| p[0] != p[p.len() - 1] || p.len() > 2)
+            .flat_map(|p| super::super::dash::dashes(p, 2.0, 1.0))
+            .collect();
+        for tol in [0.0, 0.05, 0.5] {
+            let mut asked = (Vec::new(), Vec::new());
+            let allow = |log: &mut Vec<(Pt2, Pt2)>, p: Pt2, q: Pt2| {
+                log.push((p, q));
+                !(p[0] + q[1]).to_bits().is_multiple_of(3)
+            };
+            let want = join(
+                dashed.clone(),
+                tol,
+                &mut |p, q| allow(&mut asked.0, p, q),
+                Span::NONE,
+            );
+            let got = join_sparse(
+                dashed.clone(),
+                tol,
+                &mut |p, q| allow(&mut asked.1, p, q),
+                Span::NONE,
+            );
+            assert_eq!(got, want, "tolerance {tol}");
+            assert_eq!(asked.0, asked.1, "tolerance {tol}");
+            assert!(want.len() < dashed.len(), "some joined at {tol}");
+        }
+    }
 
     #[test]
     fn a_counted_join_fills_its_share_and_joins_the_same() {

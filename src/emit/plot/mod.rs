@@ -18,6 +18,7 @@ pub(crate) mod dedup;
 pub(crate) mod hatch;
 pub(crate) mod ink;
 pub(crate) mod join;
+pub(crate) mod lone;
 pub(crate) mod page;
 pub(crate) mod pairs;
 pub(crate) mod picture;
@@ -43,7 +44,7 @@ use self::dash::dashes;
 use self::dedup::{dedup_indexed, SegmentIndex};
 use self::hatch::{hatch, section_hatch, tone_outlines};
 use self::ink::Ink;
-use self::join::join;
+use self::join::{join, join_sparse};
 use self::page::Layout;
 use self::picture::{Fill, Layer, LayerMode, Pen, Picture, PictureOptions, PlotStats, Run};
 use self::shade::{face_shade, light_direction};
@@ -245,7 +246,8 @@ pub(crate) fn picture(
             share.reach(0.5);
             bridges.ink(&dashed);
             let mut bridge = |p, q| bridges.allow(p, q, true);
-            strokes = join(dashed, opts.join_mm, &mut bridge, share.span(0.5, 1.0));
+            // Nearly every dash meets no other: only those that do are joined.
+            strokes = join_sparse(dashed, opts.join_mm, &mut bridge, share.span(0.5, 1.0));
         }
         share.finish();
         by_layer
