@@ -152,6 +152,10 @@ impl Surface {
     /// passing `wanted` (false for the others). `mesh` is the mesh this surface is of.
     fn outward(&self, mesh: &Mesh, wanted: impl Fn(usize) -> bool) -> Vec<bool> {
         let at = |t: usize| self.tris[t].map(|k| mesh.vertices[k as usize]);
+        if self.pieces.count == 1 {
+            // One piece (most closed meshes): every triangle, summed on all threads.
+            return vec![wanted(0) && volume_sign_of(self.tris.len(), at) > 0];
+        }
         let mut by_piece: Vec<Vec<usize>> = vec![Vec::new(); self.pieces.count];
         for (t, &f) in self.face_of.iter().enumerate() {
             by_piece[self.piece(f)].push(t);
@@ -758,12 +762,32 @@ pub(crate) fn volume_sign(tris: impl Iterator<Item = [P3; 3]> + Clone) -> i32 {
     let Some(o) = tris.clone().next().map(|t| t[0]) else {
         return 0;
     };
-    // Six times the volume, relative to o: Σ det(a − o, b − o, c − o). Each difference has a
-    // relative rounding error ≤ ε, each 3×3 determinant (6 products of 3, 5 sums) adds
-    // ≤ 10ε of its permanent, and the running sum of n terms ≤ nε of Σ|terms|: the total
-    // error is below (n + 16) ε Σ permanents (1% spare for the bound's own rounding).
+    let (sum, perm, n) = volume_terms(tris.clone(), o);
+    filtered_sign(sum, perm, n).unwrap_or_else(|| exact_volume_sign(tris))
+}
+
+/// [`volume_sign`] of the `n` triangles `tri(0..n)`, their sums made in fixed chunks on all
+/// threads where there are many (a closed mesh of one piece is one sum over every triangle)
+/// and added in chunk order: the same sums, so the same decision, on any thread count.
+pub(crate) fn volume_sign_of(n: usize, tri: impl Fn(usize) -> [P3; 3] + Sync) -> i32 {
+    let chunk = crate::chunked::CHUNK;
+    if n <= chunk || rayon::current_num_threads() == 1 {
+        return volume_sign((0..n).map(&tri));
+    }
+    let o = tri(0)[0];
+    let part = |c: usize| volume_terms((c * chunk..((c + 1) * chunk).min(n)).map(&tri), o);
+    let parts: Vec<(f64, f64, usize)> = (0..n.div_ceil(chunk)).into_par_iter().map(part).collect();
+    let (sum, perm, m) = parts
+        .iter()
+        .fold((0.0, 0.0, 0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
+    filtered_sign(sum, perm, m).unwrap_or_else(|| exact_volume_sign((0..n).map(&tri)))
+}
+
+/// Six times the triangles' volume relative to `o` (Σ det(a − o, b − o, c − o)) rounded,
+/// the sum of the determinants' permanents, and the number of triangles.
+fn volume_terms(tris: impl Iterator<Item = [P3; 3]>, o: P3) -> (f64, f64, usize) {
     let (mut sum, mut perm, mut n) = (0.0f64, 0.0f64, 0usize);
-    for t in tris.clone() {
+    for t in tris {
         let [a, b, c] = t.map(|p| p - o);
         let cx = [
             b.y * c.z - b.z * c.y,
@@ -779,11 +803,17 @@ pub(crate) fn volume_sign(tris: impl Iterator<Item = [P3; 3]> + Clone) -> i32 {
         perm += a.x.abs() * px[0] + a.y.abs() * px[1] + a.z.abs() * px[2];
         n += 1;
     }
+    (sum, perm, n)
+}
+
+/// The sign of a volume sum of `n` terms where its error bound decides it. Each difference
+/// has a relative rounding error ≤ ε, each 3×3 determinant (6 products of 3, 5 sums) adds
+/// ≤ 10ε of its permanent, and a sum of n terms (one running sum, or running sums of chunks
+/// added together: each term passes fewer than n additions) ≤ nε of Σ|terms|: the total
+/// error is below (n + 16) ε Σ permanents (1% spare for the bound's own rounding).
+fn filtered_sign(sum: f64, perm: f64, n: usize) -> Option<i32> {
     let bound = (n as f64 + 16.0) * f64::EPSILON * perm * 1.01;
-    if sum.abs() > bound {
-        return if sum > 0.0 { 1 } else { -1 };
-    }
-    exact_volume_sign(tris)
+    (sum.abs() > bound).then_some(if sum > 0.0 { 1 } else { -1 })
 }
 
 /// Sign of Σ det(a, b, c) over the triangles, in big integers: every coordinate is an
@@ -1100,5 +1130,35 @@ pub(crate) mod tests {
         assert_eq!(decompose(0.75), (3, -2));
         assert_eq!(decompose(-8.0), (-1, 3));
         assert_eq!(decompose(f64::MIN_POSITIVE / 4.0).1, -1024);
+    }
+
+    /// The sign summed in chunks on several threads is the one sum's: for many tetrahedra
+    /// outward, inward, and each with its mirror (a zero the filter leaves to the exact sum).
+    #[test]
+    fn volume_sign_in_chunks_is_the_one_sum() {
+        let tet = |k: usize, flip: bool| -> Vec<[P3; 3]> {
+            let p = |v: usize| {
+                let q = TET[v];
+                P3::new(q[0] + k as f64 * 0.37, q[1] - k as f64 * 1e-3, q[2] + (k % 7) as f64)
+            };
+            (TET_OUT.iter())
+                .map(|f| {
+                    let t = [p(f[0] as usize), p(f[1] as usize), p(f[2] as usize)];
+                    if flip { [t[0], t[2], t[1]] } else { t }
+                })
+                .collect()
+        };
+        let many = crate::chunked::CHUNK / 2 + 77;
+        let outward: Vec<[P3; 3]> = (0..many).flat_map(|k| tet(k, false)).collect();
+        let inward: Vec<[P3; 3]> = (0..many).flat_map(|k| tet(k, true)).collect();
+        let both: Vec<[P3; 3]> = (0..many).flat_map(|k| [tet(k, false), tet(k, true)].concat()).collect();
+        for (tris, want) in [(&outward, 1), (&inward, -1), (&both, 0)] {
+            assert_eq!(volume_sign(tris.iter().copied()), want);
+            for threads in [1, 3] {
+                let got = crate::chunked::pool(threads)
+                    .install(|| volume_sign_of(tris.len(), |t| tris[t]));
+                assert_eq!(got, want, "{threads} threads, {} triangles", tris.len());
+            }
+        }
     }
 }
