@@ -69,7 +69,12 @@ where
     if serial {
         out.resize(total, T::default());
     } else {
-        out.par_extend((0..total).into_par_iter().with_min_len(CHUNK).map(|_| T::default()));
+        out.par_extend(
+            (0..total)
+                .into_par_iter()
+                .with_min_len(CHUNK)
+                .map(|_| T::default()),
+        );
     }
     let mut places: Vec<(usize, &mut [T])> = Vec::with_capacity(chunks);
     let mut rest = out.as_mut_slice();

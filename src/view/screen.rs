@@ -318,7 +318,8 @@ impl ScreenFaces {
             self.world.extend(leaf.world_vertices());
         } else {
             let verts = leaf.mesh.vertices.par_iter();
-            self.world.par_extend(verts.map(|v| leaf.transform.transform_point(v)));
+            self.world
+                .par_extend(verts.map(|v| leaf.transform.transform_point(v)));
         }
         // Held apart while the parts are appended (their new points after all the tasks).
         let world = std::mem::take(&mut self.world);

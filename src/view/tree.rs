@@ -821,7 +821,11 @@ mod tests {
             let root = bvh_one_by_one(&mut alone, &ids);
             let got = crate::chunked::pool(3).install(|| fresh.bvh_over(ids.clone()));
             assert_eq!(got, root, "{len} pieces alone");
-            assert_eq!(listed(&fresh.tree), listed(&alone.tree), "{len} pieces alone");
+            assert_eq!(
+                listed(&fresh.tree),
+                listed(&alone.tree),
+                "{len} pieces alone"
+            );
         }
     }
 

@@ -1139,19 +1139,29 @@ pub(crate) mod tests {
         let tet = |k: usize, flip: bool| -> Vec<[P3; 3]> {
             let p = |v: usize| {
                 let q = TET[v];
-                P3::new(q[0] + k as f64 * 0.37, q[1] - k as f64 * 1e-3, q[2] + (k % 7) as f64)
+                P3::new(
+                    q[0] + k as f64 * 0.37,
+                    q[1] - k as f64 * 1e-3,
+                    q[2] + (k % 7) as f64,
+                )
             };
             (TET_OUT.iter())
                 .map(|f| {
                     let t = [p(f[0] as usize), p(f[1] as usize), p(f[2] as usize)];
-                    if flip { [t[0], t[2], t[1]] } else { t }
+                    if flip {
+                        [t[0], t[2], t[1]]
+                    } else {
+                        t
+                    }
                 })
                 .collect()
         };
         let many = crate::chunked::CHUNK / 2 + 77;
         let outward: Vec<[P3; 3]> = (0..many).flat_map(|k| tet(k, false)).collect();
         let inward: Vec<[P3; 3]> = (0..many).flat_map(|k| tet(k, true)).collect();
-        let both: Vec<[P3; 3]> = (0..many).flat_map(|k| [tet(k, false), tet(k, true)].concat()).collect();
+        let both: Vec<[P3; 3]> = (0..many)
+            .flat_map(|k| [tet(k, false), tet(k, true)].concat())
+            .collect();
         for (tris, want) in [(&outward, 1), (&inward, -1), (&both, 0)] {
             assert_eq!(volume_sign(tris.iter().copied()), want);
             for threads in [1, 3] {

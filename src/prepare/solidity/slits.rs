@@ -54,7 +54,11 @@ pub(super) fn close_slits(mesh: &Mesh, slits: &[Vec<u32>]) -> Option<Vec<Face>> 
     // Each face's spanning edges: only triangles are split, and each such edge must be
     // found once.
     let faces = &mesh.faces;
-    let spanned = |f: &Face| (0..f.vertices.len()).filter(|&i| spans(f, i).is_some()).count();
+    let spanned = |f: &Face| {
+        (0..f.vertices.len())
+            .filter(|&i| spans(f, i).is_some())
+            .count()
+    };
     let counts: Vec<u8> = crate::chunked::map(faces.len(), |k| spanned(&faces[k]).min(3) as u8);
     let mut found = 0;
     for (f, &c) in faces.iter().zip(&counts) {
