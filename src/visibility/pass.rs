@@ -39,9 +39,12 @@ const SEQUENTIAL_BELOW: usize = 64;
 /// times unless a thread steals, so a thread may be left with a quarter of the pieces in
 /// one run that no other thread can take a part of: where the work per piece varies (a
 /// mesh's far side behind its near one), the others then wait. Nefertiti on two threads
-/// showed the visibility stage 1-44% serial from run to run; in tasks of this size the
-/// last one holds the others up for a few milliseconds at most.
-const MOST_PIECES_A_TASK: usize = 1024;
+/// showed the visibility stage 1-44% serial from run to run, and in tasks of 1,024 pieces
+/// still 8-11% in most runs: its costliest faces lie together (pieces 22,173-22,269 take
+/// 1-13 ms each, one task of 1,024 about 80 ms). In tasks of this size the last one holds
+/// the others up for about as long as its costliest piece. (One thread has no one to wait:
+/// its tasks stay as long as rayon makes them, each a worker's buffers the fewer.)
+const MOST_PIECES_A_TASK: usize = 128;
 
 /// Computes every face's VTP against the whole scene.
 ///
@@ -77,7 +80,11 @@ pub(crate) fn solve(view: &View, opts: PassOptions, done: Count) -> Visibility {
     } else {
         (0..sf.pieces.len() as u32)
             .into_par_iter()
-            .with_max_len(MOST_PIECES_A_TASK)
+            .with_max_len(if rayon::current_num_threads() > 1 {
+                MOST_PIECES_A_TASK
+            } else {
+                usize::MAX
+            })
             .map_init(|| Worker::new(&total), |w, p| solve(w, PieceId(p)))
             .collect()
     };
