@@ -1,6 +1,6 @@
 //! The cell geometry of uniform grids of square cells in the plane: how many cells, how big,
-//! and which cell a point falls in. The callers keep their own buckets and search orders
-//! (the stroke order of the plot output depends on them).
+//! which cell a point falls in, and points bucketed by cell. The callers keep their own
+//! search orders (the stroke order of the plot output depends on them).
 
 use super::poly2::Pt2;
 use super::Rect;
@@ -97,6 +97,26 @@ impl Cells {
         let (x, y) = self.coords(p);
         y * self.nx + x
     }
+
+    /// The points' indices cell by cell (a counting sort, in index order within a cell), and
+    /// where each cell's run starts: cell c holds `slots[start[c]..start[c + 1]]`.
+    pub(crate) fn buckets(&self, pts: &[Pt2]) -> (Vec<u32>, Vec<u32>) {
+        let cell_of: Vec<u32> = pts.iter().map(|&p| self.index(p) as u32).collect();
+        let mut start = vec![0u32; self.len() + 1];
+        for &c in &cell_of {
+            start[c as usize + 1] += 1;
+        }
+        for c in 0..self.len() {
+            start[c + 1] += start[c];
+        }
+        let mut fill = start.clone();
+        let mut slots = vec![0u32; pts.len()];
+        for (s, &c) in cell_of.iter().enumerate() {
+            slots[fill[c as usize] as usize] = s as u32;
+            fill[c as usize] += 1;
+        }
+        (start, slots)
+    }
 }
 
 /// Cells per side for about `items` entries, one a cell: √items rounded up, from 1 to `max`.
@@ -117,6 +137,24 @@ fn side(b: &Rect, n: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each cell's run holds exactly the points that fall in it, in index order.
+    #[test]
+    fn buckets_hold_each_cells_points_in_order() {
+        let pts: Vec<Pt2> = (0..200)
+            .map(|i| [(i * 37 % 101) as f64 * 0.1, (i * 53 % 97) as f64 * 0.1])
+            .collect();
+        let grid = Cells::square(&Rect::of_points(pts.iter()), 7);
+        let (start, slots) = grid.buckets(&pts);
+        assert_eq!(start.len(), grid.len() + 1);
+        for c in 0..grid.len() {
+            let run = &slots[start[c] as usize..start[c + 1] as usize];
+            let want: Vec<u32> = (0..pts.len() as u32)
+                .filter(|&s| grid.index(pts[s as usize]) == c)
+                .collect();
+            assert_eq!(run, want.as_slice(), "cell {c}");
+        }
+    }
 
     #[test]
     fn points_fall_in_their_cells_clamped_to_the_grid() {

@@ -23,21 +23,8 @@ pub(crate) fn lone(lines: &[Vec<Pt2>], tol: f64) -> Vec<bool> {
         n = n.min(((side / (tol * (1.0 + 1e-6))).floor() as usize).max(1));
     }
     let grid = Cells::square(&b, n);
-    let cell_of: Vec<u32> = pts.iter().map(|&p| grid.index(p) as u32).collect();
-    // The ends cell by cell (a counting sort).
-    let mut start = vec![0u32; n * n + 1];
-    for &c in &cell_of {
-        start[c as usize + 1] += 1;
-    }
-    for c in 0..n * n {
-        start[c + 1] += start[c];
-    }
-    let mut fill = start.clone();
-    let mut in_cells = vec![0u32; pts.len()];
-    for (s, &c) in cell_of.iter().enumerate() {
-        in_cells[fill[c as usize] as usize] = s as u32;
-        fill[c as usize] += 1;
-    }
+    // The ends cell by cell.
+    let (start, in_cells) = grid.buckets(&pts);
     // Ends within `tol` of p lie in its cell, or in a neighbouring one where p is that close
     // to the side between them (a margin for rounding).
     let margin = tol * (1.0 + 1e-6) + 1e-9 * grid.cell;

@@ -764,23 +764,10 @@ impl Buckets {
     pub(super) fn new(pts: &[Pt2]) -> Buckets {
         let b = crate::geom::Rect::of_points(pts.iter());
         let grid = Cells::square(&b, per_side(pts.len() as f64 / 2.0, 2048));
-        let g = grid.nx;
-        let cell_of: Vec<u32> = pts.iter().map(|&p| grid.index(p) as u32).collect();
-        // The cells' slots side by side, in slot order within a cell (a counting sort).
-        let mut start = vec![0u32; g * g + 1];
-        for &c in &cell_of {
-            start[c as usize + 1] += 1;
-        }
-        for c in 0..g * g {
-            start[c + 1] += start[c];
-        }
-        let mut fill = start.clone();
-        // Each slot with its point, so a cell's candidates are read in a row.
-        let mut in_cells = vec![(0u32, [0.0; 2]); pts.len()];
-        for (s, &c) in cell_of.iter().enumerate() {
-            in_cells[fill[c as usize] as usize] = (s as u32, pts[s]);
-            fill[c as usize] += 1;
-        }
+        // The cells' slots side by side, in slot order within a cell, each with its point,
+        // so a cell's candidates are read in a row.
+        let (start, slots) = grid.buckets(pts);
+        let in_cells = slots.iter().map(|&s| (s, pts[s as usize])).collect();
         Buckets {
             grid,
             start,
