@@ -26,11 +26,23 @@ const IGNORED: [&str; 8] = ["vt", "vn", "vp", "usemtl", "mtllib", "s", "l", "p"]
 ///
 /// The bytes parsed go to `done` as it goes, once per step of bytes.
 pub(crate) fn parse_obj(path: &Path, bytes: &[u8], done: Count) -> Result<MeshFile> {
-    parse_obj_in(path, bytes, done, CHUNK_BYTES)
+    parse_obj_in(path, bytes, done, chunk_bytes(bytes.len()))
 }
 
-/// Text a thread parses at a time (cut at a logical line's end at or after it).
+/// Most text a thread parses at a time (cut at a logical line's end at or after it).
 const CHUNK_BYTES: usize = 1 << 20;
+
+/// Least text a thread parses at a time: a chunk's own lists and its join cost about as
+/// much as parsing a few kilobytes.
+const MIN_CHUNK_BYTES: usize = 64 << 10;
+
+/// The chunk size for a file of `len` bytes: [`CHUNKS_AT_ONCE`] chunks where that keeps
+/// them between [`MIN_CHUNK_BYTES`] and [`CHUNK_BYTES`]. A mid-sized mesh (nefertiti's
+/// 3.7 MB) was four chunks of 1 MiB: four threads parsed it, whatever the machine had. The
+/// result does not depend on the size (a test parses in chunks of every size).
+fn chunk_bytes(len: usize) -> usize {
+    (len / CHUNKS_AT_ONCE).clamp(MIN_CHUNK_BYTES, CHUNK_BYTES)
+}
 
 /// Chunks parsed side by side before they are joined (the parsed chunks held at once).
 const CHUNKS_AT_ONCE: usize = 64;
@@ -683,6 +695,17 @@ mod tests {
         .unwrap_err();
         assert!(matches!(e, Error::Parse(..)));
         assert!(e.to_string().starts_with("g.obj:2:5: invalid UTF-8"), "{e}");
+    }
+
+    #[test]
+    fn a_mid_sized_file_is_cut_for_every_thread_and_a_big_one_in_mebibytes() {
+        // Nefertiti's 3.7 MB: 56 chunks, not 4; a 561 MB terrain keeps 1 MiB chunks; a
+        // small file is one chunk of at least 64 KiB.
+        let chunks = |len: usize| len.div_ceil(chunk_bytes(len));
+        assert_eq!(chunks(3_660_678), 56);
+        assert_eq!(chunk_bytes(561_213_527), CHUNK_BYTES);
+        assert_eq!(chunk_bytes(2_000), MIN_CHUNK_BYTES);
+        assert_eq!(chunks(2_000), 1);
     }
 
     /// Every text of the tests above, parsed in chunks of every size from one byte up:
