@@ -35,10 +35,10 @@ pub(crate) struct Renumbering {
 impl Renumbering {
     /// Room for the indices below `n` (those added are not numbered in any round).
     pub(crate) fn grow(&mut self, n: usize) {
-        if n > self.round.len() {
-            self.round.resize_with(n, || AtomicU32::new(NONE));
-            self.number.resize_with(n, || AtomicU32::new(0));
-        }
+        // Made (their pages first touched) on all threads: 5M vertices on the 10M terrain.
+        let more = n.saturating_sub(self.round.len());
+        crate::chunked::extend_map(&mut self.round, more, |_| AtomicU32::new(NONE));
+        crate::chunked::extend_map(&mut self.number, more, |_| AtomicU32::new(0));
     }
 
     /// Rewrites every index of the lists (each below the room grown, taken by `corners` from
@@ -60,10 +60,8 @@ impl Renumbering {
         if total <= UNIT || total >= CLAIMED as usize || rayon::current_num_threads() == 1 {
             return self.one_pass(round, parts, next, corners);
         }
-        if self.first.len() < self.round.len() {
-            self.first
-                .resize_with(self.round.len(), || AtomicU32::new(NONE));
-        }
+        let more = self.round.len().saturating_sub(self.first.len());
+        crate::chunked::extend_map(&mut self.first, more, |_| AtomicU32::new(NONE));
         // Units of lists, each with the number of its first list.
         let mut units: Vec<(u32, &mut [L])> = Vec::new();
         let mut at = 0;

@@ -451,8 +451,9 @@ impl Builder<'_> {
             tree.piece_bounds.extend(bounds);
         }
         let (nodes, children) = (at.node as usize, at.child as usize);
-        tree.nodes.resize(nodes + shape.nodes, empty_node());
-        tree.children.resize(children + shape.children, 0);
+        // Made (their pages first touched) on all threads: 2.5M nodes on the 10M terrain.
+        crate::chunked::extend_map(&mut tree.nodes, shape.nodes, |_| empty_node());
+        crate::chunked::extend_map(&mut tree.children, shape.children, |_| 0);
         fill(
             sf,
             &ids,
