@@ -32,8 +32,7 @@ pub(crate) fn parse_obj(path: &Path, bytes: &[u8], done: Count) -> Result<MeshFi
 /// Most text a thread parses at a time (cut at a logical line's end at or after it).
 const CHUNK_BYTES: usize = 1 << 20;
 
-/// Least text a thread parses at a time: a chunk's own lists and its join cost about as
-/// much as parsing a few kilobytes.
+/// Least text a thread parses at a time (a file of up to 64 KiB is one chunk).
 const MIN_CHUNK_BYTES: usize = 64 << 10;
 
 /// The chunk size for a file of `len` bytes: [`CHUNKS_AT_ONCE`] chunks where that keeps
