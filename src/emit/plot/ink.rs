@@ -12,8 +12,8 @@ use crate::geom::poly2::{dist, Pt2};
 use super::dedup::overlap;
 
 /// How much a segment's box is widened, in multiples of `eps`: a segment that runs along a
-/// gap for more than `eps` comes within a few `eps` of it (its ends lie that near the other's
-/// line), so boxes widened by this much meet.
+/// gap for more than `eps` comes within `eps` of it ([`overlap`] shows it), so boxes
+/// widened by this much meet.
 const MARGIN_EPS: f64 = 100.0;
 
 /// The most cells along an axis of a segment's box: cells are at least an eighth of the
