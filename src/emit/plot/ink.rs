@@ -6,6 +6,8 @@
 //! any of them runs along a gap for more than `eps`), without listing each segment in the
 //! many small cells of the index of every line drawn (sized for all the picture's segments).
 
+use rayon::prelude::*;
+
 use crate::geom::key_hash::KeyMap;
 use crate::geom::poly2::{dist, Pt2};
 
@@ -57,7 +59,8 @@ impl Ink {
                 }
             }
         }
-        listed.sort_unstable();
+        // The pairs are distinct, so the order is the same on any number of threads.
+        listed.par_sort_unstable();
         let mut cells: KeyMap<(i64, i64), (usize, usize)> = KeyMap::default();
         for (k, &(c, _)) in listed.iter().enumerate() {
             cells.entry(c).or_insert((k, k)).1 = k + 1;
