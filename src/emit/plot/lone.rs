@@ -3,6 +3,8 @@
 //! ends nor the join within the tolerance can touch them. Hidden dashes are nearly all such
 //! lines ([`super::join::join_sparse`] joins only the others).
 
+use rayon::prelude::*;
+
 use crate::geom::grid::{per_side, Cells};
 use crate::geom::key_hash::point_key as key;
 use crate::geom::poly2::{dist, Pt2};
@@ -54,7 +56,9 @@ pub(crate) fn lone(lines: &[Vec<Pt2>], tol: f64) -> Vec<bool> {
             })
         })
     };
+    // Each line on its own: the same answer on any number of threads.
     (0..lines.len())
+        .into_par_iter()
         .map(|i| {
             let (a, z) = (2 * i, 2 * i + 1);
             key(pts[a]) != key(pts[z]) && !near(a) && !near(z)

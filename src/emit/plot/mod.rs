@@ -242,7 +242,11 @@ pub(crate) fn picture(
             // vpype's `linemerge` would join them.
             let [on, off] = opts.dash_mm;
             check_dash_count(&strokes, on, off, &layout)?;
-            let dashed: Vec<Vec<Pt2>> = strokes.iter().flat_map(|l| dashes(l, on, off)).collect();
+            // Each stroke's dashes on its own, collected in stroke order.
+            let dashed: Vec<Vec<Pt2>> = strokes
+                .par_iter()
+                .flat_map_iter(|l| dashes(l, on, off))
+                .collect();
             share.reach(0.5);
             bridges.ink(&dashed);
             let mut bridge = |p, q| bridges.allow(p, q, true);
