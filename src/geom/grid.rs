@@ -83,12 +83,25 @@ impl Cells {
     /// The cell column and row of `p`, clamped to the grid.
     #[inline]
     pub(crate) fn coords(&self, p: Pt2) -> (usize, usize) {
-        let f =
-            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
-        (
-            f(p[0], self.origin[0], self.nx),
-            f(p[1], self.origin[1], self.ny),
-        )
+        (self.column(p[0]), self.row(p[1]))
+    }
+
+    /// The column of x, clamped to the grid.
+    #[inline]
+    pub(crate) fn column(&self, x: f64) -> usize {
+        self.along(x, self.origin[0], self.nx)
+    }
+
+    /// The row of y, clamped to the grid.
+    #[inline]
+    pub(crate) fn row(&self, y: f64) -> usize {
+        self.along(y, self.origin[1], self.ny)
+    }
+
+    /// The cell along one axis (origin `o`, `n` cells) of coordinate `v`, clamped.
+    #[inline]
+    fn along(&self, v: f64, o: f64, n: usize) -> usize {
+        (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1)
     }
 
     /// The row-major index of `p`'s cell.

@@ -307,13 +307,8 @@ impl CellGrid {
         out.clear();
         let f = &self.frame;
         let pad = self.pad;
-        let index =
-            |v: f64, o: f64, n: usize| (((v - o) / f.cell).floor().max(0.0) as usize).min(n - 1);
         let (ylo, yhi) = (a[1].min(b[1]), a[1].max(b[1]));
-        let (r0, r1) = (
-            index(ylo - pad, f.origin[1], f.ny),
-            index(yhi + pad, f.origin[1], f.ny),
-        );
+        let (r0, r1) = (f.row(ylo - pad), f.row(yhi + pad));
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         for r in r0..=r1 {
             // The row's band widened by `pad`; the edge rows reach to infinity.
@@ -335,10 +330,7 @@ impl CellGrid {
                 let (t0, t1) = (t(y0), t(y1));
                 (a[0] + t0 * dx, a[0] + t1 * dx)
             };
-            let (c0, c1) = (
-                index(xa.min(xb) - pad, f.origin[0], f.nx),
-                index(xa.max(xb) + pad, f.origin[0], f.nx),
-            );
+            let (c0, c1) = (f.column(xa.min(xb) - pad), f.column(xa.max(xb) + pad));
             out.extend((c0..=c1).map(|c| r * f.nx + c));
         }
     }
@@ -532,6 +524,12 @@ mod tests {
         assert_eq!((again.len(), st.dropped, st.trimmed), (kept.len(), 0, 0));
     }
 
+    /// A round's scale (of the coordinates) and tolerance: four scales, three tolerances.
+    fn scale_and_eps(round: usize) -> (f64, f64) {
+        let scale: f64 = [1e-2, 1.0, 300.0, 1e5][round % 4];
+        (scale, [1e-4, 1e-9, 1e-3][round % 3] * scale.min(1.0))
+    }
+
     /// Random segments near a few lines (pieces, near-repeats, crumbs across them) and
     /// scattered ones, at several scales, some outside the bounds the index was made for.
     fn tangle(
@@ -589,8 +587,7 @@ mod tests {
         let mut rng = crate::geom::rng::XorShift::new(0xD0D0);
         let mut found = 0;
         for round in 0..24 {
-            let scale: f64 = [1e-2, 1.0, 300.0, 1e5][round % 4];
-            let eps = [1e-4, 1e-9, 1e-3][round % 3] * scale.min(1.0);
+            let (scale, eps) = scale_and_eps(round);
             let mut segs = tangle(&mut rng, 600, scale, eps);
             // Bounds of a part of the segments only: the rest lie partly outside.
             let mut index = SegmentIndex::new(&segs[..100], eps);
@@ -668,8 +665,7 @@ mod tests {
         let mut rng = crate::geom::rng::XorShift::new(0xC0DE);
         let (mut near, mut steep) = (0, 0);
         for round in 0..40 {
-            let scale: f64 = [1e-2, 1.0, 300.0, 1e5][round % 4];
-            let eps = [1e-4, 1e-9, 1e-3][round % 3] * scale.min(1.0);
+            let (scale, eps) = scale_and_eps(round);
             let segs = tangle(&mut rng, 400, scale, eps);
             for (i, &[a, b]) in segs.iter().enumerate() {
                 for &[c, d] in &segs[..i] {
