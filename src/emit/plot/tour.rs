@@ -14,8 +14,9 @@
 //! The open path is closed into a cycle through a depot at distance 0 from everything, so a
 //! reversal can always take the shorter side. Deterministic: fixed neighbour lists, a FIFO
 //! work queue, ties to the lower index, a seeded generator for the kicks, and fixed budgets
-//! of moves and kicks. Counting the work done for a progress bar (`plan`) reads
-//! nothing the search decides by.
+//! of moves and kicks; the kicks are tried on copies of the tour side by side, one a
+//! thread, with the tour one copy would find ([`lanes`]). Counting the work done for a
+//! progress bar (`plan`) reads nothing the search decides by.
 
 use crate::count::{Span, Steps};
 use crate::geom::grid::{per_side, Cells};
@@ -26,6 +27,10 @@ use rayon::prelude::*;
 
 use super::chain::greedy;
 use super::pairs::chains;
+
+mod lanes;
+
+use self::lanes::lanes;
 
 /// Nearest neighbours kept per stroke end.
 const NEIGHBOURS: usize = 16;
@@ -185,7 +190,7 @@ fn plan_steps(ends: &[[Pt2; 2]], effort: Effort, span: Span) -> Vec<(usize, bool
         },
     );
     span.reach(SPAN_GREEDY);
-    let mut t = Tour::new(ends, &start, near);
+    let mut t = Tour::new(ends, &start, &near);
     t.improve(effort, span.span(SPAN_NEIGHBOURS, 1.0));
     t.order()
 }
@@ -199,6 +204,36 @@ struct Place {
     rev: bool,
 }
 
+/// Where a kick cuts a tour of `n` positions: after position `p`, the runs of `l1` and `l2`
+/// positions that follow swapped (a local double bridge).
+#[derive(Clone, Copy)]
+struct Bridge {
+    p: usize,
+    l1: usize,
+    l2: usize,
+}
+
+impl Bridge {
+    /// The next kick of a tour of `n` positions (at least 4) from `rng`: runs of 1 to
+    /// [`KICK_RUN`] positions. The kicks depend on nothing but `n` and the generator, so a
+    /// layer's are drawn before any is made.
+    fn draw(rng: &mut XorShift, n: usize) -> Bridge {
+        let most = KICK_RUN.min((n - 2) / 2).max(1);
+        let p = rng.below(n);
+        let (l1, l2) = (1 + rng.below(most), 1 + rng.below(most));
+        Bridge { p, l1, l2 }
+    }
+}
+
+/// What a kick with its local search did: how much longer the kick made the travel, what
+/// the search gained back, and the moves it spent.
+#[derive(Clone, Copy)]
+struct Trial {
+    worse: f64,
+    gain: f64,
+    moves: usize,
+}
+
 /// A cyclic tour: the strokes and the depot (index n), each stroke with its direction.
 struct Tour<'a> {
     ends: &'a [[Pt2; 2]],
@@ -207,11 +242,13 @@ struct Tour<'a> {
     /// Each node's position and direction, side by side: a reversal updates both.
     place: Vec<Place>,
     /// For each end slot (2i start, 2i + 1 end of stroke i): nearest other strokes' slots.
-    near: Near,
+    near: &'a Near,
     /// Least gain a move must bring (a rounding guard).
     eps: f64,
     /// Reversals made, when they are to be undone.
     log: Option<Vec<(usize, usize)>>,
+    /// The reversal log's buffer between kicks.
+    spare: Vec<(usize, usize)>,
     /// Strokes in the local search's work queue (all false between searches).
     queued: Vec<bool>,
     /// The local search's work queue, kept for its buffer.
@@ -222,7 +259,7 @@ struct Tour<'a> {
 
 impl<'a> Tour<'a> {
     /// The tour of strokes `ends` in `order`, with their neighbour lists `near`.
-    fn new(ends: &'a [[Pt2; 2]], order: &[(usize, bool)], near: Near) -> Tour<'a> {
+    fn new(ends: &'a [[Pt2; 2]], order: &[(usize, bool)], near: &'a Near) -> Tour<'a> {
         let n = ends.len();
         let mut seq: Vec<usize> = order.iter().map(|o| o.0).collect();
         seq.push(n);
@@ -241,6 +278,7 @@ impl<'a> Tour<'a> {
             near,
             eps: 1e-12 * b.longer_side().max(f64::MIN_POSITIVE),
             log: None,
+            spare: Vec::new(),
             queued: vec![false; n],
             queue: std::collections::VecDeque::new(),
             longest: usize::MAX,
@@ -493,10 +531,20 @@ impl<'a> Tour<'a> {
     /// Local search until no move gains, then kicks: a local double bridge (two neighbouring
     /// runs of strokes swapped) followed by local search around it, kept only when the whole
     /// brings the travel down, undone otherwise (iterated local search). Fills `span`: the
-    /// first search its part up to [`SPAN_SEARCH`], the kicks the rest.
+    /// first search its part up to [`SPAN_SEARCH`], the kicks the rest. The kicks are tried
+    /// on as many tours at once as [`lanes`] gives, with the one-tour result
+    /// ([`Tour::kicks_in_lanes`]).
     fn improve(&mut self, effort: Effort, span: Span) {
         let strokes = self.ends.len();
-        let mut budget = MOVES_PER_STROKE * strokes;
+        let kicks = effort.kicks_per_stroke * strokes.min(effort.kicked_strokes);
+        let budget = MOVES_PER_STROKE * strokes;
+        self.improve_in(effort, span, budget, lanes(self.len(), kicks));
+    }
+
+    /// [`Tour::improve`] within `budget` moves, its kicks tried `lanes` at a time (1: one
+    /// after the other).
+    fn improve_in(&mut self, effort: Effort, span: Span, mut budget: usize, lanes: usize) {
+        let strokes = self.ends.len();
         let all: Vec<usize> = self.seq[..strokes].to_vec();
         let search = (SPAN_SEARCH - SPAN_NEIGHBOURS) / (1.0 - SPAN_NEIGHBOURS);
         let first = span.span(0.0, search).steps(strokes);
@@ -507,31 +555,75 @@ impl<'a> Tour<'a> {
         }
         let mut rng = XorShift::new(0x5DEE_CE66_D1CE_5EED);
         let kicks = effort.kicks_per_stroke * strokes.min(effort.kicked_strokes);
+        let bridges: Vec<Bridge> = (0..kicks)
+            .map(|_| Bridge::draw(&mut rng, self.len()))
+            .collect();
         let kicked = span.span(search, 1.0).steps(kicks);
-        let mut log = Vec::new();
         self.longest = KICK_REVERSAL;
-        // Kicks in a row that did not shorten the tour.
-        let mut failed = 0;
-        for k in 0..kicks {
-            if budget == 0 || failed == KICK_STALL {
-                break;
-            }
-            kicked.tick_in(k, KICK_CHUNK);
-            log.clear();
-            self.log = Some(log);
-            let (worse, touched) = self.kick(&mut rng);
-            let gain = self.local_search(&touched, &mut budget, None);
-            log = self.log.take().unwrap_or_default();
-            if gain - worse <= self.eps {
-                for &(i, j) in log.iter().rev() {
-                    self.reverse(i, j);
-                }
-                failed += 1;
-            } else {
-                failed = 0;
-            }
+        if lanes < 2 {
+            self.kicks(&bridges, (0, 0), &mut budget, &kicked);
+        } else {
+            self.kicks_in_lanes(&bridges, &mut budget, &kicked, lanes);
         }
         span.finish();
+    }
+
+    /// The kicks `bridges` from the `k`-th on, one after the other, each kept when it
+    /// shortens the tour, until the move budget is spent or [`KICK_STALL`] kicks in a row
+    /// gained nothing (`failed` of them before the `k`-th).
+    fn kicks(
+        &mut self,
+        bridges: &[Bridge],
+        (mut k, mut failed): (usize, usize),
+        budget: &mut usize,
+        kicked: &Steps,
+    ) {
+        while k < bridges.len() && *budget > 0 && failed < KICK_STALL {
+            kicked.tick_in(k, KICK_CHUNK);
+            let trial = self.try_kick(bridges[k], budget);
+            let gains = self.gains(&trial);
+            failed = if gains { 0 } else { failed + 1 };
+            self.settle(gains, &[]);
+            k += 1;
+        }
+    }
+
+    /// A kick and the local search around it, its reversals logged: what it cost and gained,
+    /// and the moves it made out of `budget`.
+    fn try_kick(&mut self, bridge: Bridge, budget: &mut usize) -> Trial {
+        let mut log = std::mem::take(&mut self.spare);
+        log.clear();
+        self.log = Some(log);
+        let before = *budget;
+        let (worse, touched) = self.kick(bridge);
+        let gain = self.local_search(&touched, budget, None);
+        Trial {
+            worse,
+            gain,
+            moves: before - *budget,
+        }
+    }
+
+    /// Whether a kick's trial shortened the tour.
+    fn gains(&self, trial: &Trial) -> bool {
+        trial.gain - trial.worse > self.eps
+    }
+
+    /// Ends a kick's trial, if one is under way, and brings the tour to the kept one: the
+    /// trial kept as it is (`keep`), or undone and then `replay`'s reversals made.
+    fn settle(&mut self, keep: bool, replay: &[(usize, usize)]) {
+        let log = self.log.take();
+        if !keep {
+            for &(i, j) in log.iter().flatten().rev() {
+                self.reverse(i, j);
+            }
+            for &(i, j) in replay {
+                self.reverse(i, j);
+            }
+        }
+        if let Some(log) = log {
+            self.spare = log;
+        }
     }
 
     /// Local search from the strokes in `queue` until no move gains (or the budget is
@@ -601,13 +693,11 @@ impl<'a> Tour<'a> {
         )
     }
 
-    /// A local double bridge: the runs B and C after a random position p swapped. Returns how
-    /// much longer the travel got and the strokes at the changed edges.
-    fn kick(&mut self, rng: &mut XorShift) -> (f64, [usize; 6]) {
+    /// A local double bridge: the runs B and C after position `bridge.p` swapped. Returns
+    /// how much longer the travel got and the strokes at the changed edges.
+    fn kick(&mut self, bridge: Bridge) -> (f64, [usize; 6]) {
         let n = self.len();
-        let most = KICK_RUN.min((n - 2) / 2).max(1);
-        let p = rng.below(n);
-        let (l1, l2) = (1 + rng.below(most), 1 + rng.below(most));
+        let Bridge { p, l1, l2 } = bridge;
         let span = l1 + l2 + 1;
         let cost = |t: &Self| (0..span).map(|k| t.edge((p + k) % n)).sum::<f64>();
         let before = cost(self);
@@ -845,7 +935,7 @@ mod tests {
             .collect()
     }
 
-    fn random_strokes(n: usize, seed: u64) -> Vec<[Pt2; 2]> {
+    pub(super) fn random_strokes(n: usize, seed: u64) -> Vec<[Pt2; 2]> {
         let mut rng = crate::geom::rng::XorShift::new(seed);
         let mut rnd = || rng.range(0.0, 100.0);
         (0..n)
@@ -929,7 +1019,8 @@ mod tests {
     fn reversals_and_moves_keep_positions_consistent() {
         let ends = random_strokes(12, 9);
         let order: Vec<(usize, bool)> = (0..12).map(|i| (i, i % 3 == 0)).collect();
-        let mut t = Tour::new(&ends, &order, neighbours(&ends, NEIGHBOURS, Span::NONE));
+        let near = neighbours(&ends, NEIGHBOURS, Span::NONE);
+        let mut t = Tour::new(&ends, &order, &near);
         let before = cycle_cost(&t);
         t.reverse(10, 2); // wraps around the depot at 12
         t.or_opt_move(t.seq[4], 2, 8, true);
@@ -953,11 +1044,8 @@ mod tests {
         let share = Share::new(p.count(), 3000);
         // The search and its kicks fill their span by their own counts (2,000 kicks, a
         // whole number of chunks), before any finishing.
-        let mut t = Tour::new(
-            &ends,
-            &greedy(&ends, 0),
-            neighbours(&ends, NEIGHBOURS, Span::NONE),
-        );
+        let near = neighbours(&ends, NEIGHBOURS, Span::NONE);
+        let mut t = Tour::new(&ends, &greedy(&ends, 0), &near);
         t.improve(FULL, share.span(0.0, 0.5));
         assert_eq!(
             p.counts().0,
@@ -969,7 +1057,7 @@ mod tests {
         assert_eq!(counted, plan(&ends, Span::NONE), "counting changes nothing");
     }
 
-    fn cycle_cost(t: &Tour) -> f64 {
+    pub(super) fn cycle_cost(t: &Tour) -> f64 {
         (0..t.len() as isize)
             .map(|k| Tour::d(t.end(t.at(k)), t.start(t.at(k + 1))))
             .sum()
@@ -979,11 +1067,8 @@ mod tests {
     fn or_opt_gain_is_the_cost_change() {
         // Every Or-opt move the search proposes lowers the cycle's cost by its gain.
         let ends = random_strokes(60, 5);
-        let mut t = Tour::new(
-            &ends,
-            &greedy(&ends, 0),
-            neighbours(&ends, NEIGHBOURS, Span::NONE),
-        );
+        let near = neighbours(&ends, NEIGHBOURS, Span::NONE);
+        let mut t = Tour::new(&ends, &greedy(&ends, 0), &near);
         for v in 0..60 {
             if let Some((g, run, p, r)) = t.best_or_opt(v) {
                 let before = cycle_cost(&t);
