@@ -227,7 +227,6 @@ impl Bridge {
 
 /// What a kick with its local search did: how much longer the kick made the travel, what
 /// the search gained back, and the moves it spent.
-#[derive(Clone, Copy)]
 struct Trial {
     worse: f64,
     gain: f64,

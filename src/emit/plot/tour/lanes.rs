@@ -140,7 +140,9 @@ impl<'a> Tour<'a> {
             if i >= stop.load(Ordering::Relaxed) {
                 return tried;
             }
-            let trial = self.try_kick(bridges[i], &mut left.clone());
+            // Each kick with the round's budget: the reading in kick order checks it.
+            let mut budget = left;
+            let trial = self.try_kick(bridges[i], &mut budget);
             let gains = self.gains(&trial);
             tried.push((i, trial));
             if gains {
