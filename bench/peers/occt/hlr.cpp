@@ -49,6 +49,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <string>
@@ -151,6 +152,21 @@ static int run(int argc, char **argv) {
   TopoDS_Compound comp;
   bb.MakeCompound(comp);
   size_t nFaces = 0, nEdges = 0, skipped = 0;
+  // A triangle's face from its wire into the compound; counted as skipped where OCCT
+  // refuses either.
+  auto addFace = [&](bool wireDone, const std::function<TopoDS_Wire()> &wire) {
+    if (!wireDone) {
+      skipped++;
+      return;
+    }
+    BRepBuilderAPI_MakeFace mf(wire(), Standard_True);
+    if (!mf.IsDone()) {
+      skipped++;
+      return;
+    }
+    bb.Add(comp, mf.Face());
+    nFaces++;
+  };
   if (build == "shared") {
     std::vector<TopoDS_Vertex> verts(o.v.size());
     std::vector<bool> made(o.v.size(), false);
@@ -180,17 +196,7 @@ static int run(int argc, char **argv) {
         if (a != key.first) e.Reverse();
         mw.Add(e);
       }
-      if (!mw.IsDone()) {
-        skipped++;
-        continue;
-      }
-      BRepBuilderAPI_MakeFace mf(mw.Wire(), Standard_True);
-      if (!mf.IsDone()) {
-        skipped++;
-        continue;
-      }
-      bb.Add(comp, mf.Face());
-      nFaces++;
+      addFace(mw.IsDone(), [&] { return mw.Wire(); });
     }
     nEdges = edges.size();
   } else {
@@ -200,17 +206,7 @@ static int run(int argc, char **argv) {
         continue;
       }
       BRepBuilderAPI_MakePolygon poly(o.v[t[0]], o.v[t[1]], o.v[t[2]], Standard_True);
-      if (!poly.IsDone()) {
-        skipped++;
-        continue;
-      }
-      BRepBuilderAPI_MakeFace mf(poly.Wire(), Standard_True);
-      if (!mf.IsDone()) {
-        skipped++;
-        continue;
-      }
-      bb.Add(comp, mf.Face());
-      nFaces++;
+      addFace(poly.IsDone(), [&] { return poly.Wire(); });
       nEdges += 3;
     }
   }

@@ -52,6 +52,13 @@ struct Effort {
     kicked_strokes: usize,
 }
 
+impl Effort {
+    /// The kicks of a layer of `strokes` strokes.
+    fn kicks(&self, strokes: usize) -> usize {
+        self.kicks_per_stroke * strokes.min(self.kicked_strokes)
+    }
+}
+
 /// The search of a layer with other strokes than hidden dashes.
 const FULL: Effort = Effort {
     neighbours: NEIGHBOURS,
@@ -535,7 +542,7 @@ impl<'a> Tour<'a> {
     /// ([`Tour::kicks_in_lanes`]).
     fn improve(&mut self, effort: Effort, span: Span) {
         let strokes = self.ends.len();
-        let kicks = effort.kicks_per_stroke * strokes.min(effort.kicked_strokes);
+        let kicks = effort.kicks(strokes);
         let budget = MOVES_PER_STROKE * strokes;
         self.improve_in(effort, span, budget, lanes(self.len(), kicks));
     }
@@ -553,7 +560,7 @@ impl<'a> Tour<'a> {
             return;
         }
         let mut rng = XorShift::new(0x5DEE_CE66_D1CE_5EED);
-        let kicks = effort.kicks_per_stroke * strokes.min(effort.kicked_strokes);
+        let kicks = effort.kicks(strokes);
         let bridges: Vec<Bridge> = (0..kicks)
             .map(|_| Bridge::draw(&mut rng, self.len()))
             .collect();
