@@ -1,15 +1,15 @@
 //! The hidden pen's dashes as ink that a bridge between two dashes must keep off: the dash
-//! segments in a hash grid of cells about a segment long, each listed in the cells its box
+//! segments in a uniform grid of about a segment a cell, each listed in the cells its box
 //! meets, asked only for the few gaps a join tries to bridge.
 //!
 //! It answers as a [`super::dedup::SegmentIndex`] holding the same segments would (whether
 //! any of them runs along a gap for more than `eps`), without listing each segment in the
 //! many small cells of the index of every line drawn (sized for all the picture's segments).
+//! The grid is filled by counting, not by sorting (most of the ink is never asked about).
 
-use rayon::prelude::*;
-
-use crate::geom::key_hash::KeyMap;
+use crate::geom::grid::Cells;
 use crate::geom::poly2::{dist, Pt2};
+use crate::geom::Rect;
 
 use super::dedup::overlap;
 
@@ -18,19 +18,16 @@ use super::dedup::overlap;
 /// widened by this much meet.
 const MARGIN_EPS: f64 = 100.0;
 
-/// The most cells along an axis of a segment's box: cells are at least an eighth of the
-/// longest segment.
-const CELLS_PER_SEGMENT: f64 = 8.0;
+/// The most cells along either axis (a long, thin drawing gets them along its length).
+const MAX_LONG: usize = 1 << 16;
 
 /// Dash segments by the grid cells their widened boxes meet.
 pub(crate) struct Ink {
     segs: Vec<[Pt2; 2]>,
-    /// Segment numbers, cell by cell.
+    grid: Cells,
+    /// Cell c's segment numbers are `in_cells[start[c]..start[c + 1]]`, ascending.
+    start: Vec<u32>,
     in_cells: Vec<u32>,
-    /// Each occupied cell's range in `in_cells`.
-    cells: KeyMap<(i64, i64), (usize, usize)>,
-    /// The side of a cell.
-    side: f64,
     /// How much boxes are widened.
     margin: f64,
     /// The coincidence tolerance.
@@ -44,50 +41,61 @@ impl Ink {
             .iter()
             .flat_map(|d| d.windows(2).map(|w| [w[0], w[1]]))
             .collect();
-        let lengths = || segs.iter().map(|s| dist(s[0], s[1]));
-        let longest = lengths().fold(0.0, f64::max);
-        let mean = lengths().sum::<f64>() / segs.len().max(1) as f64;
-        let side = mean.max(longest / CELLS_PER_SEGMENT).max(1e-3);
-        let side = if side.is_finite() { side } else { f64::MAX };
         let margin = MARGIN_EPS * eps;
-        let mut listed: Vec<((i64, i64), u32)> = Vec::with_capacity(2 * segs.len());
-        for (k, s) in segs.iter().enumerate() {
-            let (lo, hi) = Self::box_cells(s[0], s[1], margin, side);
-            for y in lo.1..=hi.1 {
-                for x in lo.0..=hi.0 {
-                    listed.push(((x, y), k as u32));
+        let b = Rect::of_points(segs.iter().flatten()).padded(margin);
+        let grid = Cells::by_area(&b, segs.len() as f64, 1024, MAX_LONG);
+        // Counted, placed: each cell's segments in segment order.
+        let mut start = vec![0u32; grid.len() + 1];
+        let each = |f: &mut dyn FnMut(usize, usize)| {
+            for (k, s) in segs.iter().enumerate() {
+                let (lo, hi) = Self::box_cells(&grid, s[0], s[1], margin);
+                for y in lo.1..=hi.1 {
+                    for x in lo.0..=hi.0 {
+                        f(y * grid.nx + x, k);
+                    }
                 }
             }
+        };
+        each(&mut |c, _| start[c + 1] += 1);
+        for c in 0..grid.len() {
+            start[c + 1] += start[c];
         }
-        // The pairs are distinct, so the order is the same on any number of threads.
-        listed.par_sort_unstable();
-        let mut cells: KeyMap<(i64, i64), (usize, usize)> = KeyMap::default();
-        for (k, &(c, _)) in listed.iter().enumerate() {
-            cells.entry(c).or_insert((k, k)).1 = k + 1;
-        }
+        let mut fill: Vec<u32> = start[..grid.len()].to_vec();
+        let mut in_cells = vec![0u32; start[grid.len()] as usize];
+        each(&mut |c, k| {
+            in_cells[fill[c] as usize] = k as u32;
+            fill[c] += 1;
+        });
         Ink {
             segs,
-            in_cells: listed.into_iter().map(|(_, k)| k).collect(),
-            cells,
-            side,
+            grid,
+            start,
+            in_cells,
             margin,
             eps,
         }
     }
 
-    /// The least and greatest cells of a → b's box widened by `margin`.
-    fn box_cells(a: Pt2, b: Pt2, margin: f64, side: f64) -> ((i64, i64), (i64, i64)) {
-        let cell = |v: f64| (v / side).floor() as i64;
+    /// The least and greatest cells (column, row) of a → b's box widened by `margin`,
+    /// clamped to the grid (a box beyond it meets no segment's but through the border
+    /// cells, which clamping keeps).
+    fn box_cells(grid: &Cells, a: Pt2, b: Pt2, margin: f64) -> ((usize, usize), (usize, usize)) {
         (
-            (cell(a[0].min(b[0]) - margin), cell(a[1].min(b[1]) - margin)),
-            (cell(a[0].max(b[0]) + margin), cell(a[1].max(b[1]) + margin)),
+            (
+                grid.column(a[0].min(b[0]) - margin),
+                grid.row(a[1].min(b[1]) - margin),
+            ),
+            (
+                grid.column(a[0].max(b[0]) + margin),
+                grid.row(a[1].max(b[1]) + margin),
+            ),
         )
     }
 
     /// True when a dash segment runs along a → b for more than `eps`.
     pub(crate) fn overlaps(&self, a: Pt2, b: Pt2) -> bool {
         let len = dist(a, b);
-        if len == 0.0 {
+        if len == 0.0 || self.segs.is_empty() {
             return false;
         }
         let m = 2.0 * self.margin;
@@ -97,14 +105,14 @@ impl Ink {
                 && s[0][1].min(s[1][1]) <= a[1].max(b[1]) + m
                 && s[0][1].max(s[1][1]) >= a[1].min(b[1]) - m
         };
-        let (lo, hi) = Self::box_cells(a, b, self.margin, self.side);
+        let (lo, hi) = Self::box_cells(&self.grid, a, b, self.margin);
         (lo.1..=hi.1).any(|y| {
             (lo.0..=hi.0).any(|x| {
-                self.cells.get(&(x, y)).is_some_and(|&(from, to)| {
-                    self.in_cells[from..to].iter().any(|&k| {
-                        let s = &self.segs[k as usize];
-                        near(s) && overlap(a, b, len, s[0], s[1], self.eps).is_some()
-                    })
+                let c = y * self.grid.nx + x;
+                let listed = self.start[c] as usize..self.start[c + 1] as usize;
+                self.in_cells[listed].iter().any(|&k| {
+                    let s = &self.segs[k as usize];
+                    near(s) && overlap(a, b, len, s[0], s[1], self.eps).is_some()
                 })
             })
         })

@@ -18,7 +18,7 @@ use rayon::prelude::*;
 
 use crate::geom::poly2::Pt2;
 
-use super::tour::Buckets;
+use super::tour::{Buckets, Candidates};
 
 /// Slots a task of the parallel nearest-end search takes.
 const PAIR_TASK: usize = 4096;
@@ -137,12 +137,13 @@ fn ties(ends: &[[Pt2; 2]], tieable: &[bool]) -> Vec<u32> {
         .par_chunks_mut(PAIR_TASK)
         .enumerate()
         .for_each(|(task, out)| {
+            let mut candidates = Candidates::new();
             for (k, o) in out.iter_mut().enumerate() {
                 let s = task * PAIR_TASK + k;
                 if !tieable[s / 2] {
                     continue;
                 }
-                let found = buckets.nearest(s, pts[s], 2);
+                let found = buckets.nearest(s, pts[s], 2, &mut candidates);
                 let [(d0, t), (d1, _)] = [found.found[0], found.found[1]];
                 let clear = found.len == 1 || (found.len == 2 && d1 >= CLEAR * d0);
                 if found.len > 0 && clear && tieable[t as usize / 2] {

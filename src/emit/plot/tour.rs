@@ -747,62 +747,101 @@ impl Near {
     }
 }
 
-/// The nearest ends found so far for one slot, nearest first, at most `cap` (at most
-/// [`NEIGHBOURS`]): a candidate goes in only when it comes before the last kept one.
+/// The nearest ends of one slot, nearest first (by distance, then slot), at most
+/// [`NEIGHBOURS`].
 pub(super) struct Nearest {
     /// (distance, slot), nearest first; the first `len` are set.
     pub(super) found: [(f64, u32); NEIGHBOURS],
     /// How many are set.
     pub(super) len: usize,
-    /// How many are kept.
-    cap: usize,
-    /// Squared distances above this cannot be kept (infinite until `cap` are found).
-    reject: f64,
 }
 
-impl Nearest {
-    /// No ends found yet; at most `cap` (1 to [`NEIGHBOURS`]) are kept.
-    fn new(cap: usize) -> Nearest {
-        Nearest {
-            found: [(0.0, 0); NEIGHBOURS],
+/// The candidates of one search for the `k` nearest ends, by squared distance: the `k`
+/// least (by squared distance, then slot) in order, and beside them those that might still
+/// tie with the k-th once distances are taken (different squares, the same correctly
+/// rounded root). Roots are taken and the order by (distance, slot) made only at the end,
+/// for the few left, not each time a candidate comes in.
+pub(super) struct Candidates {
+    /// (squared distance, slot), least first; the first `len` are set.
+    kept: [(f64, u32); NEIGHBOURS],
+    len: usize,
+    k: usize,
+    /// Squared distances above this cannot be kept: the k-th's widened by a margin of many
+    /// ulps (infinite until `k` are in).
+    reject: f64,
+    /// Candidates turned away or pushed out within the margin.
+    near: Vec<(f64, u32)>,
+}
+
+impl Candidates {
+    /// A buffer for searches (its memory kept from one to the next).
+    pub(super) fn new() -> Candidates {
+        Candidates {
+            kept: [(0.0, 0); NEIGHBOURS],
             len: 0,
-            cap,
+            k: 1,
             reject: f64::INFINITY,
+            near: Vec::new(),
         }
     }
 
-    /// Offers slot `t` at squared distance `d2` (its distance is `d2.sqrt()`, as
-    /// [`dist`] computes it): one far from the kept ones is turned away before the root.
+    /// Starts a search for the `k` nearest (1 to [`NEIGHBOURS`]).
+    fn start(&mut self, k: usize) {
+        self.len = 0;
+        self.k = k;
+        self.reject = f64::INFINITY;
+        self.near.clear();
+    }
+
+    /// Offers slot `t` at squared distance `d2` (its distance is `d2.sqrt()`, as [`dist`]
+    /// computes it).
     #[inline]
     fn offer_squared(&mut self, d2: f64, t: u32) {
         if d2 > self.reject {
             return;
         }
-        self.offer(d2.sqrt(), t);
-        if self.len == self.cap {
-            // Above this the root is above the last kept distance (a margin of many ulps:
-            // the root is correctly rounded), so the candidate could not go in.
-            let last = self.found[self.cap - 1].0;
-            self.reject = last * last * (1.0 + 1e-12);
+        let k = self.k;
+        let before = |a: (f64, u32), b: (f64, u32)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
+        if self.len == k && !before((d2, t), self.kept[k - 1]) {
+            self.near.push((d2, t));
+            return;
+        }
+        if self.len == k {
+            self.near.push(self.kept[k - 1]);
+        }
+        let mut i = self.len.min(k - 1);
+        while i > 0 && before((d2, t), self.kept[i - 1]) {
+            self.kept[i] = self.kept[i - 1];
+            i -= 1;
+        }
+        self.kept[i] = (d2, t);
+        self.len = (self.len + 1).min(k);
+        if self.len == k {
+            // Every square whose root is the k-th's lies within this (the root is
+            // correctly rounded; the margin is many ulps).
+            self.reject = self.kept[k - 1].0 * (1.0 + 1e-12);
         }
     }
 
-    /// Offers slot `t` at distance `d`.
-    fn offer(&mut self, d: f64, t: u32) {
-        let before = |a: (f64, u32), b: (f64, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).is_lt();
-        // A far candidate is turned away by the plain compare first (distances are never NaN
-        // or −0, where `>` and `total_cmp` could differ).
-        let last = self.found[self.cap - 1];
-        if self.len == self.cap && (d > last.0 || !before((d, t), last)) {
-            return;
-        }
-        let mut k = self.len.min(self.cap - 1);
-        while k > 0 && before((d, t), self.found[k - 1]) {
-            self.found[k] = self.found[k - 1];
-            k -= 1;
-        }
-        self.found[k] = (d, t);
-        self.len = (self.len + 1).min(self.cap);
+    /// The k-th distance, once `k` are in.
+    fn kth(&self) -> Option<f64> {
+        (self.len == self.k).then(|| self.kept[self.k - 1].0.sqrt())
+    }
+
+    /// The `k` nearest, by distance then slot.
+    fn nearest(&mut self) -> Nearest {
+        let reject = self.reject;
+        self.near.retain(|c| c.0 <= reject);
+        self.near.extend_from_slice(&self.kept[..self.len]);
+        let all = &mut self.near;
+        all.iter_mut().for_each(|c| c.0 = c.0.sqrt());
+        all.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut out = Nearest {
+            found: [(0.0, 0); NEIGHBOURS],
+            len: all.len().min(self.k),
+        };
+        out.found[..out.len].copy_from_slice(&all[..out.len]);
+        out
     }
 }
 
@@ -830,10 +869,11 @@ fn neighbours(ends: &[[Pt2; 2]], k: usize, span: Span) -> Near {
         .zip(near.count.par_chunks_mut(NEAR_TASK))
         .enumerate()
         .for_each(|(task, (rows, counts))| {
+            let mut candidates = Candidates::new();
             for (j, count) in counts.iter_mut().enumerate() {
                 let s = task * NEAR_TASK + j;
                 searched.tick(s);
-                let found = buckets.nearest(s, pts[s], k);
+                let found = buckets.nearest(s, pts[s], k, &mut candidates);
                 let row = &mut rows[j * k..][..found.len];
                 for (o, f) in row.iter_mut().zip(&found.found) {
                     *o = f.1;
@@ -873,11 +913,11 @@ impl Buckets {
 
     /// The nearest `k` (at most [`NEIGHBOURS`]) ends of other strokes than slot `s`'s, at
     /// `p`: ring by ring round its cell.
-    pub(super) fn nearest(&self, s: usize, p: Pt2, k: usize) -> Nearest {
+    pub(super) fn nearest(&self, s: usize, p: Pt2, k: usize, found: &mut Candidates) -> Nearest {
         let (g, cell) = (self.grid.nx, self.grid.cell);
         let (cx, cy) = self.grid.coords(p);
         let k = k.clamp(1, NEIGHBOURS);
-        let mut found = Nearest::new(k);
+        found.start(k);
         // How far p lies inside its cell, in cells: ring r's cells are at least r − 1 and
         // this away (less a margin for the rounding of the cell coordinates).
         let at = |v: f64, o: f64, c: usize| (v - o) / cell - c as f64;
@@ -889,7 +929,7 @@ impl Buckets {
         for r in 0..g {
             // Ring r holds nothing nearer than (r − 1 + inset) cells.
             let clear = (r as f64 - 1.0 + inset) * cell;
-            if found.len == k && r > 0 && found.found[k - 1].0 < clear {
+            if r > 0 && found.kth().is_some_and(|d| d < clear) {
                 break;
             }
             if r > cx.max(cy).max(g - 1 - cx).max(g - 1 - cy) {
@@ -897,30 +937,41 @@ impl Buckets {
             }
             let (y0, y1) = (cy.saturating_sub(r), (cy + r).min(g - 1));
             let (x0, x1) = (cx.saturating_sub(r), (cx + r).min(g - 1));
+            // A row's cells are side by side in the table: a full row of the ring is one
+            // run of slots, an inner row its two side cells.
             for y in y0..=y1 {
-                let mut visit = |x: usize| {
-                    let c = y * g + x;
-                    let range = self.start[c] as usize..self.start[c + 1] as usize;
-                    for &(t, q) in &self.in_cells[range] {
-                        if t as usize / 2 != s / 2 {
-                            let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
-                            found.offer_squared(dx * dx + dy * dy, t);
-                        }
-                    }
-                };
+                let row = y * g;
                 if y.abs_diff(cy) == r {
-                    (x0..=x1).for_each(&mut visit);
+                    self.scan(row + x0..=row + x1, s, p, found);
                 } else {
-                    // An inner row of the ring: only its two side cells.
-                    let right = Some(cx + r).filter(|&x| r > 0 && x < g);
-                    [cx.checked_sub(r), right]
-                        .into_iter()
-                        .flatten()
-                        .for_each(&mut visit);
+                    if let Some(x) = cx.checked_sub(r) {
+                        self.scan(row + x..=row + x, s, p, found);
+                    }
+                    if r > 0 && cx + r < g {
+                        self.scan(row + cx + r..=row + cx + r, s, p, found);
+                    }
                 }
             }
         }
-        found
+        found.nearest()
+    }
+
+    /// Offers the ends in `cells` (a run of cells side by side) but slot `s`'s stroke's.
+    #[inline]
+    fn scan(
+        &self,
+        cells: std::ops::RangeInclusive<usize>,
+        s: usize,
+        p: Pt2,
+        found: &mut Candidates,
+    ) {
+        let slots = self.start[*cells.start()] as usize..self.start[*cells.end() + 1] as usize;
+        for &(t, q) in &self.in_cells[slots] {
+            if t as usize / 2 != s / 2 {
+                let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+                found.offer_squared(dx * dx + dy * dy, t);
+            }
+        }
     }
 }
 
@@ -1094,6 +1145,31 @@ mod tests {
                     "{before} - {after} != {g}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn candidates_with_one_root_are_ordered_by_slot() {
+        // Two different squared distances with the same root: the lower slot comes first,
+        // whichever was offered first and whether or not it was turned away or pushed out
+        // by squared distance alone.
+        let (a, b) = (2.0_f64, f64::from_bits(2.0_f64.to_bits() + 1));
+        assert!(a < b && a.sqrt() == b.sqrt());
+        let far = 3.0;
+        type Case<'c> = (&'c [(f64, u32)], usize, &'c [u32]);
+        let cases: [Case; 4] = [
+            (&[(a, 5), (b, 1)], 1, &[1]),
+            (&[(b, 1), (a, 5)], 1, &[1]),
+            (&[(far, 0), (b, 1), (a, 5)], 2, &[1, 5]),
+            (&[(b, 7), (a, 5), (far, 0), (b, 1)], 2, &[1, 5]),
+        ];
+        for (offers, k, want) in cases {
+            let mut c = Candidates::new();
+            c.start(k);
+            offers.iter().for_each(|&(d2, t)| c.offer_squared(d2, t));
+            let got = c.nearest();
+            let slots: Vec<u32> = got.found[..got.len].iter().map(|f| f.1).collect();
+            assert_eq!(slots, want, "{offers:?}");
         }
     }
 
