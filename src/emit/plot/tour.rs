@@ -440,6 +440,9 @@ impl<'a> Tour<'a> {
         let n = self.len();
         let s0 = self.pos(v);
         let mut best: Option<(f64, usize, usize, bool)> = None;
+        // The distances from v's outer end to its neighbours, the same for every run (each
+        // run starts at v): taken once, as far as a run first reads them.
+        let mut from_v = [f64::NAN; NEIGHBOURS];
         for run in 1..=OR_RUN.min(n.saturating_sub(3)) {
             let s1 = (s0 + run - 1) % n;
             let mut held = [usize::MAX; OR_RUN];
@@ -464,10 +467,17 @@ impl<'a> Tour<'a> {
                 (2 * first + usize::from(self.rev(first)), sp),
                 (2 * last + usize::from(!self.rev(last)), ep),
             ];
-            for (slot, at) in ends {
-                for &q in self.near.of(slot) {
+            for (e, (slot, at)) in ends.into_iter().enumerate() {
+                for (i, &q) in self.near.of(slot).iter().enumerate() {
                     let m = q as usize / 2;
-                    if Self::d(at, Some(self.slot(q as usize))) >= removed {
+                    let d = match e {
+                        0 if !from_v[i].is_nan() => from_v[i],
+                        _ => Self::d(at, Some(self.slot(q as usize))),
+                    };
+                    if e == 0 {
+                        from_v[i] = d;
+                    }
+                    if d >= removed {
                         break;
                     }
                     if nodes.contains(&m) {
@@ -835,7 +845,11 @@ impl Candidates {
         self.near.extend_from_slice(&self.kept[..self.len]);
         let all = &mut self.near;
         all.iter_mut().for_each(|c| c.0 = c.0.sqrt());
-        all.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let order = |a: &(f64, u32), b: &(f64, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+        // Mostly in order already: the kept come by squared distance, the others are rare.
+        if !all.is_sorted_by(|a, b| order(a, b).is_le()) {
+            all.sort_unstable_by(order);
+        }
         let mut out = Nearest {
             found: [(0.0, 0); NEIGHBOURS],
             len: all.len().min(self.k),
