@@ -470,9 +470,10 @@ impl<'a> Tour<'a> {
             for (e, (slot, at)) in ends.into_iter().enumerate() {
                 for (i, &q) in self.near.of(slot).iter().enumerate() {
                     let m = q as usize / 2;
-                    let d = match e {
-                        0 if !from_v[i].is_nan() => from_v[i],
-                        _ => Self::d(at, Some(self.slot(q as usize))),
+                    let d = if e == 0 && !from_v[i].is_nan() {
+                        from_v[i]
+                    } else {
+                        Self::d(at, Some(self.slot(q as usize)))
                     };
                     if e == 0 {
                         from_v[i] = d;
@@ -779,8 +780,8 @@ pub(super) struct Candidates {
     /// Squared distances above this cannot be kept: the k-th's widened by a margin of many
     /// ulps (infinite until `k` are in).
     reject: f64,
-    /// Candidates turned away or pushed out within the margin.
-    near: Vec<(f64, u32)>,
+    /// Candidates turned away or pushed out, beyond the k-th but maybe within the margin.
+    beyond: Vec<(f64, u32)>,
 }
 
 impl Candidates {
@@ -791,7 +792,7 @@ impl Candidates {
             len: 0,
             k: 1,
             reject: f64::INFINITY,
-            near: Vec::new(),
+            beyond: Vec::new(),
         }
     }
 
@@ -800,7 +801,7 @@ impl Candidates {
         self.len = 0;
         self.k = k;
         self.reject = f64::INFINITY;
-        self.near.clear();
+        self.beyond.clear();
     }
 
     /// Offers slot `t` at squared distance `d2` (its distance is `d2.sqrt()`, as [`dist`]
@@ -813,11 +814,11 @@ impl Candidates {
         let k = self.k;
         let before = |a: (f64, u32), b: (f64, u32)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
         if self.len == k && !before((d2, t), self.kept[k - 1]) {
-            self.near.push((d2, t));
+            self.beyond.push((d2, t));
             return;
         }
         if self.len == k {
-            self.near.push(self.kept[k - 1]);
+            self.beyond.push(self.kept[k - 1]);
         }
         let mut i = self.len.min(k - 1);
         while i > 0 && before((d2, t), self.kept[i - 1]) {
@@ -841,9 +842,9 @@ impl Candidates {
     /// The `k` nearest, by distance then slot.
     fn nearest(&mut self) -> Nearest {
         let reject = self.reject;
-        self.near.retain(|c| c.0 <= reject);
-        self.near.extend_from_slice(&self.kept[..self.len]);
-        let all = &mut self.near;
+        self.beyond.retain(|c| c.0 <= reject);
+        self.beyond.extend_from_slice(&self.kept[..self.len]);
+        let all = &mut self.beyond;
         all.iter_mut().for_each(|c| c.0 = c.0.sqrt());
         let order = |a: &(f64, u32), b: &(f64, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
         // Mostly in order already: the kept come by squared distance, the others are rare.
