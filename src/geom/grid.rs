@@ -114,21 +114,34 @@ impl Cells {
     /// The points' indices cell by cell (a counting sort, in index order within a cell), and
     /// where each cell's run starts: cell c holds `slots[start[c]..start[c + 1]]`.
     pub(crate) fn buckets(&self, pts: &[Pt2]) -> (Vec<u32>, Vec<u32>) {
-        let cell_of: Vec<u32> = pts.iter().map(|&p| self.index(p) as u32).collect();
+        self.lists(pts.len(), |s| std::iter::once(self.index(pts[s])))
+    }
+
+    /// Items `0..items` listed in every cell `cells_of(i)` names (a counting sort: each cell's
+    /// items ascending), and where each cell's run starts: cell c holds
+    /// `listed[start[c]..start[c + 1]]`. `cells_of` is asked twice an item, to count and to
+    /// place.
+    pub(crate) fn lists<I: Iterator<Item = usize>>(
+        &self,
+        items: usize,
+        cells_of: impl Fn(usize) -> I,
+    ) -> (Vec<u32>, Vec<u32>) {
         let mut start = vec![0u32; self.len() + 1];
-        for &c in &cell_of {
-            start[c as usize + 1] += 1;
+        for i in 0..items {
+            cells_of(i).for_each(|c| start[c + 1] += 1);
         }
         for c in 0..self.len() {
             start[c + 1] += start[c];
         }
         let mut fill = start.clone();
-        let mut slots = vec![0u32; pts.len()];
-        for (s, &c) in cell_of.iter().enumerate() {
-            slots[fill[c as usize] as usize] = s as u32;
-            fill[c as usize] += 1;
+        let mut listed = vec![0u32; start[self.len()] as usize];
+        for i in 0..items {
+            for c in cells_of(i) {
+                listed[fill[c] as usize] = i as u32;
+                fill[c] += 1;
+            }
         }
-        (start, slots)
+        (start, listed)
     }
 }
 

@@ -5,7 +5,8 @@
 //! It answers as a [`super::dedup::SegmentIndex`] holding the same segments would (whether
 //! any of them runs along a gap for more than `eps`), without listing each segment in the
 //! many small cells of the index of every line drawn (sized for all the picture's segments).
-//! The grid is filled by counting, not by sorting (most of the ink is never asked about).
+//! The grid is filled by counting ([`Cells::lists`]): building it must be cheap, as most of
+//! the ink is never asked about.
 
 use crate::geom::grid::Cells;
 use crate::geom::poly2::{dist, Pt2};
@@ -44,27 +45,8 @@ impl Ink {
         let margin = MARGIN_EPS * eps;
         let b = Rect::of_points(segs.iter().flatten()).padded(margin);
         let grid = Cells::by_area(&b, segs.len() as f64, 1024, MAX_LONG);
-        // Counted, placed: each cell's segments in segment order.
-        let mut start = vec![0u32; grid.len() + 1];
-        let each = |f: &mut dyn FnMut(usize, usize)| {
-            for (k, s) in segs.iter().enumerate() {
-                let (lo, hi) = Self::box_cells(&grid, s[0], s[1], margin);
-                for y in lo.1..=hi.1 {
-                    for x in lo.0..=hi.0 {
-                        f(y * grid.nx + x, k);
-                    }
-                }
-            }
-        };
-        each(&mut |c, _| start[c + 1] += 1);
-        for c in 0..grid.len() {
-            start[c + 1] += start[c];
-        }
-        let mut fill: Vec<u32> = start[..grid.len()].to_vec();
-        let mut in_cells = vec![0u32; start[grid.len()] as usize];
-        each(&mut |c, k| {
-            in_cells[fill[c] as usize] = k as u32;
-            fill[c] += 1;
+        let (start, in_cells) = grid.lists(segs.len(), |k| {
+            Self::cells(&grid, segs[k][0], segs[k][1], margin)
         });
         Ink {
             segs,
@@ -76,20 +58,20 @@ impl Ink {
         }
     }
 
-    /// The least and greatest cells (column, row) of a → b's box widened by `margin`,
-    /// clamped to the grid (a box beyond it meets no segment's but through the border
-    /// cells, which clamping keeps).
-    fn box_cells(grid: &Cells, a: Pt2, b: Pt2, margin: f64) -> ((usize, usize), (usize, usize)) {
-        (
-            (
-                grid.column(a[0].min(b[0]) - margin),
-                grid.row(a[1].min(b[1]) - margin),
-            ),
-            (
-                grid.column(a[0].max(b[0]) + margin),
-                grid.row(a[1].max(b[1]) + margin),
-            ),
-        )
+    /// The cells (row-major) that a → b's box widened by `margin` meets, clamped to the
+    /// grid (a box beyond it meets no segment's but through the border cells, which
+    /// clamping keeps).
+    fn cells(grid: &Cells, a: Pt2, b: Pt2, margin: f64) -> impl Iterator<Item = usize> {
+        let (x0, x1) = (
+            grid.column(a[0].min(b[0]) - margin),
+            grid.column(a[0].max(b[0]) + margin),
+        );
+        let (y0, y1) = (
+            grid.row(a[1].min(b[1]) - margin),
+            grid.row(a[1].max(b[1]) + margin),
+        );
+        let nx = grid.nx;
+        (y0..=y1).flat_map(move |y| (x0..=x1).map(move |x| y * nx + x))
     }
 
     /// True when a dash segment runs along a → b for more than `eps`.
@@ -105,15 +87,11 @@ impl Ink {
                 && s[0][1].min(s[1][1]) <= a[1].max(b[1]) + m
                 && s[0][1].max(s[1][1]) >= a[1].min(b[1]) - m
         };
-        let (lo, hi) = Self::box_cells(&self.grid, a, b, self.margin);
-        (lo.1..=hi.1).any(|y| {
-            (lo.0..=hi.0).any(|x| {
-                let c = y * self.grid.nx + x;
-                let listed = self.start[c] as usize..self.start[c + 1] as usize;
-                self.in_cells[listed].iter().any(|&k| {
-                    let s = &self.segs[k as usize];
-                    near(s) && overlap(a, b, len, s[0], s[1], self.eps).is_some()
-                })
+        Self::cells(&self.grid, a, b, self.margin).any(|c| {
+            let listed = self.start[c] as usize..self.start[c + 1] as usize;
+            self.in_cells[listed].iter().any(|&k| {
+                let s = &self.segs[k as usize];
+                near(s) && overlap(a, b, len, s[0], s[1], self.eps).is_some()
             })
         })
     }
