@@ -217,7 +217,13 @@ pub(crate) fn mesh_edges(
                 .enumerate()
                 .filter_map(counted)
                 .collect();
-            out.extend(found);
+            // The first leaf's list is the list (a copy of 300,000 edges was 0.7 ms on one
+            // thread).
+            if out.is_empty() {
+                out = found;
+            } else {
+                out.extend(found);
+            }
         } else {
             out.extend(groups.into_iter().enumerate().filter_map(counted));
         }

@@ -132,6 +132,8 @@ pub(crate) fn draw(
     ));
     progress.enter_phase(Stage::Lines, Phase::Clip, edges.len());
     let mut drawing = split_edges(view, vis, &edges, opts.hidden, progress.count());
+    // Each edge's list of faces freed on all threads.
+    crate::chunked::drop_all(edges);
     drawing.leaf_paths = world.paths;
     drawing
 }
@@ -294,8 +296,15 @@ pub(crate) fn split_edges(
     let vis_ranked = ranked(|p| &p.0);
     let vis_once = stroke_once(&vis_ranked.iter().map(|x| x.1).collect::<Vec<_>>(), &[]);
     let hid_ranked = ranked(|p| &p.1);
-    let shown: Vec<[Pt2; 2]> = vis_once.iter().flatten().copied().collect();
-    let hid_once = stroke_once(&hid_ranked.iter().map(|x| x.1).collect::<Vec<_>>(), &shown);
+    // The clipped pieces and the indexed regions (a list each) freed on all threads.
+    crate::chunked::drop_all(pieces);
+    crate::chunked::drop_all(regions.made);
+    let hid_once = if hid_ranked.is_empty() {
+        Vec::new()
+    } else {
+        let shown: Vec<[Pt2; 2]> = vis_once.iter().flatten().copied().collect();
+        stroke_once(&hid_ranked.iter().map(|x| x.1).collect::<Vec<_>>(), &shown)
+    };
     let mut vis_groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>> = BTreeMap::new();
     let mut hid_groups: BTreeMap<(u32, EdgeKind), Vec<[Pt2; 2]>> = BTreeMap::new();
     for ((k, _), v) in vis_ranked.iter().zip(vis_once) {

@@ -10,6 +10,8 @@
 //! the other is removed. Ranks: edge kind (silhouette first, as [`EdgeKind::ALL`]), then
 //! order in the edge list.
 
+use rayon::prelude::*;
+
 use crate::count::Span;
 use crate::geom::box_pairs::{filter_map_pairs, Bounds3};
 use crate::geom::poly2::Pt2;
@@ -48,6 +50,11 @@ impl Ranked {
 /// each, its remaining pieces (in order along it). Segments of `keep` always win and lose
 /// nothing themselves (visible lines over hidden ones).
 pub(crate) fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
+    // No segment loses anything to `keep` alone (a drawing without hidden lines: 1 ms of
+    // nefertiti's lines stage on one thread, indexing the visible lines for nothing).
+    if segs.is_empty() {
+        return Vec::new();
+    }
     let (tol, all) = all_ranked(segs, keep);
     let xmin = |s: &[Pt2; 2]| s[0][0].min(s[1][0]);
     let xmax = |s: &[Pt2; 2]| s[0][0].max(s[1][0]);
@@ -69,7 +76,7 @@ pub(crate) fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2
             [xmax(s) + 2.0 * tol, yhi(s) + 3.0 * tol, 0.0],
         ]
     };
-    let mut boxes: Vec<Bounds3> = all.iter().map(|(s, _)| reach(s)).collect();
+    let mut boxes: Vec<Bounds3> = crate::chunked::map(all.len(), |i| reach(&all[i].0));
     add_directions(&mut boxes, &all);
     let pair = |i: u32, j: u32| {
         let (i, j) = (i as usize, j as usize);
@@ -96,7 +103,7 @@ pub(crate) fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2
     for (lo, iv) in found {
         cuts[lo].push(iv);
     }
-    remaining(&all[keep.len()..], &mut cuts[keep.len()..], tol)
+    remaining(&all[keep.len()..], &cuts[keep.len()..], tol)
 }
 
 /// Angle (radians) that one grid cell spans in the direction coordinate of [`add_directions`].
@@ -115,20 +122,35 @@ const ANGLE_CELL: f64 = 1e-2;
 fn add_directions(boxes: &mut [Bounds3], all: &[RankedSeg]) {
     use std::f64::consts::PI;
     let n = boxes.len().max(1) as f64;
-    for k in 0..2 {
-        let mean = boxes.iter().map(|b| b[1][k] - b[0][k]).sum::<f64>() / n;
-        if mean.is_finite() && mean > 0.0 {
-            for b in boxes.iter_mut() {
-                b[0][k] /= mean;
-                b[1][k] /= mean;
-            }
+    // Each box's own arithmetic, on all threads for many (the means are summed in order).
+    let each = |boxes: &mut [Bounds3], f: &(dyn Fn(usize, &mut Bounds3) + Sync)| {
+        if boxes.len() <= crate::chunked::CHUNK || rayon::current_num_threads() == 1 {
+            boxes.iter_mut().enumerate().for_each(|(i, b)| f(i, b));
+        } else {
+            let chunks = boxes.par_chunks_mut(crate::chunked::CHUNK).enumerate();
+            chunks.for_each(|(c, part)| {
+                let at = c * crate::chunked::CHUNK;
+                part.iter_mut().enumerate().for_each(|(i, b)| f(at + i, b));
+            });
         }
+    };
+    let mut means = [0.0; 2];
+    for (k, mean) in means.iter_mut().enumerate() {
+        *mean = boxes.iter().map(|b| b[1][k] - b[0][k]).sum::<f64>() / n;
     }
+    let scaled = means.map(|m| m.is_finite() && m > 0.0);
+    each(boxes, &|_, b| {
+        for k in (0..2).filter(|&k| scaled[k]) {
+            b[0][k] /= means[k];
+            b[1][k] /= means[k];
+        }
+    });
     // Every axis' mean extent is now 1: an angle of ANGLE_CELL spans about as much.
     let scale = 1.0 / ANGLE_CELL;
     // asin(PARALLEL_SIN) with a wide margin for the rounding of atan2.
     let margin = 4.0 * PARALLEL_SIN;
-    for (b, (s, _)) in boxes.iter_mut().zip(all) {
+    each(boxes, &|i, b| {
+        let s = &all[i].0;
         let (dx, dy) = (s[1][0] - s[0][0], s[1][1] - s[0][1]);
         let (lo, hi) = if dx == 0.0 && dy == 0.0 {
             (0.0, PI)
@@ -142,7 +164,7 @@ fn add_directions(boxes: &mut [Bounds3], all: &[RankedSeg]) {
         };
         b[0][2] = lo * scale;
         b[1][2] = hi * scale;
-    }
+    });
 }
 
 /// A segment and its rank: (0, 0, 0) for a kept one, else (1, kind, edge); lower wins.
@@ -170,23 +192,23 @@ fn all_ranked(segs: &[Ranked], keep: &[[Pt2; 2]]) -> (f64, Vec<RankedSeg>) {
 
 /// What is left of each segment once its cut intervals (any order) are taken away: pieces
 /// longer than `tol`, in order along it.
-fn remaining(segs: &[RankedSeg], cuts: &mut [Vec<Interval>], tol: f64) -> Vec<Vec<[Pt2; 2]>> {
-    segs.iter()
-        .zip(cuts)
-        .map(|(&(seg, _), c)| {
-            let mut c = std::mem::take(c);
-            if c.is_empty() {
-                return vec![seg];
-            }
-            c.sort_by(|a, b| a[0].total_cmp(&b[0]));
-            complement(&merge(c))
-                .into_iter()
-                .filter(|iv| iv[1] > iv[0])
-                .map(|iv| [at(seg[0], seg[1], iv[0]), at(seg[0], seg[1], iv[1])])
-                .filter(|p| (p[1][0] - p[0][0]).hypot(p[1][1] - p[0][1]) > tol)
-                .collect()
-        })
-        .collect()
+///
+/// On all threads for many segments (each a list of its own to make).
+fn remaining(segs: &[RankedSeg], cuts: &[Vec<Interval>], tol: f64) -> Vec<Vec<[Pt2; 2]>> {
+    crate::chunked::map(segs.len(), |k| {
+        let seg = segs[k].0;
+        if cuts[k].is_empty() {
+            return vec![seg];
+        }
+        let mut c = cuts[k].clone();
+        c.sort_by(|a, b| a[0].total_cmp(&b[0]));
+        complement(&merge(c))
+            .into_iter()
+            .filter(|iv| iv[1] > iv[0])
+            .map(|iv| [at(seg[0], seg[1], iv[0]), at(seg[0], seg[1], iv[1])])
+            .filter(|p| (p[1][0] - p[0][0]).hypot(p[1][1] - p[0][1]) > tol)
+            .collect()
+    })
 }
 
 /// The parameter interval of `s` within `tol` of segment `h`, when the two are nearly
@@ -338,7 +360,7 @@ mod tests {
                 }
             }
         }
-        remaining(&all[keep.len()..], &mut cuts[keep.len()..], tol)
+        remaining(&all[keep.len()..], &cuts[keep.len()..], tol)
     }
 
     #[test]
@@ -383,6 +405,48 @@ mod tests {
                 .count();
         }
         assert!(cut_some > 100, "the pieces overlap: {cut_some} cut");
+    }
+
+    /// Over a chunk of segments the boxes and the pieces left are made on all threads: the
+    /// same pieces as on one thread. With no segments, nothing to cut, whatever is kept.
+    #[test]
+    fn many_segments_on_several_threads_are_cut_as_on_one() {
+        let mut rng = crate::geom::rng::XorShift::new(43);
+        let kinds = [EdgeKind::Silhouette, EdgeKind::Crease, EdgeKind::Plain];
+        // Short pieces of 40 lines through a square: many overlap, most do not.
+        let lines: Vec<(Pt2, Pt2)> = (0..40)
+            .map(|_| {
+                let a = [rng.range(-5., 5.), rng.range(-5., 5.)];
+                let t = rng.range(0., std::f64::consts::TAU);
+                (a, [t.cos(), t.sin()])
+            })
+            .collect();
+        let segs: Vec<Ranked> = (0..3 * crate::chunked::CHUNK)
+            .map(|k| {
+                let (a, d) = lines[rng.below(lines.len())];
+                let t0 = rng.range(0., 8.);
+                let t1 = t0 + rng.range(0.01, 0.5);
+                Ranked {
+                    kind: kinds[rng.below(3)],
+                    edge: k as u32,
+                    seg: [
+                        [a[0] + d[0] * t0, a[1] + d[1] * t0],
+                        [a[0] + d[0] * t1, a[1] + d[1] * t1],
+                    ],
+                }
+            })
+            .collect();
+        let keep: Vec<[Pt2; 2]> = segs[..50].iter().map(|r| r.seg).collect();
+        let pool = crate::chunked::pool;
+        let one = pool(1).install(|| stroke_once(&segs, &keep));
+        let cut = one
+            .iter()
+            .zip(&segs)
+            .filter(|(o, s)| o.as_slice() != [s.seg]);
+        assert!(cut.count() > 1000, "the pieces overlap");
+        assert_eq!(pool(3).install(|| stroke_once(&segs, &keep)), one);
+        assert_eq!(stroke_once(&[], &keep), by_sweep(&[], &keep));
+        assert!(stroke_once(&[], &keep).is_empty());
     }
 
     #[test]
