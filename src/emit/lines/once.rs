@@ -363,18 +363,23 @@ mod tests {
         remaining(&all[keep.len()..], &cuts[keep.len()..], tol)
     }
 
-    #[test]
-    fn grid_pairs_cut_what_a_sweep_cuts() {
-        // Pieces of a few lines (so many overlap along them, ranks tied and not), some an ulp
-        // off, reversed, or turned slightly, with kept lines among them.
-        let mut rng = crate::geom::rng::XorShift::new(41);
-        let lines: Vec<(Pt2, Pt2)> = (0..6)
+    /// `n` lines through the square [-5, 5]², each a point and a unit direction.
+    fn random_lines(rng: &mut crate::geom::rng::XorShift, n: usize) -> Vec<(Pt2, Pt2)> {
+        (0..n)
             .map(|_| {
                 let a = [rng.range(-5., 5.), rng.range(-5., 5.)];
                 let t = rng.range(0., std::f64::consts::TAU);
                 (a, [t.cos(), t.sin()])
             })
-            .collect();
+            .collect()
+    }
+
+    #[test]
+    fn grid_pairs_cut_what_a_sweep_cuts() {
+        // Pieces of a few lines (so many overlap along them, ranks tied and not), some an ulp
+        // off, reversed, or turned slightly, with kept lines among them.
+        let mut rng = crate::geom::rng::XorShift::new(41);
+        let lines = random_lines(&mut rng, 6);
         let piece = |rng: &mut crate::geom::rng::XorShift| {
             let (a, d) = lines[rng.below(lines.len())];
             let (t0, t1) = (rng.range(0., 8.), rng.range(0., 8.));
@@ -414,13 +419,7 @@ mod tests {
         let mut rng = crate::geom::rng::XorShift::new(43);
         let kinds = [EdgeKind::Silhouette, EdgeKind::Crease, EdgeKind::Plain];
         // Short pieces of 40 lines through a square: many overlap, most do not.
-        let lines: Vec<(Pt2, Pt2)> = (0..40)
-            .map(|_| {
-                let a = [rng.range(-5., 5.), rng.range(-5., 5.)];
-                let t = rng.range(0., std::f64::consts::TAU);
-                (a, [t.cos(), t.sin()])
-            })
-            .collect();
+        let lines = random_lines(&mut rng, 40);
         let segs: Vec<Ranked> = (0..3 * crate::chunked::CHUNK)
             .map(|k| {
                 let (a, d) = lines[rng.below(lines.len())];
