@@ -116,6 +116,20 @@ pub(crate) fn extend_map<T: Send, F: Fn(usize) -> T + Sync + Send>(
     out.par_extend((0..n).into_par_iter().with_min_len(CHUNK).map(f));
 }
 
+/// `f(i, &mut v[i])` for every item of `v`: on all threads in fixed chunks where `v` is
+/// longer than a chunk, else in one pass off the thread pool (each call touches its own
+/// item only, so the items are those of one pass).
+pub(crate) fn for_each_mut<T: Send, F: Fn(usize, &mut T) + Sync + Send>(v: &mut [T], f: F) {
+    if v.len() <= CHUNK || rayon::current_num_threads() == 1 {
+        v.iter_mut().enumerate().for_each(|(i, x)| f(i, x));
+        return;
+    }
+    v.par_chunks_mut(CHUNK).enumerate().for_each(|(c, part)| {
+        let at = c * CHUNK;
+        part.iter_mut().enumerate().for_each(|(i, x)| f(at + i, x));
+    });
+}
+
 /// The least `i` in `0..n` for which `bad(i)` holds: on all threads where `n` is more than a
 /// chunk (the first found in index order, whichever thread finds it), else in one pass.
 pub(crate) fn position_first<F: Fn(usize) -> bool + Sync + Send>(
@@ -290,6 +304,17 @@ mod tests {
         for n in [0, 5, CHUNK + 1, 4 * CHUNK + 7] {
             let one: Vec<usize> = (0..n).map(|i| i * i % 1009).collect();
             assert_eq!(pool.install(|| map(n, |i| i * i % 1009)), one);
+        }
+    }
+
+    #[test]
+    fn each_item_on_all_threads_is_the_one_pass() {
+        let pool = pool(3);
+        for n in [0, 5, CHUNK + 1, 4 * CHUNK + 7] {
+            let one: Vec<usize> = (0..n).map(|i| i * i % 1009 + 1).collect();
+            let mut got = vec![1usize; n];
+            pool.install(|| for_each_mut(&mut got, |i, x| *x += i * i % 1009));
+            assert_eq!(got, one);
         }
     }
 

@@ -456,9 +456,9 @@ const TASK_FACES: usize = 1 << 12;
 const TASKS_AT_ONCE: usize = 16;
 
 /// `tasks` in batches of at most [`TASKS_AT_ONCE`], each half of those left (one at the
-/// least), so that the last batches taper to one task: the last batch's parts are appended on one
-/// thread with nothing made beside them (nefertiti's last batch of nine tasks was 1.4 ms
-/// of its view stage alone on a thread; a one-task batch is a tenth of that).
+/// least), so that the last batches taper to one task: the last batch's parts are appended
+/// on one thread with nothing made beside them (nefertiti's last batch of nine tasks was
+/// 1.4 ms of its view stage alone on a thread; a one-task batch is a tenth of that).
 fn tapered(tasks: &[usize]) -> impl Iterator<Item = &[usize]> {
     let mut rest = tasks;
     std::iter::from_fn(move || {

@@ -10,8 +10,6 @@
 //! the other is removed. Ranks: edge kind (silhouette first, as [`EdgeKind::ALL`]), then
 //! order in the edge list.
 
-use rayon::prelude::*;
-
 use crate::count::Span;
 use crate::geom::box_pairs::{filter_map_pairs, Bounds3};
 use crate::geom::poly2::Pt2;
@@ -50,8 +48,8 @@ impl Ranked {
 /// each, its remaining pieces (in order along it). Segments of `keep` always win and lose
 /// nothing themselves (visible lines over hidden ones).
 pub(crate) fn stroke_once(segs: &[Ranked], keep: &[[Pt2; 2]]) -> Vec<Vec<[Pt2; 2]>> {
-    // No segment loses anything to `keep` alone (a drawing without hidden lines: 1 ms of
-    // nefertiti's lines stage on one thread, indexing the visible lines for nothing).
+    // No segment, nothing to cut: `keep` is not indexed (nefertiti's visible lines were 1 ms
+    // on one thread, indexed against an empty hidden list).
     if segs.is_empty() {
         return Vec::new();
     }
@@ -122,24 +120,13 @@ const ANGLE_CELL: f64 = 1e-2;
 fn add_directions(boxes: &mut [Bounds3], all: &[RankedSeg]) {
     use std::f64::consts::PI;
     let n = boxes.len().max(1) as f64;
-    // Each box's own arithmetic, on all threads for many (the means are summed in order).
-    let each = |boxes: &mut [Bounds3], f: &(dyn Fn(usize, &mut Bounds3) + Sync)| {
-        if boxes.len() <= crate::chunked::CHUNK || rayon::current_num_threads() == 1 {
-            boxes.iter_mut().enumerate().for_each(|(i, b)| f(i, b));
-        } else {
-            let chunks = boxes.par_chunks_mut(crate::chunked::CHUNK).enumerate();
-            chunks.for_each(|(c, part)| {
-                let at = c * crate::chunked::CHUNK;
-                part.iter_mut().enumerate().for_each(|(i, b)| f(at + i, b));
-            });
-        }
-    };
     let mut means = [0.0; 2];
     for (k, mean) in means.iter_mut().enumerate() {
         *mean = boxes.iter().map(|b| b[1][k] - b[0][k]).sum::<f64>() / n;
     }
     let scaled = means.map(|m| m.is_finite() && m > 0.0);
-    each(boxes, &|_, b| {
+    // Each box's own arithmetic, on all threads for many (the means were summed in order).
+    crate::chunked::for_each_mut(boxes, |_, b| {
         for k in (0..2).filter(|&k| scaled[k]) {
             b[0][k] /= means[k];
             b[1][k] /= means[k];
@@ -149,7 +136,7 @@ fn add_directions(boxes: &mut [Bounds3], all: &[RankedSeg]) {
     let scale = 1.0 / ANGLE_CELL;
     // asin(PARALLEL_SIN) with a wide margin for the rounding of atan2.
     let margin = 4.0 * PARALLEL_SIN;
-    each(boxes, &|i, b| {
+    crate::chunked::for_each_mut(boxes, |i, b| {
         let s = &all[i].0;
         let (dx, dy) = (s[1][0] - s[0][0], s[1][1] - s[0][1]);
         let (lo, hi) = if dx == 0.0 && dy == 0.0 {
