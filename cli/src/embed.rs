@@ -156,14 +156,17 @@ fn options(a: &RenderArgs, want: Want) -> Result<RenderOptions> {
     Ok(opts)
 }
 
-/// One render's outputs.
+/// One render's outputs, made on one of rayon's threads (as the command runs: each stage's
+/// parallel steps are then queued there, not handed into the pool from outside).
 fn made(scene: &Scene, camera: &Camera, opts: &RenderOptions) -> Result<Made> {
-    let r = kepler_hsr::render(scene, camera, opts, &Progress::default())?;
-    Ok(Made {
-        json: r.json,
-        svg: r.svg,
-        png: r.png,
-        warnings: r.warnings.iter().map(ToString::to_string).collect(),
+    rayon::scope(|_| {
+        let r = kepler_hsr::render(scene, camera, opts, &Progress::default())?;
+        Ok(Made {
+            json: r.json,
+            svg: r.svg,
+            png: r.png,
+            warnings: r.warnings.iter().map(ToString::to_string).collect(),
+        })
     })
 }
 
