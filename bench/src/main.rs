@@ -16,7 +16,9 @@ struct Cli {
 fn main() -> ExitCode {
     // The same allocator policy as the `kepler` command: its numbers are the command's.
     kepler_cli::memory::map_big_blocks();
-    match kepler_bench::run(Cli::parse().args) {
+    kepler_cli::pool::set_up();
+    let args = Cli::parse().args;
+    match kepler_cli::pool::on_pool(|| kepler_bench::run(args)) {
         Ok(code) => code,
         Err(e) => {
             eprintln!("error: {e:#}");

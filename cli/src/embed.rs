@@ -156,10 +156,10 @@ fn options(a: &RenderArgs, want: Want) -> Result<RenderOptions> {
     Ok(opts)
 }
 
-/// One render's outputs, made on one of rayon's threads (as the command runs: each stage's
-/// parallel steps are then queued there, not handed into the pool from outside).
+/// One render's outputs, made on one of rayon's threads as the command makes them
+/// ([`crate::pool`]).
 fn made(scene: &Scene, camera: &Camera, opts: &RenderOptions) -> Result<Made> {
-    rayon::scope(|_| {
+    crate::pool::on_pool(|| {
         let r = kepler_hsr::render(scene, camera, opts, &Progress::default())?;
         Ok(Made {
             json: r.json,

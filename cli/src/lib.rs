@@ -13,6 +13,7 @@ mod info;
 pub mod memory;
 mod output;
 mod plot_args;
+pub mod pool;
 mod query;
 mod render;
 mod sheet;
