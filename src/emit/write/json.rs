@@ -149,9 +149,6 @@ const BATCH_FACES: usize = 1 << 16;
 /// Faces one thread formats at a time.
 const TASK_FACES: usize = 1 << 10;
 
-/// Batches formatted and waiting to be written, at most.
-const AHEAD: usize = 2;
-
 impl Sink<'_> {
     /// Writes out the text gathered so far once it is long enough (kept when in memory).
     fn spill(&mut self) -> io::Result<()> {
@@ -242,35 +239,25 @@ fn json_into(
         done.add(end_of(b) - b);
         Ok::<(), io::Error>(())
     };
-    if rayon::current_thread_index().is_some() {
-        // On a thread of the pool (a render inside `install`), waiting on a channel could
-        // leave the formatter's task queued behind the wait: each batch is formatted (on
-        // all threads), then written.
-        for &b in &batches {
-            wrote(out, b, format(b, end_of(b)))?;
-        }
-    } else {
-        // A task on the pool formats the batches in order, up to [`AHEAD`] of them waiting,
-        // while this thread writes them: the writes (a file's, on this thread alone) no
-        // longer leave the pool idle. A failed write drops the receiver, which ends the task.
-        let (tx, rx) = std::sync::mpsc::sync_channel(AHEAD);
-        rayon::in_place_scope(|s| {
-            let (batches, format) = (&batches, &format);
-            s.spawn(move |_| {
-                for &b in batches {
-                    if tx.send(format(b, end_of(b))).is_err() {
-                        break;
-                    }
-                }
-            });
-            let rx = rx;
-            for &b in batches {
-                // None: the task panicked, which the scope raises here.
-                let Ok(texts) = rx.recv() else { break };
-                wrote(out, b, texts)?;
+    // Each batch is formatted on the pool while this thread writes the one before: the
+    // writes (a file's, on this thread alone) no longer leave the pool idle, and two
+    // batches' text is held at most. On a thread of the pool as well: waiting at the
+    // scope's end, this thread takes up the formatting itself when no other thread has.
+    let mut texts = match batches.first() {
+        Some(&b) => format(b, end_of(b)),
+        None => Vec::new(),
+    };
+    for (i, &b) in batches.iter().enumerate() {
+        let mut next = Vec::new();
+        let written = rayon::in_place_scope(|s| {
+            if let Some(&c) = batches.get(i + 1) {
+                let (next, format) = (&mut next, &format);
+                s.spawn(move |_| *next = format(c, end_of(c)));
             }
-            Ok::<(), io::Error>(())
-        })?;
+            wrote(out, b, std::mem::take(&mut texts))
+        });
+        written?;
+        texts = next;
     }
     out.s.push_str("\n]");
     if let Some(l) = lines {
