@@ -5,9 +5,9 @@
 //! on a latch until a worker, woken for it, has run it; every step of every stage pays that
 //! hand-over, and the data moves to another core's cache and back. Run on a worker, the
 //! steps go on its own queue and the same thread takes them up when no other is free.
-//! One thread, whole process: the hidden-line SVG of teapot 0.93x the CPU of the command
-//! run from `main`'s thread, twocubes 0.78x, nefertiti's JSON + SVG 0.99x (with the one-call
-//! process clock, `docs/history/issue35-session14.md`).
+//! One thread, whole process, together with the one-call process clock and the last view
+//! left to the exit: the hidden-line SVG of teapot 0.93x the CPU of before, twocubes 0.78x,
+//! nefertiti's JSON + SVG 0.99x (`docs/history/issue35-session14.md`).
 
 /// The stack of the pool's threads: a main thread's usual, so that work moved from `main`
 /// keeps the stack it had (rayon's default is a spawned thread's 2 MiB).
