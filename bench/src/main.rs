@@ -14,7 +14,8 @@ struct Cli {
 }
 
 fn main() -> ExitCode {
-    // The same allocator policy as the `kepler` command: its numbers are the command's.
+    // The same allocator policy as the `kepler` command, and its work on a pool thread as the
+    // command's: its numbers are the command's.
     kepler_cli::memory::map_big_blocks();
     kepler_cli::pool::set_up();
     let args = Cli::parse().args;

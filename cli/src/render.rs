@@ -314,9 +314,10 @@ pub(crate) fn run(a: RenderArgs, load_opts: &kepler_hsr::LoadOptions) -> Result<
             };
             print_stats(&scene, a.hierarchy.name(), &r, load, prepare, written);
         }
-        match k + 1 == cameras.len() {
-            true => leave(owned_parts(r)),
-            false => drop_aside(owned_parts(r)),
+        if k + 1 == cameras.len() {
+            leave(owned_parts(r));
+        } else {
+            drop_aside(owned_parts(r));
         }
     }
     leave(scene);

@@ -249,14 +249,13 @@ fn json_into(
     };
     for (i, &b) in batches.iter().enumerate() {
         let mut next = Vec::new();
-        let written = rayon::in_place_scope(|s| {
+        rayon::in_place_scope(|s| {
             if let Some(&c) = batches.get(i + 1) {
                 let (next, format) = (&mut next, &format);
                 s.spawn(move |_| *next = format(c, end_of(c)));
             }
             wrote(out, b, std::mem::take(&mut texts))
-        });
-        written?;
+        })?;
         texts = next;
     }
     out.s.push_str("\n]");
