@@ -67,12 +67,27 @@ const FULL: Effort = Effort {
 };
 
 /// The search of a layer of hidden dashes only, planned by chains ([`super::pairs`]): ten
-/// neighbours, not sixteen, and kicks over at most [`DASH_KICKED_STROKES`] chains.
+/// neighbours, not sixteen, and kicks over at most [`DASH_KICKED_STROKES`] chains, one a
+/// chain in a layer of at most [`MANY_DASHES`] dashes.
 const DASHES: Effort = Effort {
     neighbours: DASH_NEIGHBOURS,
-    kicks_per_stroke: DASH_KICKS_PER_STROKE,
+    kicks_per_stroke: 1,
     kicked_strokes: DASH_KICKED_STROKES,
 };
+
+/// [`DASHES`] with [`DASH_KICKS_PER_STROKE`] kicks a chain: a layer of more than
+/// [`MANY_DASHES`] dashes.
+const MANY_DASHES_EFFORT: Effort = Effort {
+    kicks_per_stroke: DASH_KICKS_PER_STROKE,
+    ..DASHES
+};
+
+/// Dashes in a layer above which its search gets [`DASH_KICKS_PER_STROKE`] kicks a chain,
+/// not one. In smaller layers the first local search leaves the kicks little to find: the
+/// shared meshes' layers of up to 1,774 dashes (cube, twocubes, suzanne) were −31% to +1.0%
+/// against the issue's base with one kick a chain, and four cost twocubes' whole render
+/// 60% more CPU, which made it slower than ln's.
+const MANY_DASHES: usize = 2000;
 
 /// Nearest neighbours kept per end in a layer of hidden dashes: their nearest ends are
 /// mostly dashes of the same or the next line, and ten found tours at most 2.0% longer than
@@ -80,20 +95,23 @@ const DASHES: Effort = Effort {
 /// CPU in rocker-arm's whole render. Eight left twocubes' 3.9% longer.
 const DASH_NEIGHBOURS: usize = 10;
 
-/// Chains counted for the kicks in a layer of hidden dashes: 250 kicks at most (with
-/// [`DASH_NEIGHBOURS`], the shared meshes' hidden layers at most 2.7% longer than with 500
-/// kicks and sixteen neighbours, cow; rocker-arm's whole render 10% less CPU).
+/// Chains counted for the kicks in a layer of hidden dashes: 1,000 kicks at most with
+/// [`DASH_KICKS_PER_STROKE`]. Chosen when a chain had one kick: 250
+/// kicks with [`DASH_NEIGHBOURS`] left the shared meshes' hidden layers at most 2.7% longer
+/// than 500 kicks with sixteen neighbours (cow), for 10% less CPU in rocker-arm's whole
+/// render.
 const DASH_KICKED_STROKES: usize = 250;
 
 /// Kicks of the iterated local search per stroke, over at most [`MAX_KICKED_STROKES`].
 const KICKS_PER_STROKE: usize = 4;
 
-/// Kicks per stroke (per chain of dashes, [`super::pairs`]) in a layer of hidden dashes
-/// only: its dashes along lines with nothing near are tied into chains, and the first
-/// local search leaves less for kicks to find. With one kick a chain instead of four, the
-/// shared meshes' hidden layers drew at most 2.5% more pen-up travel than with four kicks a
-/// dash and no ties (suzanne, cow), the kicks took a quarter of the time.
-const DASH_KICKS_PER_STROKE: usize = 1;
+/// Kicks per stroke (per chain of dashes, [`super::pairs`]) in a layer of more than
+/// [`MANY_DASHES`] hidden dashes, over at most [`DASH_KICKED_STROKES`] chains. One kick a
+/// chain (the fourth session's choice, each step checked against the step before) left
+/// beetle's hidden layer 7.8% and cow's 5.4% longer than at the issue's base (0030072), over
+/// issue 35's bound of 5%; with four, all 15 shared meshes' layers are within it (beetle
+/// +4.1%, cow +3.3%), for more emit time (docs/history/issue35-session15.md).
+const DASH_KICKS_PER_STROKE: usize = 4;
 
 /// Longest run of positions a move of the kicks' local search may reverse: a kick is local
 /// (runs of at most [`KICK_RUN`]), and so is its repair. Unbounded, a move after a kick on a
@@ -159,9 +177,13 @@ pub(crate) fn plan(ends: &[[Pt2; 2]], span: Span) -> Vec<(usize, bool)> {
 /// stroke is tieable (a layer of hidden dashes). The work goes to `span` as `plan` says.
 pub(crate) fn plan_tied(ends: &[[Pt2; 2]], tieable: &[bool], span: Span) -> Vec<(usize, bool)> {
     let chains = chains(ends, tieable);
-    // A layer of dashes only: fewer kicks a stroke.
+    // A layer of dashes only: fewer neighbours and kicks a stroke.
     let dashes = !tieable.is_empty() && !tieable.contains(&false);
-    let effort = if dashes { DASHES } else { FULL };
+    let effort = match (dashes, ends.len() > MANY_DASHES) {
+        (false, _) => FULL,
+        (true, false) => DASHES,
+        (true, true) => MANY_DASHES_EFFORT,
+    };
     let order = if chains.len() == ends.len() {
         plan_steps(ends, effort, span)
     } else {
@@ -1085,6 +1107,48 @@ mod tests {
         // Each line's dashes follow each other.
         let lines: Vec<u64> = tied.iter().map(|o| ends[o.0][0][1] as u64).collect();
         assert_eq!(lines.windows(2).filter(|w| w[0] != w[1]).count(), 4);
+    }
+
+    #[test]
+    fn a_layer_of_many_dashes_gets_more_kicks_and_no_longer_a_plan() {
+        // 2,400 dashes (dash 2, gap 1) of 120 random lines, shuffled: more than
+        // MANY_DASHES, so the layer gets DASH_KICKS_PER_STROKE kicks a chain. Its first kicks
+        // are the draws one kick a chain makes, and a kick stays only when it shortens the
+        // tour, so the plan is never longer than with one kick a chain.
+        let mut rng = crate::geom::rng::XorShift::new(11);
+        let mut ends: Vec<[Pt2; 2]> = Vec::new();
+        for _ in 0..120 {
+            let (x, y) = (rng.below(1000) as f64, rng.below(1000) as f64);
+            let a = rng.below(628) as f64 / 100.0;
+            let at = |t: f64| [x + t * a.cos(), y + t * a.sin()];
+            ends.extend((0..20).map(|k| [at(3.0 * k as f64), at(3.0 * k as f64 + 2.0)]));
+        }
+        for i in (1..ends.len()).rev() {
+            ends.swap(i, rng.below(i + 1));
+            if rng.below(2) == 1 {
+                ends[i].reverse();
+            }
+        }
+        assert!(ends.len() > MANY_DASHES);
+        let tieable = vec![true; ends.len()];
+        let many = plan_tied(&ends, &tieable, Span::NONE);
+        let mut seen: Vec<usize> = many.iter().map(|o| o.0).collect();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..ends.len()).collect::<Vec<_>>());
+        let chains = chains(&ends, &tieable);
+        assert!(chains.len() < ends.len(), "dashes along lines are tied");
+        let one = chains.expand(&plan_steps(&chains.ends(&ends), DASHES, Span::NONE));
+        let (t_many, t_one) = (travel(&apply(&ends, &many)), travel(&apply(&ends, &one)));
+        assert!(t_many <= t_one + 1e-9, "{t_many} > {t_one}");
+        assert!(
+            t_many < t_one,
+            "the extra kicks shortened this layer's plan"
+        );
+        assert_eq!(
+            many,
+            plan_tied(&ends, &tieable, Span::NONE),
+            "deterministic"
+        );
     }
 
     #[test]
