@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """One-thread comparison of kepler with ln, Open CASCADE's polygonal HLR and
-Blender's Line Art (see bench/peers/README.md for building the peers).
+Blender's Line Art (see bench/peers/README.md for building the peers), with
+kepler's own runs on two threads and its hidden drawing's JSON beside them.
 
 Every run is a whole process, timed with os.wait4: wall seconds, user+sys
 CPU seconds, peak RSS (ru_maxrss). Output files go to a scratch directory
-that is emptied before each run. One warm-up round (not counted), then
---rounds rounds; in each round every mesh runs every job in turn, so the
+that is emptied before each run. --warmup rounds (one by default, not
+counted), then --rounds rounds; in each round every mesh runs every job in turn, so the
 jobs alternate. Open CASCADE runs once per mesh (after the rounds), with a
 timeout. Ratios are peer CPU / kepler CPU of the same round (above 1: kepler
 is faster), and the table gives the median over the rounds.
@@ -39,12 +40,18 @@ def jobs(a, mesh, tmp):
     ln = os.path.join(a.bin, "ln-render")
     la = ["blender", "-b", "--factory-startup", "-t", "1", "--python",
           os.path.join(HERE, "lineart.py"), "--", mesh, os.path.join(tmp, "la.svg")]
-    one = {"RAYON_NUM_THREADS": "1"}
+    one, two = {"RAYON_NUM_THREADS": "1"}, {"RAYON_NUM_THREADS": "2"}
+    render = [k, "render", "-q", mesh, "--dir", DIR, "--up", "0,1,0"]
+    default = render + ["--json", os.path.join(tmp, "F.json"), "--svg", os.path.join(tmp, "G.svg")]
+    hidden = render + ["--edges", "all", "--hidden"]
+    hidden_svg = hidden + ["--svg", os.path.join(tmp, "G.svg")]
     return {
-        "kepler": ([k, "render", "-q", mesh, "--dir", DIR, "--up", "0,1,0",
-                    "--json", os.path.join(tmp, "F.json"), "--svg", os.path.join(tmp, "G.svg")], one),
-        "kepler_hidden": ([k, "render", "-q", mesh, "--dir", DIR, "--up", "0,1,0",
-                           "--edges", "all", "--hidden", "--svg", os.path.join(tmp, "G.svg")], one),
+        "kepler": (default, one),
+        "kepler_hidden": (hidden_svg, one),
+        # The same render's JSON (the SVG/JSON goal), and both drawings on two threads.
+        "kepler_hidden_json": (hidden + ["--json", os.path.join(tmp, "F.json")], one),
+        "kepler_2t": (default, two),
+        "kepler_hidden_2t": (hidden_svg, two),
         "ln_feature": ([ln, "-obj", mesh, "-dir", DIR, "-mode", "feature", "-crease", "30",
                         "-out", os.path.join(tmp, "F.svg"), "-size", "1024", "-step", "1"],
                        {"GOMAXPROCS": "1"}),
@@ -121,6 +128,9 @@ def main():
     ap.add_argument("--out", default="/work/peers")
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--occt-timeout", type=float, default=60)
+    ap.add_argument("--timeout", type=float, default=None,
+                    help="seconds after which any run is stopped and counted as not finished")
+    ap.add_argument("--warmup", type=int, default=1, help="rounds run first and not counted")
     ap.add_argument("--meshes", default=",".join(MESHES))
     ap.add_argument("--skip", default="", help="comma-separated jobs to leave out")
     a = ap.parse_args()
@@ -156,16 +166,16 @@ def main():
         log.write("processes: " + " | ".join(" ".join(x.split()) for x in ps) + "\n")
         log.flush()
 
-    for rnd in range(0, a.rounds + 1):
+    for rnd in range(1 - a.warmup, a.rounds + 1):
         others()
-        print("round %d%s  load %s" % (rnd, " (warm-up)" if rnd == 0 else "",
+        print("round %d%s  load %s" % (rnd, " (warm-up)" if rnd <= 0 else "",
                                        open("/proc/loadavg").read().strip()), flush=True)
         for m in meshes:
             path = os.path.join(a.models, m + ".obj")
             for job, (argv, env) in jobs(a, path, tmp).items():
                 if job in skip:
                     continue
-                r = run(argv, env, tmp)
+                r = run(argv, env, tmp, timeout=a.timeout)
                 if rnd > 0:
                     record(rnd, m, job, r)
     if "occt" not in skip:
@@ -201,11 +211,39 @@ def write_md(a, meshes, nf, rows):
              if i in b and d[i][key] != "" and d[i]["rc"] == 0 and b[i]["rc"] == 0]
         return statistics.median(v) if v else None
 
+    def wall_ratio(mesh, job, base):
+        """Median over rounds of job's wall / base's wall of the same round."""
+        d, b = by.get((mesh, job), {}), by.get((mesh, base), {})
+        v = [float(d[i]["wall_s"]) / float(b[i]["wall_s"]) for i in d
+             if i in b and d[i]["rc"] == 0 and b[i]["rc"] == 0]
+        return statistics.median(v) if v else None
+
     def f(x, fmt="%.3f"):
         return "-" if x is None else fmt % x
 
     def fr(x):
         return "-" if x is None else ("%.2f" % x if x < 10 else "%.1f" % x)
+
+    def stopped(mesh, job):
+        """The CPU seconds of a run stopped at the timeout, if every run of it was."""
+        d = by.get((mesh, job), {})
+        if d and all(r["timed_out"] in (True, "True") for r in d.values()):
+            return min(float(r["cpu_s"]) for r in d.values())
+        return None
+
+    def fp(mesh, job, base, key="cpu_s"):
+        """[`ratio`] written out, or "> x" where the peer never finished."""
+        t = stopped(mesh, job)
+        k = med(mesh, base)
+        if t is not None and k:
+            return "> %s (dnf)" % fr(t / k)
+        return fr(ratio(mesh, job, base, key))
+
+    def fm(mesh, job, key="cpu_s", fmt="%.3f"):
+        """[`med`] written out, or "dnf" where the run never finished."""
+        if stopped(mesh, job) is not None:
+            return "dnf %gs" % a.timeout
+        return f(med(mesh, job, key), fmt)
 
     def occt(mesh, key):
         r = by.get((mesh, "occt"), {}).get(1)
@@ -230,12 +268,15 @@ def write_md(a, meshes, nf, rows):
 
     L = []
     L.append("# kepler against ln, OCCT polygonal HLR and Blender Line Art, one thread\n")
+    if a.timeout:
+        L.append("Runs stopped after %g s are marked dnf; a ratio against one is a lower "
+                 "bound (\"> x\").\n" % a.timeout)
     L.append("CPU = user+sys seconds of the whole process (os.wait4), median of %d rounds "
-             "after a warm-up round; OCCT once per mesh (timeout %g s). Ratio = peer / kepler "
+             "after %d warm-up round(s); OCCT once per mesh (timeout %g s). Ratio = peer / kepler "
              "of the same round, median (above 1: kepler faster). Line Art step = its own "
              "depsgraph evaluation of the Line Art modifier (printed by lineart.py); "
              "OCCT step = HLRBRep_PolyAlgo + PolyHLRToShape (printed by hlr-occt).\n"
-             % (a.rounds, a.occt_timeout))
+             % (a.rounds, a.warmup, a.occt_timeout))
     L.append("## CPU seconds\n")
     L.append("| mesh | faces | kepler | kepler hidden | ln feature | ln hidden | OCCT whole | "
              "OCCT step | Line Art whole | Line Art step | LA hidden whole | LA hidden step | "
@@ -244,9 +285,9 @@ def write_md(a, meshes, nf, rows):
     for m in meshes:
         L.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
             m, nf[m], f(med(m, "kepler")), f(med(m, "kepler_hidden")),
-            f(med(m, "ln_feature")), f(med(m, "ln_hidden")),
+            fm(m, "ln_feature"), fm(m, "ln_hidden"),
             occt(m, "cpu_s"), occt(m, "step_s"),
-            f(med(m, "lineart")), f(med(m, "lineart", "step_cpu_s")),
+            fm(m, "lineart"), f(med(m, "lineart", "step_cpu_s")),
             f(med(m, "lineart_hidden")), f(med(m, "lineart_hidden", "step_cpu_s")),
             f(med(m, "lineart_hidden_all")), f(med(m, "lineart_hidden_all", "step_cpu_s"))))
     L.append("\n## Ratios (peer CPU / kepler CPU; above 1: kepler faster)\n")
@@ -260,12 +301,33 @@ def write_md(a, meshes, nf, rows):
     L.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for m in meshes:
         L.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            m, nf[m], fr(ratio(m, "ln_feature", "kepler")),
-            fr(ratio(m, "ln_hidden", "kepler_hidden")), occt_ratio(m),
-            fr(ratio(m, "lineart", "kepler", "step_cpu_s")), fr(ratio(m, "lineart", "kepler")),
+            m, nf[m], fp(m, "ln_feature", "kepler"),
+            fp(m, "ln_hidden", "kepler_hidden"), occt_ratio(m),
+            fr(ratio(m, "lineart", "kepler", "step_cpu_s")), fp(m, "lineart", "kepler"),
             fr(ratio(m, "lineart_hidden", "kepler_hidden", "step_cpu_s")),
             fr(ratio(m, "lineart_hidden", "kepler_hidden")),
             fr(ratio(m, "lineart_hidden_all", "kepler_hidden", "step_cpu_s"))))
+    L.append("\n## kepler on one and two threads, and its hidden SVG against its JSON\n")
+    L.append("Default drawing = `--json F --svg G`; hidden = `--edges all --hidden --svg G`; "
+             "hidden JSON = `--edges all --hidden --json F`. Speed-up = 1-thread wall / "
+             "2-thread wall of the same round, median. SVG/JSON = hidden SVG CPU / hidden "
+             "JSON CPU of the same round, one thread, median (goal: at most 1.5).\n")
+    L.append("| mesh | faces | 1t wall | 1t CPU | 1t MiB | 2t wall | 2t CPU | 2t MiB | speed-up | "
+             "hidden 1t wall | hidden 1t CPU | hidden 1t MiB | hidden 2t wall | hidden 2t CPU | "
+             "hidden speed-up | hidden JSON 1t CPU | SVG/JSON |")
+    L.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    mib = lambda m, j: f(med(m, j, "maxrss_kb") and med(m, j, "maxrss_kb") / 1024, "%.0f")
+    for m in meshes:
+        L.append("| %s | %d | %s |" % (m, nf[m], " | ".join([
+            f(med(m, "kepler", "wall_s")), f(med(m, "kepler")), mib(m, "kepler"),
+            f(med(m, "kepler_2t", "wall_s")), f(med(m, "kepler_2t")), mib(m, "kepler_2t"),
+            fr(wall_ratio(m, "kepler", "kepler_2t")),
+            f(med(m, "kepler_hidden", "wall_s")), f(med(m, "kepler_hidden")),
+            mib(m, "kepler_hidden"),
+            f(med(m, "kepler_hidden_2t", "wall_s")), f(med(m, "kepler_hidden_2t")),
+            fr(wall_ratio(m, "kepler_hidden", "kepler_hidden_2t")),
+            f(med(m, "kepler_hidden_json")),
+            fr(ratio(m, "kepler_hidden", "kepler_hidden_json"))])))
     L.append("\n## Wall seconds and peak RSS (MiB), medians\n")
     L.append("| mesh | kepler wall | kepler MiB | kepler hidden wall | kepler hidden MiB | "
              "ln feature wall | ln feature MiB | ln hidden wall | ln hidden MiB | OCCT wall | "

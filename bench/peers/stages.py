@@ -4,10 +4,11 @@
     python3 bench/peers/stages.py RUNS MESH [RENDER FLAGS] -- KEPLER [KEPLER ...]
 
 Runs `KEPLER render -q MESH FLAGS --json J --svg S --stats` RUNS times for each binary in
-turn (A B A B ...) with RAYON_NUM_THREADS=2 and prints, per binary, the medians of each
-stage's serial milliseconds (its wall time times the serial share `--stats` prints for it),
-of the run's serial share and of the stages' wall time summed. Outputs go to a temporary
-folder that is removed at the end.
+turn (A B A B ...) with RAYON_NUM_THREADS=2 (or $THREADS) and prints, per binary, the
+medians of each stage's serial milliseconds (its wall time times the serial share `--stats`
+prints for it), of the run's serial share and of the stages' wall time summed; then each
+stage's wall and CPU milliseconds (medians). Outputs go to a temporary folder that is
+removed at the end.
 """
 import os
 import re
@@ -27,7 +28,9 @@ def main():
     runs, mesh, flags = int(sys.argv[1]), sys.argv[2], sys.argv[3:cut]
     bins = sys.argv[cut + 1:]
     got = {b: {} for b in bins}
-    env = dict(os.environ, RAYON_NUM_THREADS="2")
+    threads = os.environ.get("THREADS", "2")
+    env = dict(os.environ, RAYON_NUM_THREADS=threads)
+    wall_cpu = {b: {} for b in bins}
     with tempfile.TemporaryDirectory() as tmp:
         out = [os.path.join(tmp, "o.json"), os.path.join(tmp, "o.svg")]
         for _ in range(runs):
@@ -39,13 +42,21 @@ def main():
                 wall = 0.0
                 for m in STAGE.finditer(err):
                     got[b].setdefault(m[1], []).append(float(m[2]) * float(m[4]) / 100)
+                    wall_cpu[b].setdefault(m[1], []).append((float(m[2]), float(m[3])))
                     wall += float(m[2])
                 got[b].setdefault("run's serial share %", []).append(float(SHARE.search(err)[1]))
                 got[b].setdefault("stages' wall ms", []).append(wall)
-    print("| serial ms, medians of %d | %s |" % (runs, " | ".join(bins)))
+    print("| serial ms, medians of %d, %s threads | %s |" % (runs, threads, " | ".join(bins)))
     print("|---|" + "--:|" * len(bins))
     for k in got[bins[0]]:
         cells = " | ".join("%.1f" % statistics.median(got[b][k]) for b in bins)
+        print(f"| {k} | {cells} |")
+    print()
+    print("| stage: wall ms / CPU ms, medians | %s |" % " | ".join(bins))
+    print("|---|" + "--:|" * len(bins))
+    for k in wall_cpu[bins[0]]:
+        med = lambda b, i: statistics.median(x[i] for x in wall_cpu[b][k])
+        cells = " | ".join("%.1f / %.1f" % (med(b, 0), med(b, 1)) for b in bins)
         print(f"| {k} | {cells} |")
 
 
