@@ -107,7 +107,7 @@ const KICKS_PER_STROKE: usize = 4;
 
 /// Kicks per stroke (per chain of dashes, [`super::pairs`]) in a layer of more than
 /// [`MANY_DASHES`] hidden dashes, over at most [`DASH_KICKED_STROKES`] chains. One kick a
-/// chain (the fourth session's choice, each step checked against the step before) left
+/// chain (docs/history/issue35-hidden2.md, each step checked against the step before) left
 /// beetle's hidden layer 7.8% and cow's 5.4% longer than at the issue's base (0030072), over
 /// issue 35's bound of 5%; with four, all 15 shared meshes' layers are within it (beetle
 /// +4.1%, cow +3.3%), for more emit time (docs/history/issue35-session15.md).
