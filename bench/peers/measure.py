@@ -204,18 +204,11 @@ def write_md(a, meshes, nf, rows):
         v = [float(r[key]) for r in d.values() if r[key] != "" and r["rc"] == 0]
         return statistics.median(v) if v else None
 
-    def ratio(mesh, job, base, key="cpu_s"):
-        """Median over rounds of job[key] / base cpu of the same round."""
+    def ratio(mesh, job, base, key="cpu_s", base_key="cpu_s"):
+        """Median over rounds of job[key] / base[base_key] of the same round."""
         d, b = by.get((mesh, job), {}), by.get((mesh, base), {})
-        v = [float(d[i][key]) / float(b[i]["cpu_s"]) for i in d
+        v = [float(d[i][key]) / float(b[i][base_key]) for i in d
              if i in b and d[i][key] != "" and d[i]["rc"] == 0 and b[i]["rc"] == 0]
-        return statistics.median(v) if v else None
-
-    def wall_ratio(mesh, job, base):
-        """Median over rounds of job's wall / base's wall of the same round."""
-        d, b = by.get((mesh, job), {}), by.get((mesh, base), {})
-        v = [float(d[i]["wall_s"]) / float(b[i]["wall_s"]) for i in d
-             if i in b and d[i]["rc"] == 0 and b[i]["rc"] == 0]
         return statistics.median(v) if v else None
 
     def f(x, fmt="%.3f"):
@@ -223,6 +216,11 @@ def write_md(a, meshes, nf, rows):
 
     def fr(x):
         return "-" if x is None else ("%.2f" % x if x < 10 else "%.1f" % x)
+
+    def mib(mesh, job):
+        """The median peak in MiB, written out."""
+        kb = med(mesh, job, "maxrss_kb")
+        return f(kb and kb / 1024, "%.0f")
 
     def stopped(mesh, job):
         """The CPU seconds of a run stopped at the timeout, if every run of it was."""
@@ -234,9 +232,8 @@ def write_md(a, meshes, nf, rows):
     def fp(mesh, job, base, key="cpu_s"):
         """[`ratio`] written out, or "> x" where the peer never finished."""
         t = stopped(mesh, job)
-        k = med(mesh, base)
-        if t is not None and k:
-            return "> %s (dnf)" % fr(t / k)
+        if t is not None and med(mesh, base):
+            return "> %s (dnf)" % fr(t / med(mesh, base))
         return fr(ratio(mesh, job, base, key))
 
     def fm(mesh, job, key="cpu_s", fmt="%.3f"):
@@ -316,16 +313,15 @@ def write_md(a, meshes, nf, rows):
              "hidden 1t wall | hidden 1t CPU | hidden 1t MiB | hidden 2t wall | hidden 2t CPU | "
              "hidden speed-up | hidden JSON 1t CPU | SVG/JSON |")
     L.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-    mib = lambda m, j: f(med(m, j, "maxrss_kb") and med(m, j, "maxrss_kb") / 1024, "%.0f")
     for m in meshes:
         L.append("| %s | %d | %s |" % (m, nf[m], " | ".join([
             f(med(m, "kepler", "wall_s")), f(med(m, "kepler")), mib(m, "kepler"),
             f(med(m, "kepler_2t", "wall_s")), f(med(m, "kepler_2t")), mib(m, "kepler_2t"),
-            fr(wall_ratio(m, "kepler", "kepler_2t")),
+            fr(ratio(m, "kepler", "kepler_2t", "wall_s", "wall_s")),
             f(med(m, "kepler_hidden", "wall_s")), f(med(m, "kepler_hidden")),
             mib(m, "kepler_hidden"),
             f(med(m, "kepler_hidden_2t", "wall_s")), f(med(m, "kepler_hidden_2t")),
-            fr(wall_ratio(m, "kepler_hidden", "kepler_hidden_2t")),
+            fr(ratio(m, "kepler_hidden", "kepler_hidden_2t", "wall_s", "wall_s")),
             f(med(m, "kepler_hidden_json")),
             fr(ratio(m, "kepler_hidden", "kepler_hidden_json"))])))
     L.append("\n## Wall seconds and peak RSS (MiB), medians\n")
@@ -336,12 +332,12 @@ def write_md(a, meshes, nf, rows):
     for m in meshes:
         cells = []
         for j in ["kepler", "kepler_hidden", "ln_feature", "ln_hidden"]:
-            cells += [f(med(m, j, "wall_s")), f(med(m, j, "maxrss_kb") and med(m, j, "maxrss_kb") / 1024, "%.0f")]
+            cells += [f(med(m, j, "wall_s")), mib(m, j)]
         o = by.get((m, "occt"), {}).get(1)
         cells += [("%.2f" % float(o["wall_s"])) if o else "-",
                   ("%.0f" % (float(o["maxrss_kb"]) / 1024)) if o else "-"]
         for j in ["lineart", "lineart_hidden"]:
-            cells += [f(med(m, j, "wall_s")), f(med(m, j, "maxrss_kb") and med(m, j, "maxrss_kb") / 1024, "%.0f")]
+            cells += [f(med(m, j, "wall_s")), mib(m, j)]
         L.append("| %s | %s |" % (m, " | ".join(cells)))
     with open(os.path.join(a.out, "table.md"), "w") as fh:
         fh.write("\n".join(L) + "\n")

@@ -27,10 +27,11 @@ def main():
     cut = sys.argv.index("--")
     runs, mesh, flags = int(sys.argv[1]), sys.argv[2], sys.argv[3:cut]
     bins = sys.argv[cut + 1:]
+    # Per binary, by stage: serial ms (and the run's totals); (wall ms, CPU ms).
     got = {b: {} for b in bins}
+    wall_cpu = {b: {} for b in bins}
     threads = os.environ.get("THREADS", "2")
     env = dict(os.environ, RAYON_NUM_THREADS=threads)
-    wall_cpu = {b: {} for b in bins}
     with tempfile.TemporaryDirectory() as tmp:
         out = [os.path.join(tmp, "o.json"), os.path.join(tmp, "o.svg")]
         for _ in range(runs):

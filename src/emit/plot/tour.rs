@@ -179,10 +179,12 @@ pub(crate) fn plan_tied(ends: &[[Pt2; 2]], tieable: &[bool], span: Span) -> Vec<
     let chains = chains(ends, tieable);
     // A layer of dashes only: fewer neighbours and kicks a stroke.
     let dashes = !tieable.is_empty() && !tieable.contains(&false);
-    let effort = match (dashes, ends.len() > MANY_DASHES) {
-        (false, _) => FULL,
-        (true, false) => DASHES,
-        (true, true) => MANY_DASHES_EFFORT,
+    let effort = if !dashes {
+        FULL
+    } else if ends.len() > MANY_DASHES {
+        MANY_DASHES_EFFORT
+    } else {
+        DASHES
     };
     let order = if chains.len() == ends.len() {
         plan_steps(ends, effort, span)
